@@ -1,0 +1,5 @@
+import sys
+
+from linkstress.cli import main
+
+sys.exit(main())

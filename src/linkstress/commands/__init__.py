@@ -1,0 +1,1 @@
+"""One module per ``linkstress`` subcommand, each with ``register(subparsers)``."""

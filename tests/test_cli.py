@@ -1,0 +1,52 @@
+"""The console script: help, version, and the exit-code contract."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from linkstress import __version__
+from linkstress.cli import main
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "linkstress", *args], capture_output=True, text=True)
+
+
+def test_version_prints_the_package_version():
+    result = run_cli("--version")
+    assert result.returncode == 0
+    assert result.stdout.strip() == f"linkstress {__version__}"
+
+
+def test_help_lists_the_commands():
+    result = run_cli("--help")
+    assert result.returncode == 0
+    assert "sections" in result.stdout
+
+
+def test_console_script_is_installed():
+    import shutil
+
+    script = shutil.which("linkstress")
+    if script is None:
+        pytest.skip("console script not on PATH in this environment")
+    assert subprocess.run([script, "--version"], capture_output=True, text=True).returncode == 0
+
+
+def test_sections_prints_the_seed_crank_bar(capsys):
+    # The seed's ANSYS crank: 1.0 m between 20 mm pin holes, 1.2 x 0.5 x 0.1 m, steel 7850 kg/m^3.
+    assert main(["sections", "--bar", "1.0", "0.5", "0.1", "0.1", "--hole", "0.02", "--stations", "3"]) == 0
+    out = capsys.readouterr().out
+    # m = 7850 x 0.1 x (1.2 x 0.5 - 2 pi 0.01^2) = 470.507 kg (flattened holes: within 1e-6)
+    assert "470.507" in out
+    assert "0.00104167" in out  # I = t h^3 / 12 away from the holes
+
+
+def test_bad_input_exits_2_with_one_message_and_no_traceback():
+    result = run_cli("sections", "--bar", "1.0", "0.5", "0.1", "-0.1")
+    assert result.returncode == 2
+    assert result.stderr.strip() == "linkstress: error: link 'bar': thickness must be > 0 m, got -0.1"
+    assert "Traceback" not in result.stderr
