@@ -1,0 +1,91 @@
+"""The loads on one link over a sweep of positions: what the beam engine and the FEA both apply.
+
+Everything is in the link's member frame (origin at its frame joint i, +x toward joint j), which
+moves with the link: vectors are the inertial quantities expressed in the member axes at that
+instant. P positions, J joints (the link profile's joints, in its order).
+
+The d'Alembert load per unit volume at a point r of the link is rho (g - a(r)) with
+a(r) = a_O + alpha k x r - omega^2 r: the rigid-body acceleration of that material point.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.profile import LinkProfile
+
+
+@dataclass(frozen=True)
+class PointForce:
+    """A force applied at a fixed point of the link: ``at`` (2,) [m] and ``force`` (P, 2) [N], member frame."""
+
+    at: NDArray[np.float64]
+    force: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class LinkLoadCase:
+    """Loads on a link over P positions, member frame of joints ``frame_joints``.
+
+    pin_forces (P, J, 2) [N]: force on this link from its neighbour (or the ground) at each joint.
+    joint_couples (P, J) [N m]: couples applied to the link at each joint, counter-clockwise positive
+    (a driving torque acts at its pivot joint; an external couple at the joint the scene names).
+    point_forces: forces at points of the link other than joints.
+    omega (P,) [rad/s], alpha (P,) [rad/s^2]: the link's angular velocity and acceleration.
+    origin_acceleration (P, 2) [m/s^2]: acceleration of the frame origin (joint i).
+    gravity (P, 2) [m/s^2]: gravity in member axes (zero when the scene has none).
+    """
+
+    frame_joints: tuple[int, int]
+    pin_forces: NDArray[np.float64]
+    joint_couples: NDArray[np.float64]
+    omega: NDArray[np.float64]
+    alpha: NDArray[np.float64]
+    origin_acceleration: NDArray[np.float64]
+    gravity: NDArray[np.float64]
+    point_forces: tuple[PointForce, ...] = field(default_factory=tuple)
+
+    @property
+    def n_positions(self) -> int:
+        return len(self.omega)
+
+    def body_force_density(self, points: NDArray[np.float64], density: float) -> NDArray[np.float64]:
+        """d'Alembert load per unit volume [N/m^3] at ``points`` (Q, 2) [m]: shape (P, Q, 2), member frame."""
+        r = points[None, :, :]
+        w2 = (self.omega**2)[:, None, None]
+        al = self.alpha[:, None, None]
+        a = self.origin_acceleration[:, None, :] + al * np.stack([-r[..., 1], r[..., 0]], axis=-1) - w2 * r
+        return density * (self.gravity[:, None, :] - a)
+
+    def residual(self, link: LinkProfile) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Net force (P, 2) [N] and net moment about the frame origin (P,) [N m] of all loads.
+
+        Zero for loads in dynamic equilibrium (d'Alembert load included): the equilibrium check.
+        """
+        i, j = self.frame_joints
+        frame = link.frame(i, j)
+        joints = frame.to_local(link.joints)
+        mass, inertia_g = link.mass, link.mass_moment_of_inertia
+        r_g = frame.to_local(link.center_of_mass)
+        free = self.gravity - self.origin_acceleration
+        force = self.pin_forces.sum(axis=1) + mass * (
+            free - self.alpha[:, None] * np.array([-r_g[1], r_g[0]]) + (self.omega**2)[:, None] * r_g
+        )
+        moment = (
+            _cross(joints[None, :, :], self.pin_forces).sum(axis=1)
+            + self.joint_couples.sum(axis=1)
+            + mass * _cross(r_g, free)
+            - self.alpha * (inertia_g + mass * r_g @ r_g)
+        )
+        for pf in self.point_forces:
+            force = force + pf.force
+            moment = moment + _cross(pf.at, pf.force)
+        return force, moment
+
+
+def _cross(r: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64]:
+    """z-component of r x f over the last axis."""
+    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
