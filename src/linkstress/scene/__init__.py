@@ -1,0 +1,1 @@
+"""Scene files (TOML): links, materials, mechanisms, motion, loads and what to compute."""
