@@ -1,0 +1,138 @@
+"""Internal forces N, V, M from the free body of each cut, against closed-form beam results."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from linkstress.builders import straight_bar, stadium
+from linkstress.dynamics.internal_forces import internal_forces
+from linkstress.dynamics.section_stress import default_stations, section_stresses
+from linkstress.loads import LinkLoadCase
+from linkstress.materials import Material
+
+STEEL = Material("steel", 7850.0, 200e9, 0.3)
+
+
+def load_case(p, j, **kw):
+    base = dict(
+        frame_joints=(0, 1),
+        pin_forces=np.zeros((p, j, 2)),
+        joint_couples=np.zeros((p, j)),
+        omega=np.zeros(p),
+        alpha=np.zeros(p),
+        origin_acceleration=np.zeros((p, 2)),
+        gravity=np.zeros((p, 2)),
+    )
+    base.update(kw)
+    return LinkLoadCase(**base)
+
+
+def test_uniform_bar_spinning_about_its_middle_has_the_closed_form_normal_force():
+    # N(xi) = rho A w^2 (L^2/4 - xi^2) / 2, xi measured from the spin centre (a free spinning bar).
+    length, h, t = 1.0, 0.05, 0.01
+    bar = straight_bar(length, h, 0.0, t, STEEL)
+    w = np.array([10.0, 30.0])
+    loads = load_case(2, 2, omega=w, origin_acceleration=np.column_stack([w**2 * length / 2, [0, 0]]))
+    x = np.linspace(0.0, length, 21)
+    forces = internal_forces(bar, loads, bar.sections(x))
+    xi = x - length / 2
+    expected = 7850 * h * t * w[:, None] ** 2 * (length**2 / 4 - xi**2) / 2
+    np.testing.assert_allclose(forces.normal, expected, rtol=1e-9, atol=1e-9 * expected.max())
+    np.testing.assert_allclose(forces.shear, 0, atol=1e-9 * expected.max())
+    np.testing.assert_allclose(forces.moment, 0, atol=1e-9 * expected.max())
+    assert (forces.mismatch < 1e-9).all()
+
+
+def test_crank_accelerated_from_rest_by_a_torque_has_the_polynomial_moment():
+    # Plate crank 0 <= x <= L, height h, pinned at x = 0, torque T there, omega = 0:
+    # alpha = T / I_O with I_O = m (L^2 / 3 + h^2 / 12); pin force F = m alpha L / 2 (+y);
+    # M(x) = T - x F + mu alpha (x^3 / 6 - x h^2 / 12), mu = m / L; V(x) = -(F - mu alpha x^2 / 2).
+    length, h, t, torque = 0.8, 0.06, 0.02, 120.0
+    bar = straight_bar(length, h, 0.0, t, STEEL)
+    m = bar.mass
+    mu = m / length
+    alpha = torque / (m * (length**2 / 3 + h**2 / 12))
+    f = m * alpha * length / 2
+    pins = np.zeros((1, 2, 2))
+    pins[0, 0] = [0.0, f]
+    couples = np.array([[torque, 0.0]])
+    loads = load_case(1, 2, pin_forces=pins, joint_couples=couples, alpha=np.array([alpha]))
+    x = np.linspace(0.0, length, 17)
+    forces = internal_forces(bar, loads, bar.sections(x))
+    moment = torque - x * f + mu * alpha * (x**3 / 6 - x * h**2 / 12)
+    np.testing.assert_allclose(forces.moment[0], moment, rtol=1e-9, atol=1e-9 * torque)
+    assert forces.moment[0, 0] == pytest.approx(torque, rel=1e-12)
+    assert forces.moment[0, -1] == pytest.approx(0.0, abs=1e-9 * torque)
+    np.testing.assert_allclose(forces.shear[0], -(f - mu * alpha * x**2 / 2), rtol=1e-9, atol=1e-9 * f)
+    np.testing.assert_allclose(forces.normal[0], 0.0, atol=1e-9 * f)
+    assert forces.mismatch[0] < 1e-9
+
+
+def test_two_force_link_has_constant_tension_between_its_pins_and_no_moment():
+    # Static, weightless: -P at joint 0, +P at joint 1 along the axis; overhangs carry nothing.
+    bar = straight_bar(1.0, 0.2, 0.1, 0.01, STEEL, hole_diameter=0.04)
+    p = 5000.0
+    pins = np.array([[[-p, 0.0], [p, 0.0]]])
+    loads = load_case(1, 2, pin_forces=pins)
+    x = np.array([-0.09, -0.01, 0.0, 0.3, 0.7, 0.99, 1.0, 1.05])
+    forces = internal_forces(bar, loads, bar.sections(x))
+    np.testing.assert_allclose(forces.normal[0], [0, 0, p, p, p, p, 0, 0], atol=1e-9 * p)
+    np.testing.assert_allclose(forces.moment[0], 0.0, atol=1e-9 * p)
+    np.testing.assert_allclose(forces.shear[0], 0.0, atol=1e-9 * p)
+    assert forces.mismatch[0] < 1e-12
+
+
+def test_unbalanced_loads_show_up_as_two_sided_mismatch():
+    bar = straight_bar(1.0, 0.2, 0.1, 0.01, STEEL)
+    pins = np.array([[[-1000.0, 0.0], [999.0, 0.0]]])
+    forces = internal_forces(bar, load_case(1, 2, pin_forces=pins), bar.sections([0.5]))
+    assert forces.mismatch[0] == pytest.approx(1.0 / 1000.0, rel=1e-9)
+
+
+def test_cantilever_style_bending_stress_is_mc_over_i_and_shear_is_jourawski():
+    # Weightless bar clamped at joint 0 (force -P, couple -P L) and loaded by +P (y) at joint 1.
+    # The left part holds the reaction: V = P and M = -P (L - x); the outer fibre, where tau = 0,
+    # carries sigma = |M| c / I.
+    length, h, t, p = 1.0, 0.1, 0.01, 200.0
+    bar = straight_bar(length, h, 0.0, t, STEEL)
+    pins = np.array([[[0.0, -p], [0.0, p]]])
+    couples = np.array([[-p * length, 0.0]])
+    loads = load_case(1, 2, pin_forces=pins, joint_couples=couples)
+    x = np.array([0.25, 0.5])
+    result = section_stresses(bar, loads, x)
+    i = t * h**3 / 12
+    np.testing.assert_allclose(result.forces.moment[0], -p * (length - x), rtol=1e-12)
+    np.testing.assert_allclose(result.forces.shear[0], p, rtol=1e-12)
+    sigma = p * (length - x) * (h / 2) / i
+    np.testing.assert_allclose(result.von_mises[0], sigma, rtol=1e-12)
+    np.testing.assert_allclose(np.abs(result.fibre_y[0]), h / 2, rtol=1e-12)
+    assert result.max_von_mises[0] == pytest.approx(sigma[0], rel=1e-12)
+    assert result.max_at[0, 0] == pytest.approx(0.25, rel=1e-12)
+    assert abs(result.max_at[0, 1]) == pytest.approx(h / 2, rel=1e-12)
+
+
+def test_pure_shear_section_peaks_at_the_neutral_axis_with_1_5_v_over_a():
+    # Equal and opposite transverse forces make V constant; at the mid station M = 0.
+    length, h, t, p = 1.0, 0.1, 0.01, 200.0
+    bar = straight_bar(length, h, 0.0, t, STEEL)
+    pins = np.array([[[0.0, p], [0.0, -p]]])
+    couples = np.array([[p * length / 2, p * length / 2]])
+    loads = load_case(1, 2, pin_forces=pins, joint_couples=couples)
+    result = section_stresses(bar, loads, np.array([0.5]))
+    assert result.forces.moment[0, 0] == pytest.approx(0.0, abs=1e-9)
+    assert result.von_mises[0, 0] == pytest.approx(np.sqrt(3) * 1.5 * p / (h * t), rel=1e-12)
+    assert result.fibre_y[0, 0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_stations_near_pin_holes_are_flagged_and_default_stations_avoid_the_ends():
+    link = stadium(0.3, 0.06, 0.01, STEEL, hole_diameter=0.02)
+    x = default_stations(link, (0, 1), 50)
+    lo, hi = link.x_extent()
+    assert x[0] > lo and x[-1] < hi
+    pins = np.array([[[-100.0, 0.0], [100.0, 0.0]]])
+    result = section_stresses(link, load_case(1, 2, pin_forces=pins), x)
+    # within one depth (0.06 m) of either hole's extent [-0.01, 0.01] or [0.29, 0.31]
+    expected = (np.abs(x) < 0.07) | (np.abs(x - 0.3) < 0.07)
+    np.testing.assert_array_equal(result.near_hole, expected)
+    assert np.isfinite(result.von_mises).all()
