@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from linkstress.builders import straight_bar, stadium
 from linkstress.dynamics.internal_forces import internal_forces
@@ -136,3 +138,32 @@ def test_stations_near_pin_holes_are_flagged_and_default_stations_avoid_the_ends
     expected = (np.abs(x) < 0.07) | (np.abs(x - 0.3) < 0.07)
     np.testing.assert_array_equal(result.near_hole, expected)
     assert np.isfinite(result.von_mises).all()
+
+
+@settings(max_examples=60, deadline=None)
+def physical(bound):
+    """Floats in [-bound, bound] that are 0 or at least 1e-6 in size (no denormal loads)."""
+    return st.floats(-bound, bound).filter(lambda v: v == 0 or abs(v) > 1e-6)
+
+
+@given(st.lists(physical(1e4), min_size=4, max_size=4), physical(50), physical(20), physical(1e3))
+def test_section_maximum_is_exact_against_dense_fibres(pin, alpha, omega, ax):
+    # Random (not equilibrated) loads on a link with pin holes; sections with one and two chords.
+    link = stadium(0.3, 0.06, 0.01, STEEL, hole_diameter=0.02)
+    pins = np.array([[pin[:2], pin[2:]]])
+    loads = load_case(1, 2, pin_forces=pins, alpha=np.array([alpha]), omega=np.array([omega]),
+                      origin_acceleration=np.array([[ax, 0.0]]))
+    x = np.array([-0.02, 0.004, 0.05, 0.15, 0.297, 0.32])
+    result = section_stresses(link, loads, x)
+    table, f = result.sections, result.forces
+    for s in range(len(x)):
+        ys = np.concatenate([np.linspace(a, b, 4001) for a, b in table.chords(s)])
+        sigma = f.normal[0, s] / table.area[s] + f.moment[0, s] * (ys - table.neutral_axis[s]) / table.second_moment[s]
+        q = table.first_moment(np.broadcast_to(ys, (len(x), len(ys))))[s]
+        tau = f.shear[0, s] * q / (table.second_moment[s] * table.thickness)
+        dense = np.sqrt(sigma**2 + 3 * tau**2).max()
+        assert result.von_mises[0, s] >= dense * (1 - 1e-12)
+        assert result.von_mises[0, s] <= dense * (1 + 1e-6) + 1e-9
+        # and the reported fibre carries that von Mises
+        vm_at = np.sqrt(result.sigma[0, s] ** 2 + 3 * result.tau[0, s] ** 2)
+        assert vm_at == pytest.approx(result.von_mises[0, s], rel=1e-9, abs=1e-9)

@@ -11,8 +11,8 @@ cut's neutral-axis point c) the resultant of every load on the left part, d'Alem
 
     (N, V) = -F_L,   M = M_L.
 
-The right free body gives the same values when the loads are in equilibrium; the difference is
-reported as the equilibrium check.
+The right free body gives the same values when the loads are in equilibrium; the difference, the
+resultant of all loads about the cut point, is reported as the equilibrium check.
 """
 
 from __future__ import annotations
@@ -43,34 +43,49 @@ class InternalForces:
     mismatch: NDArray[np.float64]
 
 
-def _cross(r, f):
-    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+def load_coefficients(loads: LinkLoadCase) -> NDArray[np.float64]:
+    """Per position, the load quantities every section force is linear in (P, Q).
 
-
-def _side_loads(loads, joints, region, cut, left, rho_t, moments):
-    """Force (P, S, 2) and moment about the cut points (P, S) of the loads on one side.
-
-    ``left`` (S, J) selects the joints on that side; ``moments`` = (A, S_x, S_y, J_O) (S,) of that
-    side's material.
+    Columns: for each joint (F_x, F_y, C); for each point force (F_x, F_y); then g - a_O (2),
+    alpha, omega^2.
     """
-    mask = left.astype(float)
-    pin_force = np.einsum("sj,pjk->psk", mask, loads.pin_forces)
-    pin_moment = np.einsum("sj,pj->ps", mask, _cross(joints[None, :, :], loads.pin_forces))
-    couples = np.einsum("sj,pj->ps", mask, loads.joint_couples)
-    area, first_x, first_y, polar = moments
-    free = (loads.gravity - loads.origin_acceleration)[:, None, :]  # g - a_O
-    alpha, w2 = loads.alpha[:, None], (loads.omega**2)[:, None]
-    first = np.stack([first_x, first_y], axis=-1)[None]
-    spin = np.stack([-first_y, first_x], axis=-1)[None]
-    body_force = rho_t * (free * area[None, :, None] - alpha[..., None] * spin + w2[..., None] * first)
-    body_moment = rho_t * (first_x * free[..., 1] - first_y * free[..., 0] - alpha * polar)
-    force = pin_force + body_force
-    moment = pin_moment + couples + body_moment
-    for pf in loads.point_forces:
-        on_side = region(pf.at[0]).astype(float)[None, :]
-        force = force + on_side[..., None] * pf.force[:, None, :]
-        moment = moment + on_side * _cross(pf.at, pf.force)[:, None]
-    return force, moment - _cross(cut[None], force)
+    n_pos = len(loads.omega)
+    per_joint = np.concatenate([loads.pin_forces, loads.joint_couples[..., None]], axis=2).reshape(n_pos, -1)
+    point = [pf.force for pf in loads.point_forces]
+    return np.column_stack([
+        per_joint, *point, loads.gravity - loads.origin_acceleration, loads.alpha, loads.omega**2,
+    ])
+
+
+def load_basis(loads, joints, on_side, points_on_side, moments, cut, rho_t):
+    """Matrices (3, S, Q) mapping ``load_coefficients`` to (F_x, F_y, M about the cut) of one side.
+
+    ``on_side`` (S, J) and ``points_on_side`` (S, n_point_forces) select that side's joints and
+    point forces; ``moments`` = (A, S_x, S_y, J_O) (S,) of that side's material, per unit thickness.
+    The d'Alembert load rho t (g - a_O - alpha k x r + omega^2 r) integrates to
+    F = rho t [(g - a_O) A + alpha (S_y, -S_x) + omega^2 (S_x, S_y)] and, about the origin,
+    M_O = rho t [S_x (g - a_O)_y - S_y (g - a_O)_x - alpha J_O].
+    """
+    n_st = len(cut)
+    fx, fy, mo = [], [], []
+    zero = np.zeros(n_st)
+    for j, (xj, yj) in enumerate(joints):
+        side = on_side[:, j].astype(float)
+        fx += [side, zero, zero]
+        fy += [zero, side, zero]
+        mo += [-yj * side, xj * side, side]
+    for k, pf in enumerate(loads.point_forces):
+        side = points_on_side[:, k].astype(float)
+        fx += [side, zero]
+        fy += [zero, side]
+        mo += [-pf.at[1] * side, pf.at[0] * side]
+    area, sx, sy, polar = (rho_t * np.asarray(m, float) * np.ones(n_st) for m in moments)
+    fx += [area, zero, sy, sx]
+    fy += [zero, area, -sx, sy]
+    mo += [-sy, sx, -polar, zero]
+    fx, fy, mo = (np.column_stack(b) for b in (fx, fy, mo))
+    m_cut = mo - cut[:, :1] * fy + cut[:, 1:] * fx
+    return np.stack([fx, fy, m_cut])
 
 
 def internal_forces(
@@ -87,15 +102,23 @@ def internal_forces(
         moments = region_moments(link.local_outline(i, j), x)
     rho_t = link.density * link.thickness
     cut = np.column_stack([x, sections.neutral_axis])
-    on_left = joints[None, :, 0] <= x[:, None]
-    left = (moments.area, moments.first_x, moments.first_y, moments.polar)
-    right = tuple(total - part for total, part in zip(moments.total, left))
-    f_left, m_left = _side_loads(loads, joints, lambda xa: xa <= x, cut, on_left, rho_t, left)
-    f_right, m_right = _side_loads(loads, joints, lambda xa: xa > x, cut, ~on_left, rho_t, right)
-    normal, shear, moment = -f_left[..., 0], -f_left[..., 1], m_left
-    # Right free body: its face has outward normal -x, so (N, V) = F_R and M = -M_R.
-    d_force = np.maximum(np.abs(normal - f_right[..., 0]), np.abs(shear - f_right[..., 1])).max(axis=1)
-    d_moment = np.abs(moment + m_right).max(axis=1)
+    coefficients = load_coefficients(loads)
+    point_x = np.array([pf.at[0] for pf in loads.point_forces]).reshape(-1)
+    left = load_basis(
+        loads, joints, joints[None, :, 0] <= x[:, None], point_x[None, :] <= x[:, None],
+        (moments.area, moments.first_x, moments.first_y, moments.polar), cut, rho_t,
+    )
+    f_x, f_y, moment = (coefficients @ b.T for b in left)
+    normal, shear = -f_x, -f_y
+    # The right free body carries every load not on the left, so its cut differs from the left's by
+    # the resultant of all loads, taken about the cut point: that is the equilibrium check.
+    whole = load_basis(
+        loads, joints, np.ones((len(x), len(joints)), bool), np.ones((len(x), len(point_x)), bool),
+        moments.total, cut, rho_t,
+    )
+    d_fx, d_fy, d_m = (coefficients @ b.T for b in whole)
+    d_force = np.maximum(np.abs(d_fx), np.abs(d_fy)).max(axis=1)
+    d_moment = np.abs(d_m).max(axis=1)
     force_scale = np.maximum(np.abs(normal), np.abs(shear)).max(axis=1)
     moment_scale = np.abs(moment).max(axis=1)
     mismatch = np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, moment_scale))

@@ -1,13 +1,16 @@
 """Beam-section stresses along a link: normal, Jourawski shear and von Mises at every fibre.
 
 At station x with N, V, M (see ``internal_forces``) and the section's A, I, y_na and first moment
-Q(y) (``linkstress.sections``), at fibre y of the plate of thickness t:
+Q(y) (``linkstress.sections``), at fibre y of the plate of thickness t, with u = y - y_na:
 
-    sigma = N / A + M (y - y_na) / I,   tau = V Q(y) / (I t),   sigma_vM = sqrt(sigma^2 + 3 tau^2).
+    sigma = N / A + M u / I,   tau = V Q(y) / (I t),   sigma_vM = sqrt(sigma^2 + 3 tau^2).
 
-Fibres: FIBRES_PER_CHORD evenly spaced points of every material chord (ends included) and the
-neutral axis. Near a pin hole beam theory does not hold: stations closer to a hole than one local
-section depth are flagged, and their values are nominal.
+Within one material chord [a, b], Q(y) = (t / 2)(C - u^2) with C = 2 Q(b) / t + (b - y_na)^2, so
+sigma_vM^2 = (n + m u)^2 + 3 w^2 (C - u^2)^2 (n = N/A, m = M/I, w = V / 2I) is a quartic in u with a
+positive leading term: its largest value on the chord is at an end or at its only interior local
+maximum, the middle real root of the cubic f'(u) = 0 (trigonometric form). The maximum over each
+section is therefore exact, not sampled. Near a pin hole beam theory does not hold: stations closer
+to a hole than one local section depth are flagged, and their values are nominal.
 """
 
 from __future__ import annotations
@@ -23,9 +26,6 @@ from linkstress.profile import LinkProfile
 from linkstress.region_moments import region_moments
 from linkstress.sections import SectionTable
 
-FIBRES_PER_CHORD = 9
-POSITION_CHUNK = 512
-"""Positions evaluated together: bounds memory at (chunk x stations x fibres) floats."""
 
 
 @dataclass(frozen=True)
@@ -74,19 +74,6 @@ def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: in
     return lo + (hi - lo) * (np.arange(count) + 0.5) / count
 
 
-def fibres(sections: SectionTable) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """Fibre heights (S, F) [m] and which of them are material (S, F)."""
-    s = np.linspace(0.0, 1.0, FIBRES_PER_CHORD)
-    lower, upper = sections.lower[:, :, None], sections.upper[:, :, None]
-    y = (lower + (upper - lower) * s).reshape(len(sections.x), -1)
-    chord = np.repeat(np.arange(sections.lower.shape[1]), FIBRES_PER_CHORD)
-    valid = chord[None, :] < sections.n_chords[:, None]
-    y = np.column_stack([y, sections.neutral_axis])
-    inside = ((sections.lower <= sections.neutral_axis[:, None]) & (sections.neutral_axis[:, None] <= sections.upper)
-              & (np.arange(sections.lower.shape[1])[None, :] < sections.n_chords[:, None])).any(axis=1)
-    return y, np.column_stack([valid, inside])
-
-
 def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: SectionTable) -> NDArray[np.bool_]:
     """Stations closer (along x) to a hole's extent than the local section depth."""
     outline = link.local_outline(*frame_joints)
@@ -99,35 +86,86 @@ def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: Secti
     return flags
 
 
+def _quartic(u, n, m, w, c):
+    """sigma_vM^2 = (n + m u)^2 + 3 w^2 (C - u^2)^2 at fibre offset u."""
+    sigma, shape = n + m * u, c - u * u
+    return sigma * sigma + 3 * w * w * shape * shape
+
+
+def interior_maximum(n, m, w, c):
+    """The chord's interior local maximum of sigma_vM^2: offset u and whether it exists.
+
+    d(sigma_vM^2)/du / 2 = 6 w^2 u^3 + (m^2 - 6 w^2 C) u + m n. Called only where
+    p = (m^2 - 6 w^2 C) / (6 w^2) < 0; with three real roots the middle one is the local maximum
+    (Cardano's trigonometric solution).
+    """
+    w6 = 6 * w * w
+    p = (m * m - w6 * c) / w6
+    # A huge q (tiny shear, large N) overflows to inf and rightly rules out three roots.
+    with np.errstate(over="ignore", invalid="ignore"):
+        q = m * n / w6
+        three_roots = 27 * q * q < -4 * p * p * p
+        radius = np.sqrt(-p / 3)
+        cos_arg = np.clip(-q / (2 * radius**3), -1.0, 1.0)
+    return 2 * radius * np.cos(np.arccos(cos_arg) / 3 - 2 * np.pi / 3), three_roots
+
+
 def section_stresses(
     link: LinkProfile,
     loads: LinkLoadCase,
     stations: NDArray[np.float64],
 ) -> SectionStresses:
-    """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position."""
+    """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position.
+
+    Candidates for the largest von Mises of a section: its outer fibres (free edges, tau = 0), the
+    ends of chords at holes, and each chord's interior maximum where shear matters.
+    """
     frame_joints = loads.frame_joints
     table = link.sections(stations, *frame_joints)
     moments = region_moments(link.local_outline(*frame_joints), table.x)
     forces = internal_forces(link, loads, table, moments)
-    y, valid = fibres(table)
-    has_area = table.area > 0
-    area = np.where(has_area, table.area, 1.0)
-    inertia = np.where(table.second_moment > 0, table.second_moment, 1.0)
-    lever = (y - table.neutral_axis[:, None]) / inertia[:, None]
-    shear_flow = table.first_moment(y) / (inertia[:, None] * table.thickness)
-    valid = valid & has_area[:, None] & (table.second_moment > 0)[:, None]
-    n_pos = len(loads.omega)
-    vm = np.zeros((n_pos, len(table.x)))
-    fibre_y, sigma_at, tau_at = np.zeros_like(vm), np.zeros_like(vm), np.zeros_like(vm)
-    rows = np.arange(len(table.x))
-    for start in range(0, n_pos, POSITION_CHUNK):
-        p = slice(start, start + POSITION_CHUNK)
-        sigma = (forces.normal[p] / area)[..., None] + forces.moment[p][..., None] * lever
-        tau = forces.shear[p][..., None] * shear_flow
-        vm2 = np.where(valid, sigma * sigma + 3 * tau * tau, -1.0)
-        k = vm2.argmax(axis=2)
-        pick = (np.arange(k.shape[0])[:, None], rows[None, :], k)
-        vm[p] = np.sqrt(np.maximum(vm2[pick], 0.0))
-        fibre_y[p] = y[rows[None, :], k]
-        sigma_at[p], tau_at[p] = sigma[pick], tau[pick]
-    return SectionStresses(table, forces, vm, fibre_y, sigma_at, tau_at, near_holes(link, frame_joints, table))
+    solid = (table.area > 0) & (table.second_moment > 0)
+    inertia = np.where(solid, table.second_moment, 1.0)
+    n = forces.normal / np.where(solid, table.area, 1.0)
+    m = forces.moment / inertia
+    w = forces.shear / (2 * inertia)
+    yna = table.neutral_axis
+    u_top, u_bottom = table.top - yna, table.bottom - yna
+    s_top, s_bottom = n + m * u_top, n + m * u_bottom
+    top_wins = np.abs(s_top) >= np.abs(s_bottom)
+    best_u = np.where(top_wins, u_top, u_bottom)
+    best = np.where(top_wins, s_top * s_top, s_bottom * s_bottom)
+    best_c = best_u * best_u  # C = u^2 at the outer fibres: tau = 0 there
+    for k in range(table.lower.shape[1]):
+        cols = np.flatnonzero((table.n_chords > k) & solid)
+        ua = table.lower[cols, k] - yna[cols]
+        ub = table.upper[cols, k] - yna[cols]
+        c = 2 * table.first_moment(table.upper[:, k])[cols] / table.thickness + ub * ub
+        inner_top = table.n_chords[cols] > k + 1
+        for end, inner in ((ua, np.full(len(cols), k > 0)), (ub, inner_top)):
+            at = cols[inner]
+            if len(at):
+                f = _quartic(end[inner], n[:, at], m[:, at], w[:, at], c[inner])
+                _keep_larger(best, best_u, best_c, np.s_[:, at], f, end[inner], c[inner])
+        rows, sub = np.nonzero(m[:, cols] ** 2 < 6 * w[:, cols] ** 2 * c)
+        if len(rows):
+            at = cols[sub]
+            u, exists = interior_maximum(n[rows, at], m[rows, at], w[rows, at], c[sub])
+            u = np.clip(u, ua[sub], ub[sub])
+            f = np.where(exists, _quartic(u, n[rows, at], m[rows, at], w[rows, at], c[sub]), -1.0)
+            _keep_larger(best, best_u, best_c, (rows, at), f, u, c[sub])
+    sigma = n + m * best_u
+    tau = w * (best_c - best_u * best_u)
+    vm = np.where(solid, np.sqrt(np.maximum(best, 0.0)), 0.0)
+    return SectionStresses(
+        table, forces, vm, yna + best_u, np.where(solid, sigma, 0.0), np.where(solid, tau, 0.0),
+        near_holes(link, frame_joints, table),
+    )
+
+
+def _keep_larger(best, best_u, best_c, where, f, u, c) -> None:
+    """Where ``f`` beats ``best[where]``, take f and its fibre offset u and chord constant c."""
+    wins = f > best[where]
+    best[where] = np.where(wins, f, best[where])
+    best_u[where] = np.where(wins, u, best_u[where])
+    best_c[where] = np.where(wins, c, best_c[where])
