@@ -1,0 +1,68 @@
+"""Sweep a whole machine: every loop in solving order, each one call over all positions."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from linkstress.kinematics.fourbar import FourBar, solve_fourbar
+from linkstress.kinematics.machine import Loop, Machine
+from linkstress.kinematics.motion import InputMotion
+from linkstress.kinematics.results import LinkMotion, LoopMotion, MachineMotion, fixed_link
+from linkstress.kinematics.slider_crank import solve_slider_crank
+
+
+def solve_machine(machine: Machine, motion: InputMotion) -> MachineMotion:
+    """Kinematics of every link and loop of ``machine`` over the input ``motion`` of its main crank.
+
+    A driven loop's crank angle is its driver's axis angle (theta2 or theta4) plus
+    ``machine.drive_offset``; its speed and acceleration are the driver's. A position is feasible
+    when every loop is; its reason is the first failing loop's, in solving order.
+    """
+    n = motion.n_positions
+    loops: dict[str, LoopMotion] = {}
+    links: dict[str, LinkMotion] = {}
+    reasons = np.full(n, "", dtype=object)
+    feasible = np.ones(n, bool)
+    for loop in machine.loops:
+        theta2, omega2, alpha2 = _crank_input(machine, loop, loops, motion)
+        result = _solve_loop(machine, loop, theta2, omega2, alpha2)
+        loops[loop.name] = result
+        for role_name, role in loop.roles.items():
+            if role.link in links:
+                continue
+            if role_name == "ground":
+                p, _ = machine.axis(role)
+                links[role.link] = fixed_link(role.joints, machine.axis_angle(role), p, n)
+            else:
+                links[role.link] = result.links[role_name]
+        failing = feasible & (result.status != 0)
+        if failing.any():
+            texts = np.asarray(result.reason_texts, dtype=object)[result.status[failing]]
+            if loop.driven_by is not None:
+                texts = np.char.add(f"driven loop '{loop.name}' infeasible: ", texts.astype(str))
+            reasons[failing] = texts
+            feasible &= result.status == 0
+    return MachineMotion(
+        motion.angle, motion.speed, motion.acceleration, motion.time, feasible,
+        tuple(reasons.tolist()), links, loops,
+    )
+
+
+def _crank_input(machine: Machine, loop: Loop, solved: dict[str, LoopMotion], motion: InputMotion):
+    drive = loop.driven_by
+    if drive is None:
+        return motion.angle, motion.speed, motion.acceleration
+    driver = solved[drive.loop]
+    if drive.role == "crank":
+        angle, speed, acceleration = driver.theta2, driver.omega2, driver.alpha2
+    else:
+        angle, speed, acceleration = driver.theta4, driver.omega4, driver.alpha4
+    return angle + machine.drive_offset(loop), speed, acceleration
+
+
+def _solve_loop(machine: Machine, loop: Loop, theta2, omega2, alpha2) -> LoopMotion:
+    linkage = machine.geometry(loop)
+    frames = {name: role.joints for name, role in loop.roles.items()}
+    if isinstance(linkage, FourBar):
+        return solve_fourbar(linkage, theta2, omega2, alpha2, frames)
+    return solve_slider_crank(linkage, theta2, omega2, alpha2, frames)
