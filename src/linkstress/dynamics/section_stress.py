@@ -10,7 +10,7 @@ sigma_vM^2 = (n + m u)^2 + 3 w^2 (C - u^2)^2 (n = N/A, m = M/I, w = V / 2I) is a
 positive leading term: its largest value on the chord is at an end or at its only interior local
 maximum, the middle real root of the cubic f'(u) = 0 (trigonometric form). The maximum over each
 section is therefore exact, not sampled. Near a pin hole beam theory does not hold: stations closer
-to a hole than one local section depth are flagged, and their values are nominal.
+to a hole's centre than one local section depth are flagged, and their values are nominal.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from shapely.geometry import Polygon
 
 from linkstress.dynamics.internal_forces import InternalForces, internal_forces
 from linkstress.loads import LinkLoadCase
@@ -34,7 +35,7 @@ class SectionStresses:
 
     ``forces``: N, V, M. ``von_mises`` (P, S) [Pa]: the largest von Mises over the section's fibres,
     reached at ``fibre_y`` (P, S) [m]; ``sigma``/``tau`` (P, S) [Pa] at that fibre. ``near_hole`` (S,):
-    station within one section depth of a hole (nominal values only). ``max_von_mises`` (P,) and
+    station within one section depth of a hole's centre (nominal values only). ``max_von_mises`` (P,) and
     ``max_at`` (P, 2) [m]: the largest over all stations; ``max_away_from_holes`` likewise over
     stations not near a hole (0 where every station is near one).
     """
@@ -75,14 +76,14 @@ def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: in
 
 
 def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: SectionTable) -> NDArray[np.bool_]:
-    """Stations closer (along x) to a hole's extent than the local section depth."""
+    """Stations closer (along x) to a hole's centre than the local section depth (St-Venant: a pin's
+    load spreads into a beam-like stress state about one depth from where it is applied)."""
     outline = link.local_outline(*frame_joints)
     flags = np.zeros(len(sections.x), bool)
-    height = sections.top - sections.bottom
+    depth = sections.top - sections.bottom
     for ring in outline.interiors:
-        xs = np.asarray(ring.coords)[:, 0]
-        gap = np.maximum(xs.min() - sections.x, sections.x - xs.max())
-        flags |= gap < height
+        centre = Polygon(ring).centroid.x
+        flags |= np.abs(sections.x - centre) < depth
     return flags
 
 
