@@ -125,7 +125,8 @@ def solve_fourbar(
     sin_mu = np.sqrt(np.maximum(one_minus_cos * one_plus_cos, 0.0))
     along = b * b - c * c + s2
     across = (sigma * 2 * b * c) * sin_mu
-    half_inv_s2 = 0.5 / (s2 if all_feasible else np.where(s2 > 0, s2, 1.0))
+    # Feasible positions have s^2 >= 2 b c TOGGLE_TOLERANCE; only filler positions get a stand-in.
+    half_inv_s2 = 0.5 / (s2 if all_feasible else np.where(s2 > 1e-20 * b * c, s2, b * c))
     r3x = (along * ddx - across * ddy) * half_inv_s2  # B - A
     r3y = (along * ddy + across * ddx) * half_inv_s2
     r4x, r4y = r3x - ddx, r3y - ddy  # B - O4
