@@ -1,0 +1,140 @@
+"""The [materials.NAME] and [links.NAME] tables: materials, and links from sketches or bare joints.
+
+A link is either a sketch (``sketch = "file.dxf"``, optional ``layer`` and ``units``; read by
+``linkstress.importers.read_sketch``) with a ``thickness`` and usually a ``material``, or bare
+``joints = [[x, y], ...]`` in metres. Sketch paths are relative to the scene file's folder; a
+sketch's unit is its own (DXF $INSUNITS) unless unitless, then the link's ``units``, else the
+scene's top-level ``units``. Explicit ``mass`` [kg], ``inertia`` [kg m^2, about the centre of mass]
+and ``center_of_mass`` [m, member frame] come together and take precedence over a profile's.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.errors import InputError
+from linkstress.materials import Material
+from linkstress.profile import LinkProfile
+from linkstress.scene.keys import Table
+from linkstress.scene.model import MassData
+
+UNITS = ("m", "cm", "mm", "in", "ft")
+MATERIAL_KEYS = ("density", "youngs_modulus", "poisson_ratio", "yield_strength")
+LINK_KEYS = ("sketch", "layer", "units", "joints", "thickness", "material", "mass", "inertia", "center_of_mass")
+MASS_KEYS = ("mass", "inertia", "center_of_mass")
+
+
+@dataclass(frozen=True)
+class LinkSource:
+    """A link as read, before the machine fixes its member frame. ``center_of_mass`` is explicit."""
+
+    name: str
+    joints: NDArray[np.float64]
+    thickness: float | None
+    material: Material | None
+    profile: LinkProfile | None
+    mass: float | None
+    inertia: float | None
+    center_of_mass: NDArray[np.float64] | None
+    sketch: Path | None
+    layer: str | None
+
+
+def read_materials(table: Table | None) -> dict[str, Material]:
+    """Each [materials.NAME]: density [kg/m^3] required; youngs_modulus [Pa], poisson_ratio [-],
+    yield_strength [Pa] optional."""
+    materials: dict[str, Material] = {}
+    if table is None:
+        return materials
+    for name in table.data:
+        entry = table.table(name)
+        entry.allow(MATERIAL_KEYS)
+        entry.require("density", "the density in kg/m^3, e.g. density = 7850.0")
+        density = entry.number("density", positive=True, unit="kg/m^3")
+        youngs = entry.number("youngs_modulus", positive=True, unit="Pa")
+        poisson = entry.number("poisson_ratio")
+        if poisson is not None and not -1.0 < poisson < 0.5:
+            raise entry.error("poisson_ratio", f"must lie in (-1, 0.5), got {poisson!r}")
+        strength = entry.number("yield_strength", positive=True, unit="Pa")
+        materials[name] = Material(name, density, youngs, poisson, strength)
+    return materials
+
+
+def read_links(table: Table, materials: dict[str, Material], units: str | None, folder: Path) -> dict[str, LinkSource]:
+    """Every [links.NAME], checked; sketches are read once per (file, units)."""
+    sketches: dict[tuple[Path, str | None], object] = {}
+    links: dict[str, LinkSource] = {}
+    for name in table.data:
+        links[name] = _read_link(table.table(name), name, materials, units, folder, sketches)
+    if not links:
+        raise table.error(None, "no links; add [links.NAME] tables with joints or a sketch")
+    return links
+
+
+def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches) -> LinkSource:
+    entry.allow(LINK_KEYS)
+    thickness = entry.number("thickness", positive=True, unit="m")
+    material = None
+    if entry.has("material"):
+        material_name = entry.string("material")
+        if material_name not in materials:
+            known = ", ".join(sorted(materials)) or "none defined"
+            raise entry.error(
+                "material", f"no material named {material_name!r}; materials are: {known} (add [materials.{material_name}])"
+            )
+        material = materials[material_name]
+    given = [k for k in MASS_KEYS if entry.has(k)]
+    if given and len(given) < 3:
+        missing = [k for k in MASS_KEYS if k not in given]
+        raise entry.error(given[0], f"give mass, inertia and center_of_mass together; missing: {', '.join(missing)}")
+    mass = entry.number("mass", positive=True, unit="kg")
+    inertia = entry.number("inertia", minimum=0.0, unit="kg m^2")
+    center = entry.point("center_of_mass", "m") if entry.has("center_of_mass") else None
+
+    if entry.has("sketch") == entry.has("joints"):
+        raise entry.error(None, "give either sketch = \"file.dxf\" or joints = [[x, y], ...] (metres), not both or neither")
+    if entry.has("joints"):
+        for key in ("layer", "units"):
+            if entry.has(key):
+                raise entry.error(key, "only for a sketch link; bare joints are in metres")
+        joints = entry.points("joints", "m")
+        return LinkSource(name, joints, thickness, material, None, mass, inertia, center, None, None)
+
+    if thickness is None:
+        raise entry.error("thickness", "missing; a sketch link needs its plate thickness in metres")
+    sketch_units = entry.string("units", choices=UNITS) or units
+    layer = entry.string("layer")
+    path = folder / entry.string("sketch")
+    profile = _load_profile(entry, name, path, layer, sketch_units, thickness, material, sketches)
+    return LinkSource(
+        name, np.asarray(profile.joints, float), thickness, material, profile, mass, inertia, center, path, layer
+    )
+
+
+def _load_profile(entry: Table, name, path: Path, layer, units, thickness, material, sketches) -> LinkProfile:
+    read_sketch = getattr(importlib.import_module("linkstress.importers"), "read_sketch", None)
+    if read_sketch is None:
+        raise entry.error(
+            "sketch", "this installation cannot read sketches yet (linkstress.importers.read_sketch is "
+            "missing); give the link bare joints = [[x, y], ...] instead"
+        )
+    if not path.is_file():
+        raise entry.error("sketch", f"file {str(path)!r} not found (paths are relative to the scene file's folder)")
+    try:
+        key = (path.resolve(), units)
+        if key not in sketches:
+            sketches[key] = read_sketch(path, units=units)
+        return sketches[key].link(layer).profile(thickness, material, name)
+    except InputError as error:
+        raise entry.error("sketch", str(error)) from None
+
+
+def mass_data(source: LinkSource) -> MassData | None:
+    if source.mass is None:
+        return None
+    return MassData(source.mass, source.inertia, source.center_of_mass)

@@ -1,0 +1,118 @@
+"""The [loads] and [analysis] tables.
+
+[loads]: ``gravity_m_s2 = [gx, gy]`` (ground frame; default none); ``[loads.couples]`` with
+``LINK = value`` [N m, counter-clockwise] or ``LINK = {value = 2.0, at_joint = 1}`` (default joint:
+the origin of the link's member frame); ``[[loads.forces]]`` with ``link``, ``at_m`` (member frame)
+and ``force_n`` (ground frame); ``[loads.friction]`` with ``SLIDER = mu``, SLIDER being a slider's
+link name or its slider-crank's mechanism name.
+
+[analysis]: ``kinematics``, ``forces``, ``stresses`` (booleans, default false once the table
+exists), ``stations`` (>= 2), ``validate`` (link names with profiles), ``mesh_size_m`` (> 0),
+``element_order`` (1 or 2, default 2).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from linkstress.kinematics.machine import Machine
+from linkstress.scene.keys import Table
+from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
+
+LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
+ANALYSIS_KEYS = ("kinematics", "forces", "stresses", "stations", "validate", "mesh_size_m", "element_order")
+
+
+def read_loads(table: Table | None, machine: Machine, links: dict[str, SceneLink]) -> Loads:
+    if table is None:
+        return Loads(np.zeros(2))
+    table.allow(LOAD_KEYS)
+    gravity = table.point("gravity_m_s2", "m/s^2") if table.has("gravity_m_s2") else np.zeros(2)
+    moving = _moving(machine)
+    couples = []
+    couple_table = table.table("couples")
+    for name in couple_table.data if couple_table else ():
+        link = _moving_link(couple_table, name, moving, "a couple")
+        value = couple_table.data[name]
+        if isinstance(value, dict):
+            spec = couple_table.table(name)
+            spec.allow(("value", "at_joint"))
+            spec.require("value", "the couple in N m, counter-clockwise positive")
+            amount = spec.number("value", unit="N m")
+            joint = spec.integer("at_joint", links[link].frame_joints[0], minimum=0)
+            if joint >= len(links[link].joints):
+                raise spec.error("at_joint", f"link {link!r} has joints 0..{len(links[link].joints) - 1}, no joint {joint}")
+        else:
+            amount = couple_table.number(name, unit="N m")
+            joint = links[link].frame_joints[0]
+        couples.append(CoupleLoad(link, amount, joint))
+    forces = []
+    if table.has("forces"):
+        raw = table.data["forces"]
+        if not isinstance(raw, list):
+            raise table.error("forces", "must be an array of tables: [[loads.forces]] with link, at_m, force_n")
+        for k, item in enumerate(raw):
+            spec = Table(item, f"{table.key_path('forces')}[{k}]", table.source)
+            spec.allow(("link", "at_m", "force_n"))
+            for key, what in (("link", "the link's name"), ("at_m", "[x, y] in the link's member frame, metres"),
+                              ("force_n", "[Fx, Fy] in the ground frame, newtons")):
+                spec.require(key, what)
+            link = spec.string("link")
+            if link not in moving:
+                raise spec.error("link", f"no moving link named {link!r}; moving links are: {', '.join(moving)}")
+            forces.append(PointLoad(link, spec.point("at_m", "m"), spec.point("force_n", "N")))
+    return Loads(gravity, tuple(couples), tuple(forces), _friction(table.table("friction"), machine))
+
+
+def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis | None:
+    if table is None:
+        return None
+    table.allow(ANALYSIS_KEYS)
+    validate: tuple[str, ...] = ()
+    if table.has("validate"):
+        raw = table.data["validate"]
+        if not isinstance(raw, list) or not all(isinstance(v, str) for v in raw):
+            raise table.error("validate", f"must be a list of link names, got {raw!r}")
+        for name in raw:
+            if name not in links:
+                raise table.error("validate", f"no link named {name!r}; links are: {', '.join(links)}")
+            if links[name].profile is None:
+                raise table.error("validate", f"link {name!r} has bare joints; only links drawn in a sketch can be checked by FEA")
+        validate = tuple(raw)
+    order = table.integer("element_order", 2)
+    if order not in (1, 2):
+        raise table.error("element_order", f"must be 1 (linear) or 2 (quadratic triangles), got {order}")
+    return Analysis(
+        kinematics=table.boolean("kinematics", False),
+        forces=table.boolean("forces", False),
+        stresses=table.boolean("stresses", False),
+        stations=table.integer("stations", None, minimum=2),
+        validate=validate,
+        mesh_size=table.number("mesh_size_m", positive=True, unit="m"),
+        element_order=order,
+    )
+
+
+def _moving(machine: Machine) -> list[str]:
+    names = [r.link for loop in machine.loops for k, r in loop.roles.items() if k != "ground"]
+    return list(dict.fromkeys(names))
+
+
+def _moving_link(table: Table, name: str, moving: list[str], what: str) -> str:
+    if name not in moving:
+        raise table.error(name, f"no moving link named {name!r} for {what}; moving links are: {', '.join(moving)}")
+    return name
+
+
+def _friction(table: Table | None, machine: Machine) -> dict[str, float]:
+    if table is None:
+        return {}
+    sliders = {loop.name: loop.name for loop in machine.loops if loop.kind == "slider-crank"}
+    sliders.update({loop.slider.link: loop.name for loop in machine.loops if loop.slider is not None})
+    friction = {}
+    for name in table.data:
+        if name not in sliders:
+            known = ", ".join(sliders) or "none: the scene has no slider-crank"
+            raise table.error(name, f"no slider named {name!r}; give a slider's link or slider-crank's name: {known}")
+        friction[sliders[name]] = table.number(name, minimum=0.0)
+    return friction

@@ -1,0 +1,95 @@
+"""The [mechanisms.NAME] tables: loops, their roles, branch and how they are driven.
+
+A role is a link name (its joints 0 -> 1; a slider's joint 0) or ``{link = "NAME", joints = [i, j]}``
+(a slider: ``joints = [k]``). ``branch`` is "open" (default) or "crossed". Slider-cranks take
+``offset_m`` (the slider line's signed distance from O2, positive to the left of its direction) and
+``slider_angle_deg`` (its direction from the ground frame's +x; default: the ground link's axis).
+A loop other than the main one has ``driven_by = "LOOP.crank"`` or ``"LOOP.output"`` and, when its
+crank is a different link from the driver's, an optional ``phase_deg``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from linkstress.kinematics.fourbar import BRANCHES
+from linkstress.kinematics.machine import KINDS, Drive, Loop, Role
+from linkstress.scene.keys import Table
+
+ROLES = {
+    "four-bar": ("crank", "coupler", "output", "ground"),
+    "slider-crank": ("crank", "coupler", "ground", "slider"),
+}
+REQUIRED = {"four-bar": ("crank", "coupler", "output", "ground"), "slider-crank": ("crank", "coupler", "ground")}
+SLIDER_ONLY = ("slider", "offset_m", "slider_angle_deg")
+MECHANISM_KEYS = (
+    "type", "crank", "coupler", "output", "ground", "slider", "branch", "offset_m", "slider_angle_deg",
+    "driven_by", "phase_deg",
+)
+
+
+def read_mechanisms(table: Table) -> list[Loop]:
+    """Every [mechanisms.NAME] as a kinematic ``Loop`` (the machine checks links and the drive graph)."""
+    loops = [_read_loop(table.table(name), name) for name in table.data]
+    if not loops:
+        raise table.error(None, "no mechanisms; add a [mechanisms.main] table with type = \"four-bar\"")
+    return loops
+
+
+def _read_loop(entry: Table, name: str) -> Loop:
+    entry.allow(MECHANISM_KEYS)
+    entry.require("type", "type = \"four-bar\" or type = \"slider-crank\"")
+    kind = entry.string("type", choices=KINDS)
+    if kind == "four-bar":
+        for key in SLIDER_ONLY:
+            if entry.has(key):
+                raise entry.error(key, "only for type = \"slider-crank\"")
+    elif entry.has("output"):
+        raise entry.error("output", "a slider-crank has no output link; name its slider with slider = \"NAME\"")
+    roles = {}
+    for role in ROLES[kind]:
+        if role in REQUIRED[kind]:
+            entry.require(role, f"the {role}'s link name, e.g. {role} = \"{role}\"")
+        if entry.has(role):
+            roles[role] = _read_role(entry, role)
+    phase = entry.number("phase_deg", 0.0, unit="deg")
+    drive = None
+    if entry.has("driven_by"):
+        text = entry.string("driven_by")
+        source, _, role = text.rpartition(".")
+        if not source or role not in ("crank", "output"):
+            raise entry.error("driven_by", f"must be \"LOOP.crank\" or \"LOOP.output\", got {text!r}")
+        drive = Drive(source, role, math.radians(phase))
+    elif entry.has("phase_deg"):
+        raise entry.error("phase_deg", "only for a loop with driven_by; the main loop's crank follows [motion]")
+    slider_angle = entry.number("slider_angle_deg", unit="deg")
+    return Loop(
+        name=name,
+        kind=kind,
+        branch=entry.string("branch", "open", BRANCHES),
+        offset=entry.number("offset_m", 0.0, unit="m"),
+        slider_angle=None if slider_angle is None else math.radians(slider_angle),
+        driven_by=drive,
+        **roles,
+    )
+
+
+def _read_role(entry: Table, role: str) -> Role:
+    value = entry.data[role]
+    if isinstance(value, str) and value:
+        return Role(value, (0, 0) if role == "slider" else (0, 1))
+    if not isinstance(value, dict):
+        raise entry.error(role, f"must be a link name or {{link = \"NAME\", joints = [i, j]}}, got {value!r}")
+    spec = entry.table(role)
+    spec.allow(("link", "joints"))
+    spec.require("link", "the link's name, e.g. link = \"crank\"")
+    link = spec.string("link")
+    count = 1 if role == "slider" else 2
+    joints = (0,) if role == "slider" else (0, 1)
+    if spec.has("joints"):
+        raw = spec.data["joints"]
+        if not (isinstance(raw, list) and len(raw) == count and all(type(k) is int and k >= 0 for k in raw)):
+            shape = "[k]" if count == 1 else "[i, j]"
+            raise spec.error("joints", f"must be {shape}: joint indices (0-based) of link {link!r}, got {raw!r}")
+        joints = tuple(raw)
+    return Role(link, (joints[0], joints[0]) if role == "slider" else joints)

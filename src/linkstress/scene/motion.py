@@ -1,0 +1,90 @@
+"""The [motion] table: the main crank's input angles, speed, acceleration, and the actuator.
+
+``input_angle_deg`` is a number, a list of numbers, a range ``{start, stop, num}`` (both ends
+included) or a function of time ``{expression = "90*sin(2*pi*t)", t = {start, stop, num}}`` (``t``
+may also be a list of times [s]). Angles are the main crank's, counter-clockwise from the ground
+frame's +x. ``input_speed_rad_s`` and ``input_acceleration_rad_s2`` are numbers or one per angle
+(default 0: a quasi-static sweep); with an expression they are its exact time derivatives and may
+not be given. ``actuator`` names the link that carries the unknown driving torque (default: the
+main loop's crank).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from linkstress.kinematics.expression import Expression
+from linkstress.kinematics.machine import Machine
+from linkstress.kinematics.motion import InputMotion, angle_motion, angle_range, timed_motion
+from linkstress.scene.keys import Table
+
+MOTION_KEYS = ("input_angle_deg", "input_speed_rad_s", "input_acceleration_rad_s2", "actuator")
+RANGE_KEYS = ("start", "stop", "num")
+MAX_POSITIONS = 10_000_000
+
+
+def read_motion(table: Table) -> InputMotion:
+    table.allow(MOTION_KEYS)
+    table.require("input_angle_deg", "a number, a list, {start, stop, num} or {expression, t}")
+    value = table.data["input_angle_deg"]
+    if isinstance(value, dict) and "expression" in value:
+        return _timed(table)
+    if isinstance(value, dict):
+        angles = _range(table.table("input_angle_deg"), "deg")
+    elif isinstance(value, list):
+        angles = table.numbers("input_angle_deg", "deg")
+    else:
+        angles = np.array([table.number("input_angle_deg", unit="deg")])
+    speed = _rate(table, "input_speed_rad_s", len(angles))
+    acceleration = _rate(table, "input_acceleration_rad_s2", len(angles))
+    return angle_motion(angles, speed, acceleration)
+
+
+def read_actuator(table: Table, machine: Machine) -> str:
+    """The actuated link: a crank, an output or a slider of some loop (default: the main crank)."""
+    default = machine.main.crank.link
+    name = table.string("actuator", default)
+    grounded = [r.link for loop in machine.loops for k, r in loop.roles.items() if k in ("crank", "output", "slider")]
+    if name not in grounded:
+        raise table.error(
+            "actuator", f"link {name!r} is not a crank, output or slider of any mechanism; the driving torque "
+            f"acts on a link pivoted on (or sliding on) the ground: {', '.join(dict.fromkeys(grounded))}"
+        )
+    return name
+
+
+def _timed(table: Table) -> InputMotion:
+    spec = table.table("input_angle_deg")
+    spec.allow(("expression", "t"))
+    spec.require("t", "the times in seconds: t = {start = 0.0, stop = 1.0, num = 101} or a list")
+    for key in ("input_speed_rad_s", "input_acceleration_rad_s2"):
+        if table.has(key):
+            raise table.error(key, "not allowed with an expression: it is the expression's time derivative")
+    expression = Expression(spec.string("expression"), "t", spec.key_path("expression"))
+    if isinstance(spec.data["t"], dict):
+        times = _range(spec.table("t"), "s")
+    else:
+        times = spec.numbers("t", "s")
+    return timed_motion(expression, times)
+
+
+def _range(spec: Table, unit: str) -> np.ndarray:
+    spec.allow(RANGE_KEYS)
+    for key in RANGE_KEYS:
+        spec.require(key, "start, stop and num, e.g. {start = 0.0, stop = 360.0, num = 361}")
+    start, stop = spec.number("start", unit=unit), spec.number("stop", unit=unit)
+    num = spec.integer("num", minimum=1)
+    if num > MAX_POSITIONS:
+        raise spec.error("num", f"must be <= {MAX_POSITIONS}, got {num}")
+    return angle_range(start, stop, num)
+
+
+def _rate(table: Table, key: str, n: int):
+    if not table.has(key):
+        return 0.0
+    if isinstance(table.data[key], list):
+        values = table.numbers(key)
+        if len(values) != n:
+            raise table.error(key, f"give one number, or a list of {n} numbers (one per input angle)")
+        return values
+    return table.number(key)

@@ -1,0 +1,73 @@
+"""Read a scene file (TOML) into a checked ``Scene``.
+
+Top-level tables: ``units`` (optional: the length unit of unitless sketches: "m", "cm", "mm", "in"
+or "ft"; bare joints and every key ending ``_m`` are always metres), ``[materials.NAME]``,
+``[links.NAME]``, ``[mechanisms.NAME]``, ``[motion]``, ``[loads]``, ``[analysis]``. Every error
+names the file, the key's dotted path and what to do.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from types import MappingProxyType
+
+from linkstress.errors import InputError, SceneError
+from linkstress.kinematics.machine import Machine
+from linkstress.scene.keys import Table
+from linkstress.scene.links import UNITS, mass_data, read_links, read_materials
+from linkstress.scene.loads import read_analysis, read_loads
+from linkstress.scene.mechanisms import read_mechanisms
+from linkstress.scene.model import Scene, SceneLink
+from linkstress.scene.motion import read_actuator, read_motion
+
+TOP_KEYS = ("units", "materials", "links", "mechanisms", "motion", "loads", "analysis")
+
+
+def load_scene(path: str | Path) -> Scene:
+    """The scene in file ``path``; a ``SceneError`` naming the key for anything wrong in it."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError(f"scene file {str(path)!r} not found") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise SceneError(f"{path.name}: cannot read the scene file ({error})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SceneError(f"{path.name}: not valid TOML: {error}") from None
+    try:
+        return _scene(Table(data, "", path.name), path)
+    except SceneError:
+        raise
+    except InputError as error:
+        raise SceneError(f"{path.name}: {error}") from None
+
+
+def _scene(top: Table, path: Path) -> Scene:
+    top.allow(TOP_KEYS)
+    units = top.string("units", None, UNITS)
+    materials = read_materials(top.table("materials"))
+    sources = read_links(top.table("links", required=True), materials, units, path.parent)
+    loops = read_mechanisms(top.table("mechanisms", required=True))
+    machine = Machine({name: s.joints for name, s in sources.items()}, tuple(loops))
+    unused = [name for name in sources if name not in machine.link_frames]
+    if unused:
+        raise top.error(f"links.{unused[0]}", "no mechanism uses this link; name it in a [mechanisms] table or remove it")
+    links = {
+        name: SceneLink(
+            name, s.joints, machine.link_frames[name], s.thickness, s.material, s.profile, mass_data(s),
+            s.sketch, s.layer,
+        )
+        for name, s in sources.items()
+    }
+    motion_table = top.table("motion", required=True)
+    motion = read_motion(motion_table)
+    actuator = read_actuator(motion_table, machine)
+    loads = read_loads(top.table("loads"), machine, links)
+    analysis = read_analysis(top.table("analysis"), links)
+    return Scene(
+        path, units, MappingProxyType(materials), MappingProxyType(links), machine, motion, actuator, loads,
+        analysis,
+    )
