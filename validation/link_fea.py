@@ -1,0 +1,200 @@
+"""Plane-stress FEA of one link under its load case, for every position of a sweep at once.
+
+    result = solve_link(link, loads, MeshSettings(size=..., hole_size=..., stations=...))
+
+One mesh (member frame of ``loads.frame_joints``), one stiffness factorisation and one stress
+projection serve all P positions; only the load vectors change. Rigid modes are removed by a
+minimal, statically determinate support (3 dofs). The loads are the kinetics' loads in dynamic
+equilibrium, so the support reactions must vanish: they are reported, with their size relative to
+the gross applied load, as a check of the kinetics.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from linkstress.loads import LinkLoadCase
+from linkstress.profile import LinkProfile
+from linkstress.validation.errors import FEAError
+from linkstress.validation.link_loads import check_load_case, link_loads
+from linkstress.validation.mesh import MeshSettings, PlaneMesh, mesh_region
+from linkstress.validation.plane_stress import PlaneStressModel, factorise, minimal_support, plane_stress_model
+from linkstress.validation.recovery import CutIntegrator, cut_integrator, interpolation_matrix, stress_recovery, von_mises
+from linkstress.validation.vtu import write_sweep
+
+
+@dataclass(frozen=True)
+class SectionResultants:
+    """N [N], V [N], M [N m], each (P, S), at ``stations`` (S,) [m], member frame.
+
+    The resultants of the traction of the part x' > x on the part x' < x (outward normal +x):
+    N = int sigma_xx dA, V = int tau_xy dA, M = int (y - y_na) sigma_xx dA, with ``neutral_axis``
+    (S,) [m] the beam section's y_na. The beam engine uses the same convention.
+    """
+
+    stations: NDArray[np.float64]
+    neutral_axis: NDArray[np.float64]
+    normal: NDArray[np.float64]
+    shear: NDArray[np.float64]
+    moment: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class LinkFEAResult:
+    """The FEA of one link over P positions; member frame of ``frame_joints``, SI units.
+
+    ``displacement`` (dofs, P) [m]; ``nodal_stress`` (P, nodes, 3) [Pa]: the recovered sigma_xx,
+    sigma_yy, tau_xy at the P2 nodes; ``reactions`` (P, 3): support force x, y [N] and moment about
+    the frame origin [N m]; ``reaction_ratio`` (P,): the larger of |force| and |moment| / length of
+    the reactions over the gross applied load (sum of |nodal force|) -- ~0 for loads in equilibrium.
+    """
+
+    link: LinkProfile
+    frame_joints: tuple[int, int]
+    plane: PlaneMesh
+    model: PlaneStressModel
+    displacement: NDArray[np.float64]
+    nodal_stress: NDArray[np.float64]
+    reactions: NDArray[np.float64]
+    reaction_ratio: NDArray[np.float64]
+    applied_load: NDArray[np.float64]
+    mesh_seconds: float
+    solve_seconds: float
+
+    @property
+    def dofs(self) -> int:
+        return self.model.n_dofs
+
+    @property
+    def n_elements(self) -> int:
+        return self.plane.n_elements
+
+    @property
+    def n_positions(self) -> int:
+        return self.displacement.shape[1]
+
+    @property
+    def nodes(self) -> NDArray[np.float64]:
+        """Positions (nodes, 2) [m] of the P2 nodes, member frame."""
+        return self.model.scalar.doflocs.T
+
+    @cached_property
+    def nodal_von_mises(self) -> NDArray[np.float64]:
+        """Von Mises (P, nodes) [Pa] of the recovered stress."""
+        return von_mises(self.nodal_stress)
+
+    @property
+    def von_mises_peak(self) -> NDArray[np.float64]:
+        """Largest recovered von Mises (P,) [Pa] anywhere in the link."""
+        return self.nodal_von_mises.max(axis=1)
+
+    @property
+    def von_mises_peak_at(self) -> NDArray[np.float64]:
+        """Where (P, 2) [m, member frame] the peak von Mises of each position is."""
+        return self.nodes[self.nodal_von_mises.argmax(axis=1)]
+
+    def stress_at(self, points: ArrayLike) -> NDArray[np.float64]:
+        """Recovered sigma_xx, sigma_yy, tau_xy (P, Q, 3) [Pa] at ``points`` (Q, 2) [m, member frame]."""
+        try:
+            matrix = interpolation_matrix(self.model, np.asarray(points, float))
+        except FEAError as error:
+            raise FEAError(f"link {self.link.name!r}: {error}") from None
+        p, n, _ = self.nodal_stress.shape
+        flat = self.nodal_stress.transpose(1, 0, 2).reshape(n, 3 * p)
+        return (matrix @ flat).reshape(-1, p, 3).transpose(1, 0, 2)
+
+    def section_resultants(self, stations: ArrayLike) -> SectionResultants:
+        """N, V, M (P, S) over the FEA cuts at ``stations`` [m]; each must be one of the meshed stations."""
+        x = np.atleast_1d(np.asarray(stations, float))
+        index = self._cut_indices(x)
+        y_na = self.link.sections(x, *self.frame_joints).neutral_axis
+        n, v, m = self._cuts.resultants(self.displacement, index, y_na)
+        return SectionResultants(x, y_na, n, v, m)
+
+    def write_vtu(self, folder: str | Path) -> list[Path]:
+        """One VTU per position (displacement, stresses, von Mises) and a PVD listing them; the paths."""
+        return write_sweep(Path(folder), self.link.name, self.model, self.displacement, self.nodal_stress)
+
+    @cached_property
+    def _cuts(self) -> CutIntegrator:
+        return cut_integrator(self.model, self.plane.cuts)
+
+    def _cut_indices(self, x: NDArray[np.float64]) -> NDArray[np.intp]:
+        meshed = self.plane.stations
+        if len(meshed) == 0:
+            gap = np.full(len(x), np.inf)
+            index = np.zeros(len(x), dtype=np.intp)
+        else:
+            gap_all = np.abs(x[:, None] - meshed[None, :])
+            index, gap = gap_all.argmin(axis=1), gap_all.min(axis=1)
+        far = gap > 1e-12 * max(1.0, float(np.abs(meshed).max(initial=0.0)))
+        if far.any():
+            raise FEAError(
+                f"link {self.link.name!r}: station x = {x[far][0]:.6g} m was not meshed as a cut; "
+                f"put it in MeshSettings.stations (meshed: {meshed.tolist()})"
+            )
+        return index
+
+
+def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> LinkFEAResult:
+    """Mesh ``link`` in the member frame of ``loads.frame_joints`` and solve every position of ``loads``.
+
+    Raises FEAError (an InputError) naming the link for: a link without E and nu, a loaded joint
+    without a hole, a part too thin for the sizes, a gmsh or solver failure.
+    """
+    material = link.material
+    if material is None or material.youngs_modulus is None or material.poisson_ratio is None:
+        raise FEAError(
+            f"link {link.name!r}: the FEA needs a material with density, youngs_modulus and poisson_ratio"
+        )
+    check_load_case(link, loads)
+    start = time.perf_counter()
+    refine = [np.asarray(p.at, float) for p in loads.point_forces]
+    plane = mesh_region(link.local_outline(*loads.frame_joints), mesh, refine, name=f"link {link.name!r}")
+    meshed = time.perf_counter()
+    model = plane_stress_model(plane, material.youngs_modulus, material.poisson_ratio, link.thickness)
+    forces = link_loads(model, link, loads, patch_radius=mesh.station_size)
+    fixed, _ = minimal_support(model)
+    try:
+        displacement, support = factorise(model, fixed).solve(forces)
+    except FEAError as error:
+        raise FEAError(f"link {link.name!r}: {error}") from None
+    nodal_stress = stress_recovery(model).nodal_stress(displacement)
+    reactions = _reactions(model, fixed, support)
+    applied = np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0)
+    length = float(np.ptp(model.scalar.doflocs, axis=1).max())
+    size = np.maximum(np.hypot(reactions[:, 0], reactions[:, 1]), np.abs(reactions[:, 2]) / length)
+    ratio = np.divide(size, applied, out=np.zeros_like(size), where=applied > 0)
+    return LinkFEAResult(
+        link=link,
+        frame_joints=tuple(loads.frame_joints),
+        plane=plane,
+        model=model,
+        displacement=displacement,
+        nodal_stress=nodal_stress,
+        reactions=reactions,
+        reaction_ratio=ratio,
+        applied_load=applied,
+        mesh_seconds=meshed - start,
+        solve_seconds=time.perf_counter() - meshed,
+    )
+
+
+def _reactions(model: PlaneStressModel, fixed: NDArray[np.intp], support: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Support reactions (P, 3): force x, y [N] and moment about the origin [N m], from the fixed dofs."""
+    position = np.empty((model.n_dofs, 2))
+    for c in range(2):
+        position[model.components[c]] = model.scalar.doflocs.T
+    component = np.empty(model.n_dofs, dtype=np.intp)
+    component[model.components[0]], component[model.components[1]] = 0, 1
+    fx = np.where(component[fixed, None] == 0, support, 0.0).sum(axis=0)
+    fy = np.where(component[fixed, None] == 1, support, 0.0).sum(axis=0)
+    arm = position[fixed]
+    moment = np.where(component[fixed, None] == 1, arm[:, :1] * support, -arm[:, 1:] * support).sum(axis=0)
+    return np.column_stack([fx, fy, moment])

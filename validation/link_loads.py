@@ -1,0 +1,161 @@
+"""Nodal force vectors of a link's loads: the kinetics' loads and nothing else, for all positions at once.
+
+Member frame of the load case; P positions; every function returns forces (dofs, P) [N].
+
+- Pin force F at a joint with a hole of centre c: a cosine bearing pressure on the loaded half of
+  the hole, p(phi) = a cos(phi) + b sin(phi) for cos(phi) > 0, phi the angle from F to the radius
+  r - c, pushing radially into the material. a ~ 2 |F| / (pi R t) and b ~ 0; both are solved from
+  the discrete resultant (a 2x2 system per position), so that the nodal forces sum to F exactly
+  whatever the mesh. Radial tractions have no moment about c.
+- Couple C at a joint with a hole: a uniform traction tangent to the hole (a keyed shaft), scaled
+  so that the nodal moment about c is C exactly. The discrete tangents integrate to zero round a
+  closed hole, so the couple adds no net force.
+- d'Alembert body force rho (g - a(r)) of the rigid-body motion: affine in r, so it is three
+  integrals of the P2 functions (of 1, x and y), combined per position.
+- Point force F at p: a load density over the elements within a patch radius of p, affine and
+  with zero first moment about p, so that its nodal resultant is F and its moment about the
+  origin is p x F, exactly.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+from skfem import Basis, ElementTriP2, FacetBasis
+
+from linkstress.loads import LinkLoadCase
+from linkstress.profile import LinkProfile
+from linkstress.validation.errors import FEAError
+from linkstress.validation.plane_stress import PlaneStressModel, quadrature_weights, vector_loads
+
+FACET_INTORDER = 8
+"""Quadrature degree on hole edges: resolves the bearing pressure's kink at +-90 degrees from F."""
+
+
+def nodal_resultant(
+    model: PlaneStressModel, forces: NDArray[np.float64], about: NDArray[np.float64] = np.zeros(2)
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Net force (P, 2) [N] and moment (P,) [N m] about ``about`` (2,) [m] of nodal ``forces`` (dofs, P)."""
+    xy = model.scalar.doflocs - np.asarray(about, float)[:, None]
+    fx, fy = forces[model.components[0]], forces[model.components[1]]
+    force = np.column_stack([fx.sum(axis=0), fy.sum(axis=0)])
+    return force, xy[0] @ fy - xy[1] @ fx
+
+
+def bearing_loads(
+    model: PlaneStressModel, facets: NDArray[np.intp], centre: NDArray[np.float64], forces: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Cosine bearing pressure of pin forces (P, 2) [N] on the hole ``facets`` around ``centre`` (2,) [m]."""
+    basis = FacetBasis(model.plane.mesh, ElementTriP2(), facets=facets, intorder=FACET_INTORDER)
+    weights, points = quadrature_weights(basis)
+    radius = points - np.asarray(centre, float)[:, None]
+    radial = radius / np.hypot(*radius)
+    magnitude = np.hypot(forces[:, 0], forces[:, 1])
+    direction = np.where(magnitude[:, None] > 0, forces / np.where(magnitude > 0, magnitude, 1.0)[:, None], [1.0, 0.0])
+    cos = direction @ radial
+    sin = direction[:, :1] * radial[1] - direction[:, 1:] * radial[0]
+    loaded = cos > 0
+    shapes = [np.where(loaded, cos, 0.0), np.where(loaded, sin, 0.0)]
+    ds = model.thickness * np.asarray(weights.sum(axis=0)).ravel()
+    resultants = np.stack([(s * ds) @ radial.T for s in shapes], axis=-1)
+    a, b = np.linalg.solve(resultants, forces[:, :, None])[:, :, 0].T
+    pressure = a[:, None] * shapes[0] + b[:, None] * shapes[1]
+    return vector_loads(model, weights, pressure[:, None, :] * radial[None, :, :])
+
+
+def shaft_couple_loads(
+    model: PlaneStressModel, facets: NDArray[np.intp], centre: NDArray[np.float64], couples: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Uniform tangential traction on the hole ``facets`` carrying couples (P,) [N m] about ``centre``."""
+    basis = FacetBasis(model.plane.mesh, ElementTriP2(), facets=facets, intorder=FACET_INTORDER)
+    weights, points = quadrature_weights(basis)
+    normal = basis.normals.reshape(2, -1)
+    tangent = np.array([normal[1], -normal[0]])
+    arm = points - np.asarray(centre, float)[:, None]
+    ds = model.thickness * np.asarray(weights.sum(axis=0)).ravel()
+    unit_moment = float(((arm[0] * tangent[1] - arm[1] * tangent[0]) * ds).sum())
+    scale = np.asarray(couples, float) / unit_moment
+    return vector_loads(model, weights, scale[:, None, None] * tangent[None, :, :])
+
+
+def body_loads(model: PlaneStressModel, loads: LinkLoadCase, density: float) -> NDArray[np.float64]:
+    """d'Alembert body force (and gravity) of ``loads``' rigid-body motion for a material ``density`` [kg/m^3]."""
+    weights, points = quadrature_weights(model.scalar)
+    moments = [weights @ np.ones(points.shape[1]), weights @ points[0], weights @ points[1]]
+    # The load density is affine in r: b(r) = b(0) + (b(e_x) - b(0)) x + (b(e_y) - b(0)) y.
+    b = loads.body_force_density(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]), density)
+    coefficients = [b[:, 0], b[:, 1] - b[:, 0], b[:, 2] - b[:, 0]]
+    forces = np.zeros((model.n_dofs, loads.n_positions))
+    for c in range(2):
+        forces[model.components[c]] = model.thickness * sum(
+            np.outer(m, k[:, c]) for m, k in zip(moments, coefficients)
+        )
+    return forces
+
+
+def patch_loads(
+    model: PlaneStressModel, at: NDArray[np.float64], forces: NDArray[np.float64], radius: float
+) -> NDArray[np.float64]:
+    """Point forces (P, 2) [N] at ``at`` (2,) [m] spread over the elements within ``radius`` [m] of it."""
+    mesh = model.plane.mesh
+    at = np.asarray(at, float)
+    centroids = mesh.p[:, mesh.t].mean(axis=1)
+    patch = np.flatnonzero(np.hypot(*(centroids - at[:, None])) <= radius)
+    if len(patch) < 2:
+        patch = np.argsort(np.hypot(*(centroids - at[:, None])))[:3]
+    basis = Basis(mesh, ElementTriP2(), elements=patch, intorder=4)
+    weights, points = quadrature_weights(basis)
+    d = points - at[:, None]
+    da = np.asarray(weights.sum(axis=0)).ravel()
+    rows = np.vstack([np.ones_like(d[0]), d])
+    system = (rows * da) @ rows.T
+    alpha, *beta = np.linalg.solve(system, [1.0, 0.0, 0.0])
+    shape = (alpha + beta[0] * d[0] + beta[1] * d[1]) / model.thickness
+    return vector_loads(model, weights, forces[:, :, None] * shape[None, None, :])
+
+
+def link_loads(model: PlaneStressModel, link: LinkProfile, loads: LinkLoadCase, patch_radius: float) -> NDArray[np.float64]:
+    """All the loads of ``loads`` on ``link`` meshed in ``model`` (its member frame): forces (dofs, P) [N]."""
+    check_load_case(link, loads)
+    frame = link.frame(*loads.frame_joints)
+    joints = frame.to_local(link.joints)
+    forces = body_loads(model, loads, link.density)
+    for j, hole in enumerate(link.joint_holes):
+        pin, couple = loads.pin_forces[:, j], loads.joint_couples[:, j]
+        if hole is None:
+            if np.any(pin != 0) or np.any(couple != 0):
+                raise FEAError(
+                    f"link {link.name!r}: joint {j} carries a pin force of up to "
+                    f"{np.hypot(*pin.T).max():.6g} N and a couple of up to {np.abs(couple).max():.6g} N m but "
+                    "has no hole; the FEA applies joint loads on a pin hole: draw the hole (a circle centred "
+                    "on the joint)"
+                )
+            continue
+        facets = model.plane.holes[hole]
+        forces += bearing_loads(model, facets, joints[j], pin)
+        if np.any(couple != 0):
+            forces += shaft_couple_loads(model, facets, joints[j], couple)
+    for point in loads.point_forces:
+        forces += patch_loads(model, point.at, np.asarray(point.force, float), patch_radius)
+    return forces
+
+
+def check_load_case(link: LinkProfile, loads: LinkLoadCase) -> None:
+    """The load case's arrays fit the link (P positions, J joints) and are finite; else FEAError."""
+    n_pos, n_joints = loads.n_positions, len(link.joints)
+    shapes = {
+        "pin_forces": (n_pos, n_joints, 2),
+        "joint_couples": (n_pos, n_joints),
+        "alpha": (n_pos,),
+        "origin_acceleration": (n_pos, 2),
+        "gravity": (n_pos, 2),
+    }
+    for key, shape in shapes.items():
+        value = np.asarray(getattr(loads, key))
+        if value.shape != shape:
+            raise FEAError(f"link {link.name!r}: load case {key} has shape {value.shape}, expected {shape}")
+        if not np.isfinite(value).all():
+            raise FEAError(f"link {link.name!r}: load case {key} has non-finite values")
+    for point in loads.point_forces:
+        if np.shape(point.force) != (n_pos, 2) or not np.isfinite(point.force).all():
+            raise FEAError(f"link {link.name!r}: a point force at {np.asarray(point.at).tolist()} needs finite (P, 2) forces")

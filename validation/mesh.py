@@ -1,0 +1,317 @@
+"""Quadratic triangle meshes of a plate region through the gmsh Python API.
+
+The region is a shapely Polygon with holes (a link's outline in its member frame). Its rings are
+read back into circles, arcs, splines and lines first (:mod:`linkstress.validation.ring_curves`),
+so that the drawing's flattening does not refine the mesh. Each station x becomes a cut line
+fragmented into the plate, so that element edges run along it and section resultants can be
+integrated over the cut exactly. The element size is ``hole_size`` at the holes, ``station_size``
+along the cuts and at the refinement points, growing linearly (by ``grading`` per unit distance)
+to ``size`` elsewhere. The same region and settings always give the same mesh.
+
+gmsh physical groups: "material" (2D), "outline", "hole k" and "cut k" (1D); the mesh carries the
+facets of each group.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, replace
+
+import gmsh
+import numpy as np
+from numpy.typing import NDArray
+from shapely.geometry import LinearRing, Point, Polygon
+from skfem import MeshTri2
+
+from linkstress.validation.errors import FEAError
+from linkstress.validation.mesh_checks import check_meshable
+from linkstress.validation.ring_curves import Arc, Circle, Line, Spline, ring_curves
+
+TRIANGLE6 = 9
+LINE3 = 8
+
+
+@dataclass(frozen=True)
+class MeshSettings:
+    """Element sizes [m] and the comparison stations x [m] (member frame) to mesh as cuts.
+
+    ``hole_size`` defaults to size / 4 and ``station_size`` to size / 2; ``grading`` [-] is how fast
+    the size grows with the distance from a hole, cut or refinement point.
+    """
+
+    size: float
+    hole_size: float | None = None
+    stations: tuple[float, ...] = ()
+    station_size: float | None = None
+    grading: float = 0.3
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stations", tuple(float(s) for s in np.atleast_1d(self.stations)))
+        if self.hole_size is None:
+            object.__setattr__(self, "hole_size", self.size / 4)
+        if self.station_size is None:
+            object.__setattr__(self, "station_size", self.size / 2)
+        for key in ("size", "hole_size", "station_size", "grading"):
+            value = getattr(self, key)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+                raise FEAError(f"mesh settings: {key} must be a finite number > 0, got {value!r}")
+        if not np.isfinite(self.stations).all():
+            raise FEAError(f"mesh settings: stations must be finite, got {self.stations!r}")
+
+    @property
+    def finest(self) -> float:
+        return min(self.size, self.hole_size, self.station_size)
+
+    def refined(self, ratio: float) -> MeshSettings:
+        """The same settings with every element size divided by ``ratio``."""
+        return replace(
+            self, size=self.size / ratio, hole_size=self.hole_size / ratio, station_size=self.station_size / ratio
+        )
+
+
+@dataclass(frozen=True)
+class PlaneMesh:
+    """A quadratic (isoparametric) triangle mesh and the facets of its boundary parts and cuts.
+
+    ``holes[k]``: boundary facets of the region's k-th hole (shapely interior order); ``outline``:
+    facets of the outer boundary; ``cuts[s]``: interior facets on the cut x = ``stations[s]``.
+    """
+
+    mesh: MeshTri2
+    outline: NDArray[np.intp]
+    holes: tuple[NDArray[np.intp], ...]
+    cuts: tuple[NDArray[np.intp], ...]
+    stations: NDArray[np.float64]
+    settings: MeshSettings
+    seconds: float
+
+    @property
+    def n_elements(self) -> int:
+        return self.mesh.t.shape[1]
+
+
+def mesh_region(
+    region: Polygon,
+    settings: MeshSettings,
+    points: Sequence[Sequence[float]] = (),
+    name: str = "region",
+) -> PlaneMesh:
+    """Mesh ``region`` [m] with quadratic triangles; refine to ``station_size`` at ``points`` (Q, 2) too.
+
+    Raises FEAError naming ``name`` when a part is too thin for the sizes, a station does not cut
+    the region's interior, or gmsh fails.
+    """
+    start = time.perf_counter()
+    check_meshable(region, settings, name)
+    stations = np.asarray(settings.stations, float)
+    minx, _, maxx, _ = region.bounds
+    margin = 1e-6 * (maxx - minx)
+    outside = (stations <= minx + margin) | (stations >= maxx - margin)
+    if outside.any():
+        raise FEAError(
+            f"{name}: station x = {stations[outside][0]:.6g} m is not inside the region's extent "
+            f"({minx:.6g}, {maxx:.6g}) m; stations must cut through material"
+        )
+    if len(np.unique(stations)) != len(stations):
+        raise FEAError(f"{name}: the mesh stations repeat a value: {settings.stations!r}")
+    with _gmsh_model(name):
+        try:
+            groups = _build_geometry(region, stations, settings, np.asarray(points, float).reshape(-1, 2))
+            gmsh.model.mesh.generate(2)
+            gmsh.model.mesh.setOrder(2)
+            mesh, facet_of = _read_mesh()
+            facets = {key: facet_of(_group_edges(key, tags)) for key, tags in groups.items()}
+        except FEAError:
+            raise
+        except Exception as error:
+            raise FEAError(f"{name}: gmsh could not mesh it ({error}); check the outline or change the sizes")
+    return PlaneMesh(
+        mesh=mesh,
+        outline=facets["outline"],
+        holes=tuple(facets[f"hole {k}"] for k in range(len(region.interiors))),
+        cuts=tuple(facets[f"cut {k}"] for k in range(len(stations))),
+        stations=stations,
+        settings=settings,
+        seconds=time.perf_counter() - start,
+    )
+
+
+@contextmanager
+def _gmsh_model(name: str) -> Iterator[None]:
+    """A fresh gmsh model, silent and single-threaded; gmsh is left as it was found."""
+    owner = not gmsh.isInitialized()
+    if owner:
+        gmsh.initialize(interruptible=False)
+    gmsh.model.add(f"linkstress {name}")
+    try:
+        for option, value in (("General.Terminal", 0), ("General.NumThreads", 1), ("Mesh.Algorithm", 6),
+                              ("Mesh.MeshSizeExtendFromBoundary", 0), ("Mesh.MeshSizeFromPoints", 0),
+                              ("Mesh.MeshSizeFromCurvature", 0)):
+            gmsh.option.setNumber(option, value)
+        yield
+    finally:
+        gmsh.model.remove()
+        if owner:
+            gmsh.finalize()
+
+
+def _build_geometry(region, stations, settings, points) -> dict[str, list[int]]:
+    """The plate, its cuts and size fields in gmsh; returns the curve tags of each 1D group."""
+    occ = gmsh.model.occ
+    rings = [region.exterior, *region.interiors]
+    loops = [occ.addCurveLoop(_ring_curves(ring, settings.finest)) for ring in rings]
+    surface = occ.addPlaneSurface(loops)
+    _, miny, _, maxy = region.bounds
+    pad = 0.01 * (maxy - miny)
+    cut_lines = [occ.addLine(occ.addPoint(s, miny - pad, 0), occ.addPoint(s, maxy + pad, 0)) for s in stations]
+    cut_pieces: list[list[int]] = [[] for _ in stations]
+    if cut_lines:
+        _, pieces = occ.fragment([(2, surface)], [(1, c) for c in cut_lines])
+        dangling = []
+        for k, dimtags in enumerate(pieces[1:]):
+            for _, tag in dimtags:
+                inside = region.contains(Point(occ.getCenterOfMass(1, tag)[:2]))
+                (cut_pieces[k] if inside else dangling).append(tag)
+        occ.remove([(1, t) for t in dangling], recursive=True)
+    occ.synchronize()
+    cut_tags = {t for piece in cut_pieces for t in piece}
+    boundary = [t for _, t in gmsh.model.getEntities(1) if t not in cut_tags]
+    nearest = [_nearest_ring(_curve_midpoint(t), rings) for t in boundary]
+    groups = {"outline": [t for t, r in zip(boundary, nearest) if r == 0]}
+    groups |= {f"hole {k}": [t for t, r in zip(boundary, nearest) if r == k + 1] for k in range(len(rings) - 1)}
+    groups |= {f"cut {k}": piece for k, piece in enumerate(cut_pieces)}
+    gmsh.model.addPhysicalGroup(2, [t for _, t in gmsh.model.getEntities(2)], name="material")
+    for key, tags in groups.items():
+        gmsh.model.addPhysicalGroup(1, tags, name=key)
+    hole_curves = [t for key, tags in groups.items() if key.startswith("hole") for t in tags]
+    _size_fields(settings, hole_curves, sorted(cut_tags), points)
+    return groups
+
+
+def _ring_curves(ring: LinearRing, short: float) -> list[int]:
+    """gmsh OCC curves of one ring, in order."""
+    occ = gmsh.model.occ
+    pieces = ring_curves(np.asarray(ring.coords), short)
+    if isinstance(pieces, Circle):
+        return [occ.addCircle(pieces.centre[0], pieces.centre[1], 0.0, pieces.radius)]
+    first = occ.addPoint(*_ends(pieces[0])[0], 0.0)
+    curves, start = [], first
+    for k, piece in enumerate(pieces):
+        end = first if k == len(pieces) - 1 else occ.addPoint(*_ends(piece)[1], 0.0)
+        if isinstance(piece, Line):
+            curves.append(occ.addLine(start, end))
+        elif isinstance(piece, Arc):
+            curves.append(occ.addCircleArc(start, occ.addPoint(*piece.centre, 0.0), end))
+        else:
+            inner = [occ.addPoint(x, y, 0.0) for x, y in piece.points[1:-1]]
+            curves.append(occ.addSpline([start, *inner, end]))
+        start = end
+    return curves
+
+
+def _ends(piece) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    if isinstance(piece, Spline):
+        return piece.points[0], piece.points[-1]
+    return piece.start, piece.end
+
+
+def _size_fields(settings: MeshSettings, holes: list[int], cuts: list[int], points) -> None:
+    """Size = min over (holes, cuts, points) of fine size + grading x distance, capped at ``size``."""
+    field = gmsh.model.mesh.field
+    thresholds = []
+    sources = [("CurvesList", holes, settings.hole_size), ("CurvesList", cuts, settings.station_size)]
+    if len(points):
+        point_tags = [gmsh.model.occ.addPoint(x, y, 0.0) for x, y in points]
+        gmsh.model.occ.synchronize()
+        sources.append(("PointsList", point_tags, settings.station_size))
+    for key, tags, fine in sources:
+        if not tags:
+            continue
+        distance = field.add("Distance")
+        field.setNumbers(distance, key, tags)
+        field.setNumber(distance, "Sampling", _sampling(tags, fine) if key == "CurvesList" else 1)
+        threshold = field.add("Threshold")
+        field.setNumber(threshold, "InField", distance)
+        field.setNumber(threshold, "SizeMin", fine)
+        field.setNumber(threshold, "SizeMax", settings.size)
+        field.setNumber(threshold, "DistMin", 0.0)
+        field.setNumber(threshold, "DistMax", max(settings.size - fine, 0.0) / settings.grading + 1e-12)
+        thresholds.append(threshold)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", settings.size)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", settings.finest / 2)
+    if thresholds:
+        smallest = field.add("Min")
+        field.setNumbers(smallest, "FieldsList", thresholds)
+        field.setAsBackgroundMesh(smallest)
+
+
+def _sampling(curves: list[int], size: float) -> int:
+    """Distance-field samples per curve: four per element along the longest curve."""
+    longest = max(gmsh.model.occ.getMass(1, t) for t in curves)
+    return int(min(max(4 * longest / size, 20), 100_000))
+
+
+def _curve_midpoint(tag: int) -> tuple[float, float]:
+    lo, hi = gmsh.model.getParametrizationBounds(1, tag)
+    x, y, _ = gmsh.model.getValue(1, tag, [(lo[0] + hi[0]) / 2])
+    return x, y
+
+
+def _nearest_ring(xy: tuple[float, float], rings) -> int:
+    point = Point(xy)
+    return int(np.argmin([ring.distance(point) for ring in rings]))
+
+
+def _group_edges(key: str, curve_tags: list[int]) -> NDArray[np.int64]:
+    """gmsh node tags (E, 2) of the end vertices of the line elements on ``curve_tags``."""
+    edges = [np.zeros((0, 2), dtype=np.int64)]
+    for tag in curve_tags:
+        types, _, nodes = gmsh.model.mesh.getElements(1, tag)
+        for etype, enodes in zip(types, nodes):
+            if etype == LINE3:
+                edges.append(np.asarray(enodes, dtype=np.int64).reshape(-1, 3)[:, :2])
+    return np.concatenate(edges)
+
+
+def _read_mesh():
+    """The MeshTri2 of the generated mesh and a map from gmsh vertex-tag pairs to its facet indices."""
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    xy = np.asarray(coords).reshape(-1, 3)[:, :2]
+    where = np.empty(int(np.max(tags)) + 1, dtype=np.int64)
+    where[np.asarray(tags, dtype=np.int64)] = np.arange(len(tags))
+    triangles = []
+    for _, tag in gmsh.model.getEntities(2):
+        types, _, nodes = gmsh.model.mesh.getElements(2, tag)
+        for etype, enodes in zip(types, nodes):
+            if etype != TRIANGLE6:
+                raise FEAError(f"gmsh made elements of type {etype}, expected quadratic triangles")
+            triangles.append(np.asarray(enodes, dtype=np.int64).reshape(-1, 6))
+    t = np.concatenate(triangles)
+    vertex_tags = np.unique(t[:, :3])
+    middle_tags = np.setdiff1d(np.unique(t[:, 3:]), vertex_tags)
+    order = np.concatenate([vertex_tags, middle_tags])
+    number = np.empty(int(np.max(tags)) + 1, dtype=np.int64)
+    number[order] = np.arange(len(order))
+    t = number[t]
+    doflocs = xy[where[order]]
+    a, b, c = (doflocs[t[:, k]] for k in range(3))
+    clockwise = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]) < 0
+    t[clockwise] = t[clockwise][:, [0, 2, 1, 5, 4, 3]]
+    mesh = MeshTri2(doflocs.T.copy(), t.T.copy())
+    n_vertices = len(vertex_tags)
+    keys = np.sort(mesh.facets, axis=0)
+    key = keys[0].astype(np.int64) * n_vertices + keys[1]
+    sorter = np.argsort(key)
+
+    def facet_of(edges: NDArray[np.int64]) -> NDArray[np.intp]:
+        ends = np.sort(number[edges], axis=1)
+        wanted = ends[:, 0] * n_vertices + ends[:, 1]
+        pos = sorter[np.searchsorted(key, wanted, sorter=sorter)]
+        if not np.array_equal(key[pos], wanted):
+            raise FEAError("a boundary edge of the gmsh mesh is not an element edge")
+        return np.sort(pos)
+
+    return mesh, facet_of

@@ -1,0 +1,171 @@
+"""Plane-stress linear elasticity on quadratic triangles with scikit-fem, and its factorised solve.
+
+Constitutive law (plane stress, e.g. Timoshenko & Goodier, Theory of Elasticity, 3rd ed., eq. 55):
+
+    [sigma_xx, sigma_yy, tau_xy] = E / (1 - nu^2) [[1, nu, 0], [nu, 1, 0], [0, 0, (1 - nu) / 2]] [e_xx, e_yy, gamma_xy]
+
+which is sigma = 2 mu e + lambda* tr(e) I with mu = E / (2 (1 + nu)) and lambda* = E nu / (1 - nu^2).
+scikit-fem 12's ``plane_stress(E, nu)`` returns exactly (lambda*, mu), to be fed straight to
+``linear_elasticity``; passing them through ``lame_parameters`` as well would give the plane-strain
+(3D) lambda of the wrong moduli. The stiffness is scaled by the plate thickness t, so loads are
+forces [N] and stresses are in-plane [Pa].
+
+One stiffness factorisation (SuperLU) serves any number of load cases: solve takes all the
+right-hand sides (dofs, P) at once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.sparse.linalg import splu
+from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, asm
+from skfem.helpers import sym_grad
+from skfem.models.elasticity import linear_elasticity, linear_stress, plane_stress
+
+from linkstress.validation.errors import FEAError
+from linkstress.validation.mesh import PlaneMesh
+
+INTORDER = 4
+"""Quadrature degree on cells: exact for the P2 stiffness and for P2 x linear loads on straight cells."""
+
+
+def plane_stress_matrix(youngs_modulus: float, poisson_ratio: float) -> NDArray[np.float64]:
+    """The plane-stress elasticity matrix D [Pa] in Voigt order (xx, yy, xy with engineering shear strain)."""
+    e, nu = youngs_modulus, poisson_ratio
+    return e / (1 - nu * nu) * np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, (1 - nu) / 2]])
+
+
+@dataclass(frozen=True)
+class PlaneStressModel:
+    """A plate on a mesh: vector P2 ``basis`` for displacements [m], scalar P2 ``scalar`` for fields.
+
+    ``components[c, i]`` is the displacement dof of component c (0 = x, 1 = y) at scalar dof i, so a
+    nodal field computed on ``scalar`` scatters into the displacement vector. ``stiffness`` [N/m]
+    includes the thickness [m].
+    """
+
+    plane: PlaneMesh
+    youngs_modulus: float
+    poisson_ratio: float
+    thickness: float
+    basis: Basis
+    scalar: Basis
+    components: NDArray[np.intp]
+    stiffness: sp.csr_matrix
+
+    @property
+    def n_dofs(self) -> int:
+        return self.basis.N
+
+    def stress_forms(self) -> tuple[BilinearForm, BilinearForm, BilinearForm]:
+        """Forms (u, v) -> int sigma_c(u) v dA for c = xx, yy, xy: u displacement, v scalar P2."""
+        stress = linear_stress(*plane_stress(self.youngs_modulus, self.poisson_ratio))
+
+        def component(i: int, j: int) -> BilinearForm:
+            return BilinearForm(lambda u, v, w: stress(sym_grad(u))[i, j] * v)
+
+        return component(0, 0), component(1, 1), component(0, 1)
+
+
+def plane_stress_model(
+    plane: PlaneMesh, youngs_modulus: float, poisson_ratio: float, thickness: float
+) -> PlaneStressModel:
+    """Assemble the plane-stress stiffness of ``plane`` for E [Pa], nu [-] and thickness t [m]."""
+    basis = Basis(plane.mesh, ElementVector(ElementTriP2()), intorder=INTORDER)
+    scalar = basis.with_element(ElementTriP2())
+    components = np.empty((2, scalar.N), dtype=np.intp)
+    components[:, scalar.nodal_dofs[0]] = basis.nodal_dofs
+    components[:, scalar.facet_dofs[0]] = basis.facet_dofs
+    stiffness = thickness * asm(linear_elasticity(*plane_stress(youngs_modulus, poisson_ratio)), basis)
+    return PlaneStressModel(
+        plane, float(youngs_modulus), float(poisson_ratio), float(thickness), basis, scalar, components,
+        stiffness.tocsr(),
+    )
+
+
+def quadrature_weights(basis: Basis) -> tuple[sp.csr_matrix, NDArray[np.float64]]:
+    """W (scalar dofs, Nq) with W[i, q] = phi_i(q) dA_q, and the points (2, Nq) [m] of basis' quadrature.
+
+    ``basis`` is a scalar P2 cell or facet basis; a field f sampled at the points integrates
+    against every test function at once: W @ f = int phi_i f.
+    """
+    n_el, n_qp = basis.dx.shape
+    rows = np.repeat(basis.element_dofs, n_qp, axis=1)
+    cols = np.tile(np.arange(n_el * n_qp).reshape(n_el, n_qp), (basis.Nbfun, 1))
+    values = np.concatenate([basis.basis[k][0].value * basis.dx for k in range(basis.Nbfun)])
+    weights = sp.csr_matrix((values.ravel(), (rows.ravel(), cols.ravel())), shape=(basis.N, n_el * n_qp))
+    points = basis.global_coordinates().value.reshape(2, -1)
+    return weights, points
+
+
+def vector_loads(model: PlaneStressModel, weights: sp.csr_matrix, density: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Nodal forces (dofs, P) [N] of a load ``density`` (P, 2, Nq) per unit area [Pa = N/m^2] or volume.
+
+    ``weights`` from :func:`quadrature_weights` (facet basis: traction [Pa] times t; cell basis:
+    body force [N/m^3] times t). The thickness is applied here.
+    """
+    loads = np.zeros((model.n_dofs, density.shape[0]))
+    for c in range(2):
+        loads[model.components[c]] = model.thickness * (weights @ density[:, c, :].T)
+    return loads
+
+
+@dataclass(frozen=True)
+class FactorisedStiffness:
+    """The stiffness with dofs ``fixed`` prescribed, factorised once; solves many load cases."""
+
+    stiffness: sp.csr_matrix
+    fixed: NDArray[np.intp]
+    free: NDArray[np.intp]
+    lu: object
+
+    def solve(
+        self, loads: NDArray[np.float64], prescribed: NDArray[np.float64] | None = None
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Displacements (dofs, P) [m] and reactions (fixed, P) [N] for nodal ``loads`` (dofs, P) [N].
+
+        ``prescribed`` (fixed, P) [m]: displacements of the fixed dofs (zero when None).
+        """
+        loads = np.asarray(loads, float).reshape(self.stiffness.shape[0], -1)
+        u = np.zeros_like(loads)
+        if prescribed is not None:
+            u[self.fixed] = np.asarray(prescribed, float).reshape(len(self.fixed), -1)
+        rhs = loads[self.free] - self.stiffness[self.free][:, self.fixed] @ u[self.fixed]
+        u[self.free] = self.lu.solve(rhs)
+        if not np.isfinite(u).all():
+            raise FEAError("the solver returned non-finite displacements: the supports leave a rigid mode free")
+        reactions = self.stiffness[self.fixed] @ u - loads[self.fixed]
+        return u, reactions
+
+
+def factorise(model: PlaneStressModel, fixed: NDArray[np.intp]) -> FactorisedStiffness:
+    """Factorise the stiffness with the dofs ``fixed`` removed (prescribed at solve time)."""
+    fixed = np.asarray(fixed, dtype=np.intp)
+    if len(np.unique(fixed)) != len(fixed):
+        raise FEAError(f"a dof is fixed twice in {fixed.tolist()}")
+    free = np.setdiff1d(np.arange(model.n_dofs), fixed)
+    try:
+        lu = splu(model.stiffness[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A")
+    except RuntimeError as error:
+        raise FEAError(f"the stiffness could not be factorised ({error}): the supports leave a rigid mode free")
+    return FactorisedStiffness(model.stiffness, fixed, free, lu)
+
+
+def minimal_support(model: PlaneStressModel) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
+    """Three dofs that remove the rigid modes, and the two support points (2, 2) [m].
+
+    Both displacements at the vertex of least x (then least y) and the y displacement at the vertex
+    of greatest x (then greatest y): statically determinate, so for loads in equilibrium the
+    reactions vanish and the stresses do not depend on this choice.
+    """
+    p = model.plane.mesh.p[:, : model.plane.mesh.nvertices]
+    first = int(np.lexsort((p[1], p[0]))[0])
+    second = int(np.lexsort((-p[1], -p[0]))[0])
+    if np.isclose(p[0, first], p[0, second]):
+        raise FEAError("the region has no extent in x: cannot place a minimal support")
+    dofs = np.array([model.basis.nodal_dofs[0, first], model.basis.nodal_dofs[1, first], model.basis.nodal_dofs[1, second]])
+    return dofs, p[:, [first, second]].T

@@ -1,0 +1,177 @@
+"""Stresses from displacements: recovered nodal field, values at points, von Mises and cut resultants.
+
+The P2 displacement gives a stress that is linear in each element and jumps between elements.
+The recovered field is its L2 projection onto continuous P2 (the "nodal averaged" stress of
+commercial codes, done variationally: M s = int phi sigma_h dA, M the scalar P2 mass matrix), one
+solve per component for all load cases at once. Peak von Mises is taken over its nodes.
+
+Section resultants are integrated over a cut meshed as element edges (see ``MeshSettings.stations``)
+from the raw element stresses, averaging the two sides of each edge; linear stresses on straight
+edges make a two-point Gauss rule per edge exact (isoparametric edges: to the quadrature order).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.spatial import cKDTree
+from scipy.sparse.linalg import splu
+from skfem import BilinearForm, ElementTriP2, InteriorFacetBasis, asm
+
+from linkstress.validation.errors import FEAError
+from linkstress.validation.plane_stress import PlaneStressModel, plane_stress_matrix
+
+OUTSIDE_TOLERANCE = 1e-3
+"""Points this far outside an element (in its reference coordinates) still count as on it."""
+CANDIDATES = 12
+NEWTON_STEPS = 12
+
+
+def von_mises(stress: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Plane-stress von Mises [Pa] of stresses (..., 3) = (sigma_xx, sigma_yy, tau_xy) [Pa]."""
+    sxx, syy, txy = stress[..., 0], stress[..., 1], stress[..., 2]
+    return np.sqrt(np.maximum(sxx * sxx - sxx * syy + syy * syy + 3 * txy * txy, 0.0))
+
+
+@dataclass(frozen=True)
+class StressRecovery:
+    """Operators from displacements to the recovered (L2-projected, continuous P2) stress field."""
+
+    model: PlaneStressModel
+    projections: tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]
+    mass: object
+
+    def nodal_stress(self, displacement: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Recovered stress (P, scalar dofs, 3) [Pa] at the P2 nodes for displacements (dofs, P) [m]."""
+        u = np.asarray(displacement, float).reshape(self.model.n_dofs, -1)
+        return np.stack([self.mass.solve(b @ u) for b in self.projections], axis=-1).transpose(1, 0, 2)
+
+
+def stress_recovery(model: PlaneStressModel) -> StressRecovery:
+    """Assemble and factorise the projection of ``model``'s stresses onto continuous P2."""
+    mass = asm(BilinearForm(lambda u, v, w: u * v), model.scalar).tocsc()
+    projections = tuple(asm(form, model.basis, model.scalar).tocsr() for form in model.stress_forms())
+    return StressRecovery(model, projections, splu(mass, permc_spec="MMD_AT_PLUS_A"))
+
+
+def interpolation_matrix(model: PlaneStressModel, points: NDArray[np.float64]) -> sp.csr_matrix:
+    """Matrix (Q, scalar dofs) that evaluates a P2 nodal field at ``points`` (Q, 2) [m] of the mesh.
+
+    Each point is found in its (curved) element by inverting the isoparametric map; a point more
+    than ``OUTSIDE_TOLERANCE`` outside every element is an error that names it.
+    """
+    points = np.asarray(points, float).reshape(-1, 2)
+    scalar = model.scalar
+    cells, local = _locate(scalar.doflocs, scalar.element_dofs, points)
+    element = ElementTriP2()
+    values = np.stack([element.lbasis(local, k)[0] for k in range(scalar.Nbfun)])
+    rows = np.broadcast_to(np.arange(len(points)), values.shape)
+    return sp.csr_matrix(
+        (values.ravel(), (rows.ravel(), scalar.element_dofs[:, cells].ravel())), shape=(len(points), scalar.N)
+    )
+
+
+def _locate(nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
+    """Element (Q,) and reference coordinates (2, Q) of each point, by Newton on the P2 map."""
+    n_el = element_dofs.shape[1]
+    vertices = nodes[:, element_dofs[:3]]
+    tree = cKDTree(vertices.mean(axis=1).T)
+    k = min(CANDIDATES, n_el)
+    candidates = tree.query(points, k)[1].reshape(len(points), k)
+    q = np.repeat(np.arange(len(points)), k)
+    cell = candidates.ravel()
+    target = points[q].T
+    local = np.full((2, len(cell)), 1 / 3)
+    element = ElementTriP2()
+    with np.errstate(all="ignore"):
+        for _ in range(NEWTON_STEPS):
+            x = np.zeros_like(target)
+            jac = np.zeros((2, 2, len(cell)))
+            for a in range(element_dofs.shape[0]):
+                phi, dphi = element.lbasis(local, a)
+                node = nodes[:, element_dofs[a, cell]]
+                x += node * phi
+                jac += node[:, None, :] * dphi[None, :, :]
+            det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
+            r = target - x
+            local = local + np.array([jac[1, 1] * r[0] - jac[0, 1] * r[1], -jac[1, 0] * r[0] + jac[0, 0] * r[1]]) / det
+        outside = np.max([-local[0], -local[1], local.sum(axis=0) - 1, np.zeros(len(cell))], axis=0)
+    outside = np.where(np.isfinite(outside), outside, np.inf).reshape(len(points), k)
+    best = np.argmin(outside, axis=1)
+    worst = outside[np.arange(len(points)), best]
+    if (worst > OUTSIDE_TOLERANCE).any():
+        bad = points[np.argmax(worst)]
+        raise FEAError(f"the point ({bad[0]:.6g}, {bad[1]:.6g}) m is outside the meshed plate")
+    pick = np.arange(len(points)) * k + best
+    chosen = np.clip(local[:, pick], 0.0, 1.0)
+    excess = np.maximum(chosen.sum(axis=0) - 1, 0.0) / 2
+    return cell[pick], chosen - excess
+
+
+def strain_operators(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """Matrices (Nq, dofs) giving e_xx, e_yy and gamma_xy at ``basis``' quadrature points (vector P2)."""
+    n_el, n_qp = basis.dx.shape
+    rows = np.tile(np.arange(n_el * n_qp).reshape(n_el, n_qp), (basis.Nbfun, 1))
+    cols = np.repeat(basis.element_dofs, n_qp, axis=1)
+    grads = [basis.basis[k][0].grad for k in range(basis.Nbfun)]
+    parts = {
+        "xx": [g[0, 0] for g in grads],
+        "yy": [g[1, 1] for g in grads],
+        "xy": [g[0, 1] + g[1, 0] for g in grads],
+    }
+    shape = (n_el * n_qp, basis.N)
+    return tuple(
+        sp.csr_matrix((np.concatenate(v).ravel(), (rows.ravel(), cols.ravel())), shape=shape) for v in parts.values()
+    )
+
+
+@dataclass(frozen=True)
+class CutIntegrator:
+    """Integrates the stress over cuts meshed as element edges.
+
+    ``weights`` (cuts, Nq) [m^2]: dA = t ds of each quadrature point on its cut; ``y`` (Nq,) [m];
+    ``stress``: operators (Nq, dofs) to sigma_xx, sigma_yy, tau_xy, both sides of each edge averaged.
+    """
+
+    weights: sp.csr_matrix
+    y: NDArray[np.float64]
+    stress: tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]
+
+    def resultants(
+        self, displacement: NDArray[np.float64], cuts: NDArray[np.intp], y_ref: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """N = int sigma_xx dA [N], V = int tau_xy dA [N], M = int (y - y_ref) sigma_xx dA [N m], each (P, S).
+
+        ``cuts`` (S,) picks the cuts, ``y_ref`` (S,) [m] their moment reference heights.
+        """
+        weights = self.weights[np.asarray(cuts, dtype=np.intp)]
+        sxx = self.stress[0] @ displacement
+        n = (weights @ sxx).T
+        v = (weights @ (self.stress[2] @ displacement)).T
+        m = (weights @ (self.y[:, None] * sxx)).T - n * np.asarray(y_ref, float)[None, :]
+        return n, v, m
+
+
+def cut_integrator(model: PlaneStressModel, cuts: tuple[NDArray[np.intp], ...]) -> CutIntegrator:
+    """The integrator over ``cuts`` (interior facet indices of each cut), stresses averaged over both sides."""
+    d = plane_stress_matrix(model.youngs_modulus, model.poisson_ratio)
+    facets = np.concatenate([np.zeros(0, dtype=np.intp), *cuts])
+    owner = np.repeat(np.arange(len(cuts)), [len(c) for c in cuts])
+    if len(facets) == 0:
+        empty = sp.csr_matrix((0, model.n_dofs))
+        return CutIntegrator(sp.csr_matrix((len(cuts), 0)), np.zeros(0), (empty, empty, empty))
+    sides = [InteriorFacetBasis(model.plane.mesh, model.basis.elem, facets=facets, side=s, intorder=4) for s in (0, 1)]
+    strains = [strain_operators(b) for b in sides]
+    stress = tuple(
+        (0.5 * sum(d[c, 0] * e[0] + d[c, 1] * e[1] + d[c, 2] * e[2] for e in strains)).tocsr() for c in range(3)
+    )
+    n_qp = sides[0].dx.shape[1]
+    weights = sp.csr_matrix(
+        (model.thickness * sides[0].dx.ravel(), (np.repeat(owner, n_qp), np.arange(len(facets) * n_qp))),
+        shape=(len(cuts), len(facets) * n_qp),
+    )
+    y = sides[0].global_coordinates().value[1].ravel()
+    return CutIntegrator(weights, y, stress)

@@ -1,0 +1,73 @@
+"""ParaView output: one VTU per position of a sweep and a PVD that plays them as a time series.
+
+Quadratic triangles (VTK_QUADRATIC_TRIANGLE: three vertices, then the mid-edge nodes of edges
+0-1, 1-2, 2-0, which is scikit-fem's P2 dof order) at the P2 nodes, member frame, metres. Point
+data: displacement [m] (z = 0), sigma_xx, sigma_yy, tau_xy and von_mises [Pa]. Each file is
+written to a temporary name in the same folder and then moved into place, so that a failure never
+leaves a half-written file.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import meshio
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.validation.plane_stress import PlaneStressModel
+from linkstress.validation.recovery import von_mises
+
+
+def write_sweep(
+    folder: Path,
+    name: str,
+    model: PlaneStressModel,
+    displacement: NDArray[np.float64],
+    nodal_stress: NDArray[np.float64],
+) -> list[Path]:
+    """Write ``name``_NNNN.vtu for each position and ``name``.pvd into ``folder``; return their paths."""
+    folder.mkdir(parents=True, exist_ok=True)
+    scalar = model.scalar
+    points = np.column_stack([scalar.doflocs.T, np.zeros(scalar.N)])
+    cells = [("triangle6", scalar.element_dofs.T.copy())]
+    stem = _safe(name)
+    paths = []
+    for p in range(displacement.shape[1]):
+        u = np.column_stack([displacement[model.components[0], p], displacement[model.components[1], p], np.zeros(scalar.N)])
+        s = nodal_stress[p]
+        data = {
+            "displacement": u,
+            "sigma_xx": s[:, 0],
+            "sigma_yy": s[:, 1],
+            "tau_xy": s[:, 2],
+            "von_mises": von_mises(s),
+        }
+        path = folder / f"{stem}_{p:04d}.vtu"
+        _atomic(path, lambda tmp: meshio.write(tmp, meshio.Mesh(points, cells, point_data=data), file_format="vtu"))
+        paths.append(path)
+    entries = "\n".join(
+        f'    <DataSet timestep="{p}" part="0" file="{path.name}"/>' for p, path in enumerate(paths)
+    )
+    pvd = folder / f"{stem}.pvd"
+    text = f'<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n{entries}\n  </Collection>\n</VTKFile>\n'
+    _atomic(pvd, lambda tmp: Path(tmp).write_text(text))
+    return [*paths, pvd]
+
+
+def _safe(name: str) -> str:
+    """A file stem from a link name: letters, digits, '-', '_' kept, anything else '_'."""
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name) or "link"
+
+
+def _atomic(path: Path, write) -> None:
+    handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    os.close(handle)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
