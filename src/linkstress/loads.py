@@ -61,24 +61,28 @@ class LinkLoadCase:
         return density * (self.gravity[:, None, :] - a)
 
     def residual(self, link: LinkProfile) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Net force (P, 2) [N] and net moment about the frame origin (P,) [N m] of all loads.
+        """Net force (P, 2) [N] and net moment about the frame origin (P,) [N m] of all loads on
+        ``link``, d'Alembert load included: zero for loads in dynamic equilibrium."""
+        frame = link.frame(*self.frame_joints)
+        return self.residual_of(
+            link.mass, link.mass_moment_of_inertia, frame.to_local(link.center_of_mass), frame.to_local(link.joints),
+        )
 
-        Zero for loads in dynamic equilibrium (d'Alembert load included): the equilibrium check.
-        """
-        i, j = self.frame_joints
-        frame = link.frame(i, j)
-        joints = frame.to_local(link.joints)
-        mass, inertia_g = link.mass, link.mass_moment_of_inertia
-        r_g = frame.to_local(link.center_of_mass)
+    def residual_of(
+        self, mass: float, inertia: float, center_of_mass: NDArray[np.float64], joints: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``residual`` for a link given by its mass [kg], inertia about G [kg m^2], and its centre of
+        mass (2,) and joints (J, 2) [m] in the member frame."""
+        r_g = np.asarray(center_of_mass, float)
         free = self.gravity - self.origin_acceleration
         force = self.pin_forces.sum(axis=1) + mass * (
             free - self.alpha[:, None] * np.array([-r_g[1], r_g[0]]) + (self.omega**2)[:, None] * r_g
         )
         moment = (
-            _cross(joints[None, :, :], self.pin_forces).sum(axis=1)
+            _cross(np.asarray(joints, float)[None, :, :], self.pin_forces).sum(axis=1)
             + self.joint_couples.sum(axis=1)
             + mass * _cross(r_g, free)
-            - self.alpha * (inertia_g + mass * r_g @ r_g)
+            - self.alpha * (inertia + mass * r_g @ r_g)
         )
         for pf in self.point_forces:
             force = force + pf.force

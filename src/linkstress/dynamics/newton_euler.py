@@ -5,7 +5,7 @@ Each moving body k gives three equations (Norton, Design of Machinery, eqs. 11.1
     sum F = m_k a_Gk,    sum (r_P - r_Gk) x F_P + sum C = I_Gk alpha_k
 
 The unknowns are the pin forces (two per pin), the reaction of each slide (a force normal to its
-line and a couple), and the torque of each actuator. For a four-bar this is exactly Norton's 9 x 9
+line and a couple), the torque of each actuator and the force of each force actuator. For a four-bar this is exactly Norton's 9 x 9
 system (eq. 11.9); for a slider-crank his eq. 11.14 with Coulomb friction F = -mu |N| sign(v) on the
 slide. All positions are assembled at once and solved as a batch; a position where the system is
 singular (a toggle, where the joint forces are unbounded) is reported, not solved.
@@ -75,6 +75,17 @@ class Actuator:
 
 
 @dataclass(frozen=True)
+class ForceActuator:
+    """An unknown force P [N] on ``body`` along the unit ``direction`` (2,) at ``position`` (P, 2)
+    (a cylinder pushing a slider), reacting on the ground."""
+
+    name: str
+    body: int
+    direction: NDArray[np.float64]
+    position: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
 class AppliedForce:
     """A known force (P, 2) [N] on ``body`` at ``point`` (P, 2) [m], ground frame."""
 
@@ -102,6 +113,7 @@ class Assembly:
     forces: tuple[AppliedForce, ...] = ()
     couples: tuple[AppliedCouple, ...] = ()
     gravity: NDArray[np.float64] = field(default_factory=lambda: np.zeros(2))
+    force_actuators: tuple[ForceActuator, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -110,14 +122,16 @@ class ForceSolution:
 
     pin_forces[name] (P, 2) [N]: force on the pin's ``body`` from its ``other``. slide_forces[name]
     (P, 2) [N]: total force of the ground on the slider (normal + friction); slide_couples[name] (P,)
-    [N m]. torques[name] (P,) [N m]. ``solved`` (P,) is False where the system is singular (and the
-    values there are zero filler).
+    [N m]. torques[name] (P,) [N m] of the actuators; actuator_forces[name] (P,) [N] of the force
+    actuators. ``solved`` (P,) is False where the system is singular (and the values there are zero
+    filler).
     """
 
     pin_forces: dict[str, NDArray[np.float64]]
     slide_forces: dict[str, NDArray[np.float64]]
     slide_couples: dict[str, NDArray[np.float64]]
     torques: dict[str, NDArray[np.float64]]
+    actuator_forces: dict[str, NDArray[np.float64]]
     solved: NDArray[np.bool_]
 
 
@@ -137,7 +151,8 @@ def solve_forces(assembly: Assembly, mask: NDArray[np.bool_] | None = None) -> F
     bodies, n_pos = assembly.bodies, len(assembly.bodies[0].alpha)
     mask = np.ones(n_pos, bool) if mask is None else np.asarray(mask, bool)
     n_eq = 3 * len(bodies)
-    n_unknowns = 2 * len(assembly.pins) + 2 * len(assembly.slides) + len(assembly.actuators)
+    n_unknowns = (2 * len(assembly.pins) + 2 * len(assembly.slides) + len(assembly.actuators)
+                  + len(assembly.force_actuators))
     if n_unknowns != n_eq:
         raise ValueError(f"assembly has {n_eq} equations and {n_unknowns} unknowns")
     scale = _length_scale(assembly)
@@ -213,6 +228,10 @@ def _matrix(assembly: Assembly, n_pos: int, scale: float, friction_sign) -> NDAr
         if actuator.other != GROUND:
             a[:, 3 * actuator.other + 2, col] -= 1.0
         col += 1
+    for actuator in assembly.force_actuators:
+        u = np.broadcast_to(np.asarray(actuator.direction, float), (n_pos, 2))
+        force_columns(actuator.body, 1.0, col, None, actuator.position, u, None)
+        col += 1
     return a
 
 
@@ -247,4 +266,8 @@ def _unpack(assembly: Assembly, x, scale: float, friction_sign, solved) -> Force
     for actuator in assembly.actuators:
         torques[actuator.name] = x[:, col] * scale
         col += 1
-    return ForceSolution(pins, slide_forces, slide_couples, torques, solved)
+    pushes = {}
+    for actuator in assembly.force_actuators:
+        pushes[actuator.name] = x[:, col]
+        col += 1
+    return ForceSolution(pins, slide_forces, slide_couples, torques, pushes, solved)
