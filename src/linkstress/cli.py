@@ -14,7 +14,7 @@ import sys
 from linkstress import __version__
 from linkstress.errors import InputError
 
-COMMAND_MODULES = ("sections",)
+COMMAND_MODULES = ("sections", "analyze")
 
 
 def build_parser() -> argparse.ArgumentParser:

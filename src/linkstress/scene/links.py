@@ -4,7 +4,8 @@ A link is either a sketch (``sketch = "file.dxf"``, optional ``layer`` and ``uni
 ``linkstress.importers.read_sketch``) with a ``thickness`` and usually a ``material``, or bare
 ``joints = [[x, y], ...]`` in metres. Sketch paths are relative to the scene file's folder; a
 sketch's unit is its own (DXF $INSUNITS) unless unitless, then the link's ``units``, else the
-scene's top-level ``units``. Explicit ``mass`` [kg], ``inertia`` [kg m^2, about the centre of mass]
+scene's top-level ``units`` (a unit name the importers know: "mm", "cm", "m", "in", "ft", ...).
+Explicit ``mass`` [kg], ``inertia`` [kg m^2, about the centre of mass]
 and ``center_of_mass`` [m, member frame] come together and take precedence over a profile's.
 """
 
@@ -23,7 +24,6 @@ from linkstress.profile import LinkProfile
 from linkstress.scene.keys import Table
 from linkstress.scene.model import MassData
 
-UNITS = ("m", "cm", "mm", "in", "ft")
 MATERIAL_KEYS = ("density", "youngs_modulus", "poisson_ratio", "yield_strength")
 LINK_KEYS = ("sketch", "layer", "units", "joints", "thickness", "material", "mass", "inertia", "center_of_mass")
 MASS_KEYS = ("mass", "inertia", "center_of_mass")
@@ -107,7 +107,7 @@ def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches
 
     if thickness is None:
         raise entry.error("thickness", "missing; a sketch link needs its plate thickness in metres")
-    sketch_units = entry.string("units", choices=UNITS) or units
+    sketch_units = entry.string("units") or units
     layer = entry.string("layer")
     path = folder / entry.string("sketch")
     profile = _load_profile(entry, name, path, layer, sketch_units, thickness, material, sketches)

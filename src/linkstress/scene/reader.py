@@ -1,7 +1,7 @@
 """Read a scene file (TOML) into a checked ``Scene``.
 
-Top-level tables: ``units`` (optional: the length unit of unitless sketches: "m", "cm", "mm", "in"
-or "ft"; bare joints and every key ending ``_m`` are always metres), ``[materials.NAME]``,
+Top-level tables: ``units`` (optional: the length unit of unitless sketches, e.g. "mm"; the
+importers check the name; bare joints and every key ending ``_m`` are always metres), ``[materials.NAME]``,
 ``[links.NAME]``, ``[mechanisms.NAME]``, ``[motion]``, ``[loads]``, ``[analysis]``. Every error
 names the file, the key's dotted path and what to do.
 """
@@ -15,7 +15,7 @@ from types import MappingProxyType
 from linkstress.errors import InputError, SceneError
 from linkstress.kinematics.machine import Machine
 from linkstress.scene.keys import Table
-from linkstress.scene.links import UNITS, mass_data, read_links, read_materials
+from linkstress.scene.links import mass_data, read_links, read_materials
 from linkstress.scene.loads import read_analysis, read_loads
 from linkstress.scene.mechanisms import read_mechanisms
 from linkstress.scene.model import Scene, SceneLink
@@ -47,7 +47,7 @@ def load_scene(path: str | Path) -> Scene:
 
 def _scene(top: Table, path: Path) -> Scene:
     top.allow(TOP_KEYS)
-    units = top.string("units", None, UNITS)
+    units = top.string("units")
     materials = read_materials(top.table("materials"))
     sources = read_links(top.table("links", required=True), materials, units, path.parent)
     loops = read_mechanisms(top.table("mechanisms", required=True))

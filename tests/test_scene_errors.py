@@ -1,0 +1,153 @@
+"""Every wrong key in a scene is reported with the file, its dotted path and what to do."""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from linkstress.errors import SceneError
+from linkstress.scene import load_scene
+
+BASE = """
+[materials.steel]
+density = 7850.0
+
+[links.crank]
+joints = [[0.0, 0.0], [0.02, 0.0]]
+thickness = 0.01
+material = "steel"
+
+[links.coupler]
+joints = [[0.0, 0.0], [0.07, 0.0]]
+
+[links.output]
+joints = [[0.0, 0.0], [0.05, 0.0]]
+
+[links.ground]
+joints = [[0.0, 0.0], [0.06, 0.0]]
+
+[mechanisms.main]
+type = "four-bar"
+crank = "crank"
+coupler = "coupler"
+output = "output"
+ground = "ground"
+
+[motion]
+input_angle_deg = {start = 0.0, stop = 350.0, num = 36}
+input_speed_rad_s = 10.0
+"""
+
+
+def load(tmp_path, text: str):
+    path = tmp_path / "scene.toml"
+    path.write_text(textwrap.dedent(text))
+    return load_scene(path)
+
+
+def test_the_base_scene_is_valid(tmp_path):
+    scene = load(tmp_path, BASE)
+    assert scene.motion.n_positions == 36
+
+
+CASES = [
+    # (old text, new text, expected message)
+    ("thickness = 0.01", "thicknes = 0.01",
+     "scene.toml: links.crank.thicknes: unknown key; allowed keys are: sketch, layer, units, joints, thickness,"),
+    ("thickness = 0.01", "thickness = -0.01", "scene.toml: links.crank.thickness: must be > 0 m, got -0.01"),
+    ("thickness = 0.01", 'thickness = "thin"', "links.crank.thickness: must be a finite number m, got 'thin'"),
+    ('crank = "crank"', 'crank = "cranck"',
+     "scene.toml: mechanisms.main.crank: no link named 'cranck'; links are: coupler, crank, ground, output"),
+    ("joints = [[0.0, 0.0], [0.02, 0.0]]", "joints = [[0.0, 0.0]]",
+     "mechanisms.main.crank: link 'crank' has 1 joint(s); a crank needs two (O2 -> A): give links.crank at least two"),
+    ("joints = [[0.0, 0.0], [0.06, 0.0]]", "joints = [[0.0, 0.0], [6.0, 0.0]]",
+     "scene.toml: mechanisms.main: these lengths can never assemble (crank 0.02 m, coupler 0.07 m, output 0.05 m, "
+     "ground 6 m): each link must be shorter than the sum of the other three"),
+    ('material = "steel"', 'material = "steal"', "links.crank.material: no material named 'steal'; materials are: steel"),
+    ("density = 7850.0", "density = 0", "materials.steel.density: must be > 0 kg/m^3, got 0"),
+    ("density = 7850.0", "density = 7850.0\npoisson_ratio = 0.7", "materials.steel.poisson_ratio: must lie in (-1, 0.5)"),
+    ("density = 7850.0", "young = 1.0", "materials.steel.young: unknown key"),
+    ('[links.coupler]\njoints = [[0.0, 0.0], [0.07, 0.0]]', "[links.coupler]\nmass = 1.0",
+     "links.coupler.mass: give mass, inertia and center_of_mass together; missing: inertia, center_of_mass"),
+    ('[links.coupler]\njoints = [[0.0, 0.0], [0.07, 0.0]]', "[links.coupler]\nthickness = 0.1",
+     "links.coupler: give either sketch = \"file.dxf\" or joints = [[x, y], ...] (metres), not both or neither"),
+    ("joints = [[0.0, 0.0], [0.07, 0.0]]", "joints = [[0.0, 0.0], [0.07]]", "links.coupler.joints[1]: must be a pair [x, y] m"),
+    ("joints = [[0.0, 0.0], [0.07, 0.0]]", 'joints = [[0.0, 0.0], [0.07, 0.0]]\nlayer = "coupler"',
+     "links.coupler.layer: only for a sketch link; bare joints are in metres"),
+    ('type = "four-bar"', 'type = "fourbar"', "mechanisms.main.type: must be one of 'four-bar', 'slider-crank', got 'fourbar'"),
+    ('type = "four-bar"', 'type = "four-bar"\nbranch = "closed"', "mechanisms.main.branch: must be one of 'open', 'crossed'"),
+    ('type = "four-bar"', 'type = "four-bar"\noffset_m = 0.01', "mechanisms.main.offset_m: only for type = \"slider-crank\""),
+    ('type = "four-bar"', 'type = "four-bar"\nphase_deg = 10.0', "mechanisms.main.phase_deg: only for a loop with driven_by"),
+    ('output = "output"', "", "mechanisms.main.output: missing; give the output's link name"),
+    ('crank = "crank"', 'crank = {link = "crank", joints = [0, 5]}',
+     "mechanisms.main.crank.joints: link 'crank' has joints 0..1, no joint 5"),
+    ('crank = "crank"', 'crank = {link = "crank", joints = [0]}', "mechanisms.main.crank.joints: must be [i, j]"),
+    ('crank = "crank"', 'crank = {lnk = "crank"}', "mechanisms.main.crank.lnk: unknown key; allowed keys are: link, joints"),
+    ('type = "four-bar"', 'type = "four-bar"\ndriven_by = "main"', 'mechanisms.main.driven_by: must be "LOOP.crank" or "LOOP.output"'),
+    ("input_speed_rad_s = 10.0", "input_speed_rad_s = [1.0, 2.0]",
+     "motion.input_speed_rad_s: give one number, or a list of 36 numbers (one per input angle)"),
+    ("input_angle_deg = {start = 0.0, stop = 350.0, num = 36}", "input_angle_deg = {start = 0.0, stop = 350.0}",
+     "motion.input_angle_deg.num: missing; give start, stop and num"),
+    ("input_angle_deg = {start = 0.0, stop = 350.0, num = 36}", "input_angle_deg = []",
+     "motion.input_angle_deg: must be a non-empty list of numbers deg"),
+    ("input_angle_deg = {start = 0.0, stop = 350.0, num = 36}\ninput_speed_rad_s = 10.0",
+     'input_angle_deg = {expression = "__import__(\'os\')", t = [0.0]}',
+     "motion.input_angle_deg.expression: call '__import__' in \"__import__('os')\" is not allowed"),
+    ("input_angle_deg = {start = 0.0, stop = 350.0, num = 36}",
+     'input_angle_deg = {expression = "90*t", t = [0.0, 1.0]}',
+     "motion.input_speed_rad_s: not allowed with an expression: it is the expression's time derivative"),
+    ("input_speed_rad_s = 10.0", 'actuator = "coupler"',
+     "motion.actuator: link 'coupler' is not a crank, output or slider of any mechanism"),
+    ("[motion]", "[loads.couples]\nground = 1.0\n[motion]",
+     "loads.couples.ground: no moving link named 'ground' for a couple; moving links are: crank, coupler, output"),
+    ("[motion]", "[loads.friction]\npiston = 0.1\n[motion]",
+     "loads.friction.piston: no slider named 'piston'; give a slider's link or slider-crank's name: none"),
+    ("[motion]", "[loads]\ngravity_m_s2 = [0.0]\n[motion]", "loads.gravity_m_s2: must be a pair [x, y] m/s^2"),
+    ("[motion]", "[[loads.forces]]\nlink = \"crank\"\nat_m = [0.0, 0.0]\n[motion]",
+     "loads.forces[0].force_n: missing; give [Fx, Fy] in the ground frame, newtons"),
+    ("[motion]", "[analysis]\nelement_order = 3\n[motion]", "analysis.element_order: must be 1 (linear) or 2"),
+    ("[motion]", "[analysis]\nvalidate = [\"crank\"]\n[motion]",
+     "analysis.validate: link 'crank' has bare joints; only links drawn in a sketch can be checked by FEA"),
+    ("[motion]", "[analysis]\nstations = 1\n[motion]", "analysis.stations: must be >= 2, got 1"),
+    ("[links.ground]", "[links.spare]\njoints = [[0.0, 0.0], [1.0, 0.0]]\n[links.ground]",
+     "links.spare: no mechanism uses this link; name it in a [mechanisms] table or remove it"),
+    ("[motion]", "[extra]\n[motion]", "scene.toml: extra: unknown key; allowed keys are: units, materials, links,"),
+    ("[motion]\ninput_angle_deg = {start = 0.0, stop = 350.0, num = 36}\ninput_speed_rad_s = 10.0\n", "",
+     "scene.toml: motion: missing table; add [motion]"),
+    ('type = "four-bar"', 'type = "four-bar"\n= oops', "scene.toml: not valid TOML: "),
+]
+
+
+@pytest.mark.parametrize("old, new, message", CASES)
+def test_a_wrong_key_is_named_with_what_to_do(tmp_path, old, new, message):
+    assert old in BASE
+    with pytest.raises(SceneError) as error:
+        load(tmp_path, BASE.replace(old, new, 1))
+    assert message in str(error.value)
+    assert str(error.value).startswith("scene.toml: ") or str(error.value).startswith("scene file")
+
+
+def test_a_missing_scene_file_is_named(tmp_path):
+    with pytest.raises(SceneError, match=r"scene file '.*nowhere.toml' not found"):
+        load_scene(tmp_path / "nowhere.toml")
+
+
+def test_a_sketch_link_names_its_key_when_it_cannot_be_read(tmp_path):
+    text = BASE.replace(
+        "[links.crank]\njoints = [[0.0, 0.0], [0.02, 0.0]]", '[links.crank]\nsketch = "missing.dxf"'
+    )
+    with pytest.raises(SceneError) as error:
+        load(tmp_path, text)
+    message = str(error.value)
+    assert message.startswith("scene.toml: links.crank.sketch: ")
+    assert "not found" in message or "cannot read sketches yet" in message
+
+
+def test_a_sketch_link_needs_a_thickness(tmp_path):
+    text = BASE.replace(
+        "[links.crank]\njoints = [[0.0, 0.0], [0.02, 0.0]]\nthickness = 0.01",
+        '[links.crank]\nsketch = "crank.dxf"',
+    )
+    with pytest.raises(SceneError, match="links.crank.thickness: missing; a sketch link needs its plate thickness"):
+        load(tmp_path, text)
