@@ -112,6 +112,40 @@ def test_an_analysis_table_without_kinematics_leaves_the_link_data_out(tmp_path)
     assert [p["links"] for p in read_json(out)["positions"]] == [{}, {}]
 
 
+def test_a_slider_crank_driven_by_a_function_of_time_reports_its_stroke_and_rates(tmp_path, capsys):
+    out = tmp_path / "engine.json"
+    path = scene_file(tmp_path, """
+        [links.crank]
+        joints = [[0.0, 0.0], [0.05, 0.0]]
+        [links.rod]
+        joints = [[0.0, 0.0], [0.2, 0.0]]
+        [links.piston]
+        joints = [[0.0, 0.0]]
+        mass = 0.5
+        inertia = 0.0
+        center_of_mass = [0.0, 0.0]
+        [links.block]
+        joints = [[0.0, 0.0], [1.0, 0.0]]
+        [mechanisms.engine]
+        type = "slider-crank"
+        crank = "crank"
+        coupler = "rod"
+        ground = "block"
+        slider = "piston"
+        [motion]
+        input_angle_deg = {expression = "360*t", t = {start = 0.0, stop = 0.5, num = 3}}
+    """)
+    assert main(["analyze", str(path), "--json", str(out)]) == 0
+    assert "stroke 0.1 m" in capsys.readouterr().out
+    positions = read_json(out)["positions"]
+    assert [p["input_angle_deg"] for p in positions] == [0.0, 90.0, 180.0]
+    crank = positions[0]["links"]["crank"]
+    assert crank["omega_rad_s"] == pytest.approx(2 * math.pi) and crank["alpha_rad_s2"] == 0.0
+    # Top dead centre at 0 deg: the piston stops; its acceleration is -a w^2 (1 + a / b) along x.
+    piston = positions[0]["links"]["piston"]
+    assert piston["acc_G_m_s2"] == pytest.approx([-0.05 * (2 * math.pi) ** 2 * 1.25, 0.0], abs=1e-12)
+
+
 BAD_SCENES = [
     (SEED.replace("mass = 471.0", "mas = 471.0"), "links.crank.mas: unknown key; allowed keys are: sketch,"),
     (SEED.replace('coupler = "coupler"', 'coupler = "couple"'), "mechanisms.main.coupler: no link named 'couple'"),

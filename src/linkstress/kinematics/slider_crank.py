@@ -85,7 +85,9 @@ def solve_slider_crank(
     """Crank, rod and slider motion for a sweep of crank angles ``theta2`` (P,) [rad].
 
     omega2 [rad/s], alpha2 [rad/s^2]: scalars or (P,). The returned loop's theta4 is the slider
-    line's angle (constant) and ``slider_position`` its x [m] with velocity and acceleration.
+    line's angle (constant) and ``slider_position`` its x [m] with velocity and acceleration. Its
+    "slider" link motion is the slider body's (frame at B along the line) and its "ground" the
+    fixed frame at O2 along the line (a machine reports its grounds' own drawn axes instead).
     """
     theta2 = np.atleast_1d(np.asarray(theta2, float))
     n = theta2.shape[0]
