@@ -18,6 +18,7 @@ import math
 import os
 import tempfile
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -72,6 +73,11 @@ class AnalyzeResult:
     scene: Scene
     kinematics: MachineMotion
 
+    @cached_property
+    def columns(self) -> dict[str, LinkColumns]:
+        """Every link's reported values, in the scene's order."""
+        return link_columns(self)
+
 
 @dataclass(frozen=True)
 class LinkColumns:
@@ -105,7 +111,7 @@ def position_records(result: AnalyzeResult) -> list[dict]:
     kin = result.kinematics
     analysis = result.scene.analysis
     with_links = analysis is None or analysis.kinematics
-    columns = link_columns(result) if with_links else {}
+    columns = result.columns if with_links else {}
     lists = {name: _as_lists(c) for name, c in columns.items()}
     feasible = kin.feasible.tolist()
     records = []
@@ -198,7 +204,7 @@ def _deg360(angle: float) -> float:
 
 
 def _motion_table(result: AnalyzeResult) -> str:
-    columns = link_columns(result)
+    columns = result.columns
     kin = result.kinematics
     rows = []
     for k in np.flatnonzero(kin.feasible):

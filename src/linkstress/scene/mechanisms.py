@@ -1,7 +1,7 @@
 """The [mechanisms.NAME] tables: loops, their roles, branch and how they are driven.
 
 A role is a link name (its joints 0 -> 1; a slider's joint 0) or ``{link = "NAME", joints = [i, j]}``
-(a slider: ``joints = [k]``). ``branch`` is "open" (default) or "crossed". Slider-cranks take
+(a slider: ``joints = [k]``; ``[k, j]`` with j != k is refused by the machine). ``branch`` is "open" (default) or "crossed". Slider-cranks take
 ``offset_m`` (the slider line's signed distance from O2, positive to the left of its direction) and
 ``slider_angle_deg`` (its direction from the ground frame's +x; default: the ground link's axis).
 A loop other than the main one has ``driven_by = "LOOP.crank"`` or ``"LOOP.output"`` and, when its
@@ -84,12 +84,11 @@ def _read_role(entry: Table, role: str) -> Role:
     spec.allow(("link", "joints"))
     spec.require("link", "the link's name, e.g. link = \"crank\"")
     link = spec.string("link")
-    count = 1 if role == "slider" else 2
-    joints = (0,) if role == "slider" else (0, 1)
+    counts, shape = ((1, 2), "[k] (or [k, k])") if role == "slider" else ((2,), "[i, j]")
+    joints = (0, 0) if role == "slider" else (0, 1)
     if spec.has("joints"):
         raw = spec.data["joints"]
-        if not (isinstance(raw, list) and len(raw) == count and all(type(k) is int and k >= 0 for k in raw)):
-            shape = "[k]" if count == 1 else "[i, j]"
+        if not (isinstance(raw, list) and len(raw) in counts and all(type(k) is int and k >= 0 for k in raw)):
             raise spec.error("joints", f"must be {shape}: joint indices (0-based) of link {link!r}, got {raw!r}")
-        joints = tuple(raw)
-    return Role(link, (joints[0], joints[0]) if role == "slider" else joints)
+        joints = (raw[0], raw[-1])
+    return Role(link, joints)
