@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely import clip_by_rect
 from shapely.geometry import MultiPolygon, Polygon
@@ -37,7 +37,9 @@ def star_outlines(draw):
     angles = 2 * math.pi * np.cumsum(gaps) / gaps.sum()
     radii = np.array(draw(st.lists(st.floats(0.3, 1.0), min_size=n, max_size=n)))
     dx, dy = draw(st.floats(-2, 2)), draw(st.floats(-2, 2))
-    return Polygon(np.column_stack([dx + radii * np.cos(angles), dy + radii * np.sin(angles)]))
+    polygon = Polygon(np.column_stack([dx + radii * np.cos(angles), dy + radii * np.sin(angles)]))
+    assume(polygon.is_valid)  # a gap of more than 180 degrees between angles can fold the ring
+    return polygon
 
 
 @settings(max_examples=100, deadline=None)

@@ -14,7 +14,7 @@ import sys
 from linkstress import __version__
 from linkstress.errors import InputError
 
-COMMAND_MODULES = ("sections", "analyze")
+COMMAND_MODULES = ("sections", "analyze", "import_")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -47,6 +47,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("linkstress: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # The reader (e.g. `| head`) left early: nothing more to say, and nothing to flush into it.
+        sys.stdout = None
+        return 0
 
 
 if __name__ == "__main__":
