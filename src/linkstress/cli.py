@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from linkstress import __version__
@@ -48,8 +49,9 @@ def main(argv: list[str] | None = None) -> int:
         print("linkstress: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:
-        # The reader (e.g. `| head`) left early: nothing more to say, and nothing to flush into it.
-        sys.stdout = None
+        # The reader (e.g. `| head`) left early. Point stdout at devnull so that the interpreter's
+        # final flush does not fail again (the recipe of Python's signal module documentation).
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
 
 
