@@ -1,0 +1,203 @@
+"""Chaining open pieces end to end into closed rings, in any order and direction.
+
+Two ends join when each is the other's nearest end and they are within the gap tolerance; the
+joint vertex is their midpoint. An end with no partner leaves an outline open; three or more ends
+within the tolerance of one another are a branch. Both are errors naming the curves, the position
+and the gap. Everything is in drawing units.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial import cKDTree
+
+from linkstress.errors import SketchError
+from linkstress.importers.flatten import Pieces
+from linkstress.importers.primitives import Origin, describe
+
+
+class Report:
+    """Formats positions, lengths and curves for messages, in the drawing's unit."""
+
+    def __init__(self, origins: list[Origin], unit: str, size: float) -> None:
+        self.origins, self.unit, self.size = origins, unit, size
+
+    def at(self, p) -> str:
+        return f"({p[0]:.6g}, {p[1]:.6g}) {self.unit}"
+
+    def length(self, d: float) -> str:
+        return f"{d:.3g} {self.unit}"
+
+    def curve(self, k: int) -> str:
+        return describe(self.origins[k])
+
+
+@dataclass(frozen=True)
+class Rings:
+    """Closed rings, vertices ``xy[start[r]:start[r + 1]]`` (first not repeated), with for each ring
+    the pieces it is made of, the largest gap closed and where (NaN if none), the number of gaps
+    above rounding, and its circle (cx, cy, r) when all its pieces are arcs of one circle."""
+
+    xy: NDArray[np.float64]
+    start: NDArray[np.intp]
+    pieces: tuple[tuple[int, ...], ...]
+    gap: NDArray[np.float64]
+    gap_at: NDArray[np.float64]
+    gaps: NDArray[np.intp]
+    circle: tuple[tuple[float, float, float] | None, ...]
+
+    def __len__(self) -> int:
+        return len(self.pieces)
+
+    @staticmethod
+    def concatenate(first: "Rings", second: "Rings") -> "Rings":
+        return Rings(
+            np.concatenate([first.xy, second.xy]),
+            np.concatenate([first.start[:-1], second.start + len(first.xy)]),
+            first.pieces + second.pieces,
+            np.concatenate([first.gap, second.gap]),
+            np.concatenate([first.gap_at, second.gap_at]),
+            np.concatenate([first.gaps, second.gaps]),
+            first.circle + second.circle,
+        )
+
+
+def circle_of(circles: NDArray[np.float64], tolerance: float) -> tuple[float, float, float] | None:
+    """(cx, cy, r) when every row is the same circle within ``tolerance``, else None."""
+    if not np.isfinite(circles).all() or np.ptp(circles, axis=0).max() > tolerance:
+        return None
+    cx, cy, r = circles.mean(axis=0)
+    return float(cx), float(cy), float(r)
+
+
+def closed_rings(pieces: Pieces, idx: NDArray[np.intp], tolerance: float) -> Rings:
+    """The closed pieces ``idx`` as rings of their own."""
+    counts = np.diff(pieces.start)[idx]
+    first = pieces.start[idx]
+    take = np.repeat(first, counts) + (np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts))
+    n = len(idx)
+    return Rings(
+        pieces.xy[take], np.concatenate([[0], np.cumsum(counts)]).astype(np.intp),
+        tuple((int(k),) for k in idx), np.zeros(n), np.full((n, 2), np.nan), np.zeros(n, np.intp),
+        tuple(circle_of(pieces.circle[[k]], tolerance) for k in idx),
+    )
+
+
+@dataclass(frozen=True)
+class Ends:
+    """The two ends of each open piece ``idx[e // 2]`` (even e: first vertex, odd: last), with each
+    end's nearest other end, the distance to it, and the distance to the second nearest."""
+
+    idx: NDArray[np.intp]
+    xy: NDArray[np.float64]
+    nearest: NDArray[np.intp]
+    gap: NDArray[np.float64]
+    second: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, pieces: Pieces, idx: NDArray[np.intp]) -> "Ends":
+        xy = np.empty((2 * len(idx), 2))
+        xy[0::2] = pieces.xy[pieces.start[idx]]
+        xy[1::2] = pieces.xy[pieces.start[idx + 1] - 1]
+        m = len(xy)
+        if m == 0:
+            return cls(idx, xy, np.zeros(0, np.intp), np.zeros(0), np.zeros(0))
+        k = min(3, m)
+        dist, near = cKDTree(xy, balanced_tree=False, compact_nodes=False).query(xy, k=k)
+        others_first = np.argsort(near == np.arange(m)[:, None], axis=1, kind="stable")
+        near = np.take_along_axis(near, others_first, 1)
+        dist = np.take_along_axis(dist, others_first, 1)
+        second = dist[:, 1] if k == 3 else np.full(m, np.inf)
+        return cls(idx, xy, near[:, 0], dist[:, 0], second)
+
+    def branched(self, tolerance: float) -> NDArray[np.bool_]:
+        """Ends that have two or more other ends within ``tolerance``."""
+        return self.second <= tolerance
+
+
+def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report: Report) -> Rings:
+    """Rings of the open pieces in ``ends``; gaps up to ``tolerance`` close, those above ``rounding`` count."""
+    if len(ends.idx) == 0:
+        return closed_rings(pieces, ends.idx, tolerance)
+    _check_pairs(ends, tolerance, report)
+    partner = ends.nearest.tolist()
+    # Walk each cycle: enter a piece at one end, leave by the other, go on at that end's partner,
+    # until back at the first entry.
+    entries: list[int] = []
+    ring_sizes: list[int] = []
+    seen = bytearray(len(ends.idx))
+    for p in range(len(ends.idx)):
+        if seen[p]:
+            continue
+        entry, size = 2 * p, 0
+        while True:
+            seen[entry // 2] = 1
+            entries.append(entry)
+            size += 1
+            entry = partner[entry ^ 1]
+            if entry == 2 * p:
+                break
+        ring_sizes.append(size)
+    return _assemble(pieces, ends.idx, np.array(entries), np.array(ring_sizes), tolerance, rounding)
+
+
+def _check_pairs(ends: Ends, tolerance: float, report: Report) -> None:
+    branch = ends.branched(tolerance)
+    if branch.any():
+        i = int(np.argmax(branch))
+        meeting = sorted(cKDTree(ends.xy).query_ball_point(ends.xy[i], tolerance))
+        names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
+        raise SketchError(
+            f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names}); a closed outline passes "
+            "each corner once: remove the duplicate or overlapping curve there (or lower the gap "
+            "tolerance if these are separate corners)"
+        )
+    rows = np.arange(len(ends.xy))
+    paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance)
+    if not paired.all():
+        i = int(np.argmin(np.where(paired, np.inf, ends.gap)))
+        j = int(ends.nearest[i])
+        raise SketchError(
+            f"open outline: the end of {report.curve(ends.idx[i // 2])} at {report.at(ends.xy[i])} is "
+            f"{report.length(ends.gap[i])} from the nearest curve end ({report.curve(ends.idx[j // 2])} at "
+            f"{report.at(ends.xy[j])}), more than the gap tolerance {report.length(tolerance)}; close the "
+            f"gap in CAD, or raise the gap tolerance (--tolerance, a fraction of the drawing size) above "
+            f"{ends.gap[i] / report.size:.2g} ({int((~paired).sum())} curve ends have no partner)"
+        )
+
+
+def _assemble(pieces: Pieces, idx: NDArray[np.intp], entries: NDArray[np.intp], ring_sizes: NDArray[np.intp],
+              tolerance: float, rounding: float) -> Rings:
+    """Ring vertices: each piece in its walking direction without its last vertex; each joint at the
+    midpoint of the arriving and the leaving end."""
+    piece = idx[entries // 2]
+    forward = entries % 2 == 0
+    s, e = pieces.start[piece], pieces.start[piece + 1]
+    taken = e - s - 1
+    first = np.where(forward, s, e - 1)
+    last = np.where(forward, e - 1, s)
+    out_first = np.cumsum(taken) - taken
+    offset = np.arange(int(taken.sum())) - np.repeat(out_first, taken)
+    xy = pieces.xy[np.repeat(first, taken) + np.repeat(np.where(forward, 1, -1), taken) * offset]
+    ring_first = np.cumsum(ring_sizes) - ring_sizes
+    previous = np.arange(len(piece)) - 1
+    previous[ring_first] = ring_first + ring_sizes - 1
+    arriving = pieces.xy[last[previous]]
+    gaps = np.hypot(*(xy[out_first] - arriving).T)
+    xy[out_first] = (xy[out_first] + arriving) / 2
+    ring = np.repeat(np.arange(len(ring_sizes)), ring_sizes)
+    largest = np.zeros(len(ring_sizes))
+    np.maximum.at(largest, ring, gaps)
+    at_largest = np.full((len(ring_sizes), 2), np.nan)
+    is_largest = (gaps == largest[ring]) & (gaps > 0)
+    at_largest[ring[is_largest]] = xy[out_first[is_largest]]
+    bounds = np.concatenate([out_first[ring_first], [len(xy)]]).astype(np.intp)
+    members = np.split(piece, ring_first[1:])
+    return Rings(
+        xy, bounds, tuple(tuple(m.tolist()) for m in members), largest, at_largest,
+        np.bincount(ring, weights=gaps > rounding, minlength=len(ring_sizes)).astype(np.intp),
+        tuple(circle_of(pieces.circle[m], tolerance) for m in members),
+    )

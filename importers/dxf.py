@@ -1,0 +1,231 @@
+"""Reading DXF sketches: model-space LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE, SPLINE, POINT
+and INSERT (block references, nested, with their transforms), in the units of ``$INSUNITS``.
+
+Simple entities come through the fast tag table (:mod:`.dxf_tags`); ezdxf reads the rest of the
+file and expands block references (``Insert.virtual_entities``: a non-uniformly scaled circle becomes
+an ellipse). Entities on layers that are off or frozen, on ``Defpoints``, or marked invisible are
+left out, like annotation (TEXT, DIMENSION, HATCH, ...), and counted in ``ignored``. A file whose
+structure is broken is read with ezdxf's recover mode, and what it repaired is reported.
+"""
+
+from __future__ import annotations
+
+import io
+from collections import Counter
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+from ezdxf import recover
+from ezdxf.lldxf.const import DXFError
+
+from linkstress.errors import SketchError
+from linkstress.importers import dxf_geometry as geo
+from linkstress.importers.dxf_tags import DamagedDXF, SimpleEntities, split_entities
+from linkstress.importers.primitives import CurveSet, Origin, RawSketch
+from linkstress.importers.units import choose_unit, insunits_label, unit_from_insunits
+
+GAP_TOLERANCE = 1e-4
+"""Default endpoint gap tolerance of DXF sketches, a fraction of the drawing size."""
+
+MAX_BLOCK_DEPTH = 16
+_BINARY = b"AutoCAD Binary DXF"
+_VERTEX_SPLINE_FRAME = 16
+
+
+def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
+    """The curves and points of the DXF file ``path`` (its bytes ``data``); ``units`` for a unitless file."""
+    fixes: list[str] = []
+    simple = SimpleEntities()
+    if data.startswith(_BINARY):
+        doc = _recovering(path, fixes, lambda: ezdxf.readfile(path))
+    else:
+        if not ezdxf.is_dxf_file(str(path)):
+            raise SketchError(
+                "not a DXF file (no DXF SECTION at its start); export the sketch from CAD as DXF, or give "
+                "a .csv sketch"
+            )
+        try:
+            info = ezdxf.filemanagement.dxf_file_info(str(path))
+            text = data.decode(info.encoding, errors="surrogateescape")
+            simple, rest = split_entities(text)
+            doc = ezdxf.read(io.StringIO(rest))
+        except (DamagedDXF, DXFError, LookupError, UnicodeError) as damage:
+            fixes.append(f"the file is damaged ({damage}); read in ezdxf's recover mode")
+            simple = SimpleEntities()
+            doc = _recover(path, fixes)
+    code = _insunits(doc)
+    declared = unit_from_insunits(code)
+    if code and declared is None:
+        raise SketchError(
+            f"$INSUNITS = {code} ({insunits_label(code)}) has no conversion to metres; "
+            "save the drawing in mm, cm, m, in or ft"
+        )
+    unit, source = choose_unit(declared, "$INSUNITS", units, default=None)
+    curves = CurveSet()
+    ignored: Counter = Counter()
+    hidden = _hidden_layers(doc)
+    _add_simple(curves, simple, hidden, ignored)
+    _Collector(curves, hidden, ignored).entities(doc.modelspace(), None, 0)
+    return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
+
+
+def _recover(path: Path, fixes: list[str]):
+    """Read ``path`` in ezdxf's recover mode; list what the auditor fixed in ``fixes``."""
+    try:
+        doc, auditor = recover.readfile(path)
+    except Exception as error:  # noqa: BLE001 - ezdxf raises many types on damaged input; all mean the same
+        raise SketchError(f"a damaged DXF file that ezdxf cannot recover ({error})") from None
+    fixes.extend(f"ezdxf recover: {entry.message}" for entry in [*auditor.fixes, *auditor.errors])
+    return doc
+
+
+def _recovering(path: Path, fixes: list[str], read):
+    try:
+        return read()
+    except (DXFError, OSError, ValueError) as damage:
+        fixes.append(f"the file is damaged ({damage}); read in ezdxf's recover mode")
+        return _recover(path, fixes)
+
+
+def _insunits(doc) -> int:
+    try:
+        return int(doc.header.get("$INSUNITS", 0))
+    except (TypeError, ValueError):
+        return 0
+
+
+def _hidden_layers(doc) -> set[str]:
+    """Names (lower case) of layers that are off or frozen, and Defpoints (never plotted)."""
+    hidden = {"defpoints"}
+    for layer in doc.layers:
+        if layer.is_off() or layer.is_frozen():
+            hidden.add(layer.dxf.name.lower())
+    return hidden
+
+
+def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignored: Counter) -> None:
+    """The fast path's columns, through the same geometry functions as ezdxf's entities."""
+    for kind in ("LINE", "ARC", "CIRCLE", "POINT", "LWPOLYLINE"):
+        if not found.count(kind):
+            continue
+        col = found.columns[kind]
+        layers = found.layers[kind]
+        shown = {layer: layer.lower() not in hidden for layer in set(layers)}
+        visible = np.array([shown[layer] for layer in layers])
+        if not visible.all():
+            ignored[f"{kind} (hidden layer)"] += int((~visible).sum())
+        origins = [(kind, h, layer, None) for h, layer, v in zip(found.handles[kind], layers, visible) if v]
+        extrusion = np.column_stack([col[210], col[220], col[230]])
+        if kind == "LINE":
+            curves.add_lines(np.column_stack([col[10], col[20], col[11], col[21]])[visible], origins)
+        elif kind == "POINT":
+            curves.add_points(np.column_stack([col[10], col[20]])[visible], origins)
+        elif kind == "CIRCLE":
+            rows = np.column_stack([col[10], col[20], col[40]])[visible]
+            geo.add_circles(curves, np.hstack([rows, extrusion[visible]]), origins, ignored)
+        elif kind == "ARC":
+            rows = np.column_stack([col[10], col[20], col[40], col[50], col[51]])[visible]
+            geo.add_arcs(curves, np.hstack([rows, extrusion[visible]]), origins, ignored)
+        else:
+            closed = (col[70].astype(np.int64) & 1).astype(bool)
+            geo.add_ocs_polylines(curves, found.vertices, found.bulges, found.vertex_start, closed, extrusion,
+                                  visible, origins, ignored)
+
+
+class _Collector:
+    """Walks ezdxf entities (model space, block contents) into a CurveSet."""
+
+    def __init__(self, curves: CurveSet, hidden: set[str], ignored: Counter) -> None:
+        self.curves, self.hidden, self.ignored = curves, hidden, ignored
+        self.lines: list[tuple] = []
+        self.line_origins: list[Origin] = []
+
+    def entities(self, entities, insert: tuple[str, str] | None, depth: int) -> None:
+        """Add ``entities``; inside a block reference ``insert`` = (INSERT handle, its layer)."""
+        for entity in entities:
+            self.entity(entity, insert, depth)
+        if depth == 0 and self.lines:
+            self.curves.add_lines(np.array(self.lines, float), self.line_origins)
+            self.lines, self.line_origins = [], []
+
+    def entity(self, e, insert: tuple[str, str] | None, depth: int) -> None:
+        kind = e.dxftype()
+        layer = e.dxf.get("layer", "0")
+        if insert is not None and layer == "0":
+            layer = insert[1]  # block contents on layer 0 take the layer of the reference
+        if layer.lower() in self.hidden or e.dxf.get("invisible", 0):
+            self.ignored[f"{kind} (hidden layer)"] += 1
+            return
+        handle = e.dxf.get("handle") if insert is None else insert[0]
+        origin: Origin = (kind if insert is None else f"{kind} in block reference", handle, layer, None)
+        try:
+            handler = getattr(self, f"_{kind.lower()}", None)
+            if handler is None:
+                self.ignored[kind] += 1
+            else:
+                handler(e, origin, (handle, layer), depth)
+        except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError) as error:
+            raise SketchError(f"{geo.describe(origin)} cannot be read ({error}); redraw or explode it") from None
+
+    def _line(self, e, origin, _insert, _depth) -> None:
+        s, t = e.dxf.start, e.dxf.end
+        self.lines.append((s.x, s.y, t.x, t.y))
+        self.line_origins.append(origin)
+
+    def _point(self, e, origin, _insert, _depth) -> None:
+        p = e.dxf.location
+        self.curves.add_points([[p.x, p.y]], [origin])
+
+    def _circle(self, e, origin, _insert, _depth) -> None:
+        c, ex = e.dxf.center, e.dxf.extrusion
+        geo.add_circles(self.curves, np.array([[c.x, c.y, e.dxf.radius, ex.x, ex.y, ex.z]]), [origin], self.ignored)
+
+    def _arc(self, e, origin, _insert, _depth) -> None:
+        c, ex = e.dxf.center, e.dxf.extrusion
+        row = [c.x, c.y, e.dxf.radius, e.dxf.start_angle, e.dxf.end_angle, ex.x, ex.y, ex.z]
+        geo.add_arcs(self.curves, np.array([row]), [origin], self.ignored)
+
+    def _ellipse(self, e, origin, _insert, _depth) -> None:
+        tool = e.construction_tool()
+        geo.add_ellipse(self.curves, np.array(tool.center), np.array(tool.major_axis), np.array(tool.minor_axis),
+                        tool.start_param, tool.end_param, np.array(e.dxf.extrusion), origin, self.ignored)
+
+    def _lwpolyline(self, e, origin, _insert, _depth) -> None:
+        pts = np.array(e.get_points("xyb"), float).reshape(-1, 3)
+        geo.add_ocs_polyline(self.curves, pts[:, :2], pts[:, 2], e.closed, np.array(e.dxf.extrusion), origin,
+                             self.ignored)
+
+    def _polyline(self, e, origin, _insert, _depth) -> None:
+        if not (e.is_2d_polyline or e.is_3d_polyline):
+            self.ignored["POLYLINE (mesh)"] += 1
+            return
+        vertices = [v for v in e.vertices if not v.dxf.get("flags", 0) & _VERTEX_SPLINE_FRAME]
+        xy = np.array([(v.dxf.location.x, v.dxf.location.y) for v in vertices], float).reshape(-1, 2)
+        if e.is_3d_polyline:
+            bulges, extrusion = np.zeros(len(xy)), np.array([0.0, 0.0, 1.0])
+        else:
+            bulges = np.array([v.dxf.get("bulge", 0.0) for v in vertices], float)
+            extrusion = np.array(e.dxf.get("extrusion", (0.0, 0.0, 1.0)), float)
+        geo.add_ocs_polyline(self.curves, xy, bulges, e.is_closed, extrusion, origin, self.ignored)
+
+    def _spline(self, e, origin, _insert, _depth) -> None:
+        if not (e.control_point_count() or e.fit_point_count()):
+            self.ignored["SPLINE (no points)"] += 1
+            return
+        self.curves.add_spline(e.construction_tool(), origin)
+
+    def _insert(self, e, origin, insert, depth) -> None:
+        if depth >= MAX_BLOCK_DEPTH:
+            raise SketchError(
+                f"{geo.describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep "
+                "(a block that inserts itself?)"
+            )
+        skipped = Counter()
+        for reference in e.multi_insert() if e.mcount > 1 else [e]:
+            virtual = list(reference.virtual_entities(
+                skipped_entity_callback=lambda entity, reason: skipped.update([entity.dxftype()])))
+            self.entities(virtual, insert, depth + 1)
+        for kind, n in skipped.items():
+            self.ignored[f"{kind} in block reference (cannot be transformed)"] += n
+

@@ -1,0 +1,294 @@
+"""Flattening exact curves into polylines: circular and elliptic arcs, bulges, splines.
+
+Arcs (and bulges, circles, ellipses) are flattened from their exact geometry, never through
+``ezdxf.path``'s cubic Beziers. The step is chosen as for a circle of the arc's (major) radius r:
+n equal steps of dt with r (1 - cos(dt / 2)) <= s, the chord (sagitta) tolerance, so every chord of
+an inscribed polygon would lie within s of the curve (``linkstress.curves``' rule). An inscribed
+polygon loses the area (2/3) s per unit length of curve, a relative error about (4/3) s / r;
+instead the vertices are placed *area-preserving* (the midpoint rule of quadrature):
+
+- open arc: both ends exact, n interior vertices at t0 + (k - 1/2) dt, k = 1..n, on the radius
+  q r, with q solving (n - 1) sin(dt) q^2 + 2 sin(dt / 2) q = n dt, so that the fan from the centre
+  has exactly the sector's area, r^2 n dt / 2;
+- closed circle or ellipse: n vertices at t0 + k dt on the radius r sqrt(dt / sin dt), the regular
+  polygon with the circle's area.
+
+Area is then exact to rounding, and the first and second moments differ from the exact sector's by
+O(dt^3) instead of O(dt^2): with s = 1e-4 r (223 vertices per turn) a half-disc bounded by one arc
+has its centroid and polar moment within 5e-7 relative, where an inscribed polygon would be off by
+1.3e-4 in area. Every vertex and chord still lies within (2/3) s of the curve. An ellipse is the
+affine image of its major circle (scaling the minor direction by b/a <= 1), so the same rule with
+r = a keeps it within s and preserves its area too.
+
+Splines have no closed-form area: they are flattened by ezdxf's adaptive B-spline subdivision
+(``BSpline.flattening``, evaluating the spline itself, weights included) to a chord distance of
+``SPLINE_SAGITTA`` x the drawing's size.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.curves import MIN_SEGMENTS_PER_TURN
+from linkstress.errors import SketchError
+from linkstress.importers.primitives import CurveSet, Polyline
+
+RELATIVE_SAGITTA = 1e-4
+"""Default chord tolerance of an arc, as a fraction of its own (major) radius: 223 vertices per turn."""
+
+DRAWING_SAGITTA = 1e-5
+"""Cap on any arc's chord tolerance, as a fraction of the drawing's size (bounding-box diagonal):
+it only binds for arcs flatter than a tenth of the drawing, which would otherwise stray from the curve."""
+
+SPLINE_SAGITTA = 1e-7
+"""Chord tolerance of splines, as a fraction of the drawing's size."""
+
+
+@dataclass(frozen=True)
+class Pieces:
+    """Flattened curves, one piece per curve, in :meth:`CurveSet.curve_origins` order (drawing units).
+
+    Piece k's vertices are ``xy[start[k]:start[k + 1]]``; a closed piece does not repeat its first
+    vertex. ``circle[k]`` is (cx, cy, r) when the piece is a circle or an arc of one, else NaN.
+    """
+
+    xy: NDArray[np.float64]
+    start: NDArray[np.intp]
+    closed: NDArray[np.bool_]
+    circle: NDArray[np.float64]
+
+    def __len__(self) -> int:
+        return len(self.closed)
+
+    def vertices(self, k: int) -> NDArray[np.float64]:
+        return self.xy[self.start[k]:self.start[k + 1]]
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """Chord tolerances: ``relative`` x each arc's radius, capped at ``cap`` [drawing units]; splines ``spline``."""
+
+    relative: float
+    cap: float
+    spline: float
+
+    @classmethod
+    def for_size(cls, size: float, relative: float | None = None) -> "Tolerance":
+        rel = RELATIVE_SAGITTA if relative is None else relative
+        if not (math.isfinite(rel) and 0 < rel < 0.5):
+            raise SketchError(f"the chord tolerance must be a fraction of the radius in (0, 0.5), got {rel!r}")
+        return cls(rel, DRAWING_SAGITTA * size, SPLINE_SAGITTA * size)
+
+
+def flatten(curves: CurveSet, tolerance: Tolerance) -> Pieces:
+    """Every curve of ``curves`` as a polyline piece within ``tolerance`` (drawing units)."""
+    blocks = [_lines(curves), _conics(curves, tolerance), _polylines(curves, tolerance), _splines(curves, tolerance)]
+    xy = np.concatenate([b[0] for b in blocks])
+    counts = np.concatenate([b[1] for b in blocks])
+    if not np.isfinite(xy).all():
+        raise SketchError("coordinates too large to compute with (they overflow double precision)")
+    return Pieces(
+        xy,
+        np.concatenate([[0], np.cumsum(counts)]).astype(np.intp),
+        np.concatenate([b[2] for b in blocks]).astype(bool),
+        np.concatenate([b[3] for b in blocks]).reshape(-1, 3),
+    )
+
+
+Block = tuple[NDArray[np.float64], NDArray[np.intp], NDArray[np.bool_], NDArray[np.float64]]
+
+
+def _empty_block() -> Block:
+    return np.empty((0, 2)), np.empty(0, np.intp), np.empty(0, bool), np.empty((0, 3))
+
+
+def _lines(curves: CurveSet) -> Block:
+    if not curves.lines:
+        return _empty_block()
+    ends = np.concatenate(curves.lines)
+    n = len(ends)
+    return ends.reshape(-1, 2), np.full(n, 2, np.intp), np.zeros(n, bool), np.full((n, 3), np.nan)
+
+
+# -- conic arcs ------------------------------------------------------------------------------
+
+
+def segment_counts(radius: NDArray[np.float64], sweep: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.intp]:
+    """Steps n per arc of ``radius`` and ``sweep`` [rad]: r (1 - cos(dt/2)) <= min(relative r, cap)."""
+    sagitta = np.minimum(tolerance.relative * radius, tolerance.cap)
+    ratio = np.clip(sagitta / radius, 1e-15, 1.0)
+    max_step = 2.0 * np.arccos(1.0 - ratio)
+    turns = np.abs(sweep) / (2 * math.pi)
+    n = np.maximum(np.ceil(np.abs(sweep) / max_step), np.ceil(MIN_SEGMENTS_PER_TURN * turns))
+    return np.maximum(n, 1).astype(np.intp)
+
+
+def interior_vertices(
+    centre: NDArray[np.float64], major: NDArray[np.float64], minor: NDArray[np.float64],
+    start: NDArray[np.float64], sweep: NDArray[np.float64], n: NDArray[np.intp],
+) -> NDArray[np.float64]:
+    """The n_i area-preserving interior vertices of each open arc i, arcs one after another.
+
+    Vertex k of arc i (k = 1..n_i) is at t = start + (k - 1/2) dt on the scaled conic
+    centre + q (cos t major + sin t minor), with dt = sweep / n and q from the module's equation.
+    """
+    dt = sweep / n
+    a = np.abs(dt)
+    qa, qb, qc = (n - 1) * np.sin(a), 2 * np.sin(a / 2), n * a
+    q = 2 * qc / (qb + np.sqrt(qb * qb + 4 * qa * qc))  # the positive root, stable for qa -> 0
+    arc = np.repeat(np.arange(len(n)), n)
+    k = np.arange(len(arc)) - np.repeat(np.cumsum(n) - n, n) + 0.5
+    t = start[arc] + k * dt[arc]
+    return _on_conic(centre[arc], major[arc], minor[arc], t, q[arc])
+
+
+def closed_vertices(
+    centre: NDArray[np.float64], major: NDArray[np.float64], minor: NDArray[np.float64],
+    start: NDArray[np.float64], sweep: NDArray[np.float64], n: NDArray[np.intp],
+) -> NDArray[np.float64]:
+    """The n_i vertices of each closed conic: the inflated regular polygon with the curve's area."""
+    dt = sweep / n
+    q = np.sqrt(np.abs(dt) / np.sin(np.abs(dt)))
+    curve = np.repeat(np.arange(len(n)), n)
+    k = np.arange(len(curve)) - np.repeat(np.cumsum(n) - n, n)
+    t = start[curve] + k * dt[curve]
+    return _on_conic(centre[curve], major[curve], minor[curve], t, q[curve])
+
+
+def conic_point(centre, major, minor, t) -> NDArray[np.float64]:
+    """Exact points centre + cos t major + sin t minor (rows)."""
+    return _on_conic(centre, major, minor, t, 1.0)
+
+
+def _on_conic(centre, major, minor, t, scale) -> NDArray[np.float64]:
+    c, s = np.cos(t), np.sin(t)
+    scale = np.asarray(scale, float).reshape(-1, 1) if np.ndim(scale) else scale
+    return centre + scale * (c[:, None] * major + s[:, None] * minor)
+
+
+def _circle_metadata(centre, major, minor) -> NDArray[np.float64]:
+    radius = np.hypot(*major.T)
+    circular = (np.abs(np.hypot(*minor.T) - radius) <= 1e-12 * radius) & (
+        np.abs(np.einsum("ij,ij->i", major, minor)) <= 1e-12 * radius * radius)
+    return np.where(circular[:, None], np.column_stack([centre, radius]), np.nan)
+
+
+def _conics(curves: CurveSet, tolerance: Tolerance) -> Block:
+    if not curves.conics:
+        return _empty_block()
+    rows = np.concatenate(curves.conics)
+    centre, major, minor = rows[:, 0:2], rows[:, 2:4], rows[:, 4:6]
+    start, sweep, closed = rows[:, 6], rows[:, 7], rows[:, 8] > 0
+    n = segment_counts(np.hypot(*major.T), sweep, tolerance)
+    counts = np.where(closed, n, n + 2)
+    out = np.empty((int(counts.sum()), 2))
+    first = np.cumsum(counts) - counts
+    op = ~closed
+    if op.any():
+        # Open arcs: exact start, interior vertices, exact end.
+        m = n[op]
+        out[first[op]] = conic_point(centre[op], major[op], minor[op], start[op])
+        out[first[op] + m + 1] = conic_point(centre[op], major[op], minor[op], start[op] + sweep[op])
+        slots = np.repeat(first[op] + 1, m) + (np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m))
+        out[slots] = interior_vertices(centre[op], major[op], minor[op], start[op], sweep[op], m)
+    if closed.any():
+        m = n[closed]
+        slots = np.repeat(first[closed], m) + (np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m))
+        out[slots] = closed_vertices(centre[closed], major[closed], minor[closed], start[closed], sweep[closed], m)
+    return out, counts, closed, _circle_metadata(centre, major, minor)
+
+
+# -- polylines with bulges ---------------------------------------------------------------------
+
+
+def bulge_arcs(p0: NDArray[np.float64], p1: NDArray[np.float64], bulge: NDArray[np.float64]):
+    """Centre, radius, start angle and signed sweep [rad] of the arcs from p0 to p1 with ``bulge``.
+
+    bulge = tan(sweep / 4), positive counter-clockwise; the centre lies at distance
+    (c / 4)(1 / b - b) from the chord's midpoint along its left normal (c = chord length).
+    """
+    u = p1 - p0
+    c = np.hypot(*u.T)
+    left = np.column_stack([-u[:, 1], u[:, 0]]) / c[:, None]
+    centre = (p0 + p1) / 2 + left * ((c / 4) * (1 / bulge - bulge))[:, None]
+    sweep = 4 * np.arctan(bulge)
+    radius = c / (2 * np.abs(np.sin(sweep / 2)))
+    start = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
+    return centre, radius, start, sweep
+
+
+def _polylines(curves: CurveSet, tolerance: Tolerance) -> Block:
+    polys = curves.polylines
+    if not polys:
+        return _empty_block()
+    p0_list, p1_list, b_list, seg_counts = [], [], [], []
+    for p in polys:
+        v, b = p.vertices, p.bulges
+        nxt = np.roll(v, -1, axis=0) if p.closed else v[1:]
+        p0_list.append(v if p.closed else v[:-1])
+        p1_list.append(nxt)
+        b_list.append(b if p.closed else b[:-1])
+        seg_counts.append(len(nxt))
+    p0, p1, bulge = np.concatenate(p0_list), np.concatenate(p1_list), np.concatenate(b_list)
+    seg_counts = np.asarray(seg_counts, np.intp)
+    closed = np.array([p.closed for p in polys])
+    # A bulge on a zero-length segment draws nothing.
+    curved = (bulge != 0) & np.any(p0 != p1, axis=1)
+    n = np.zeros(len(p0), np.intp)
+    interior = np.empty((0, 2))
+    if curved.any():
+        centre, radius, start, sweep = bulge_arcs(p0[curved], p1[curved], bulge[curved])
+        n[curved] = segment_counts(radius, sweep, tolerance)
+        zeros = np.zeros_like(radius)
+        interior = interior_vertices(centre, np.column_stack([radius, zeros]), np.column_stack([zeros, radius]),
+                                     start, sweep, n[curved])
+    # Each segment contributes its start vertex and its interior vertices; an open polyline adds its end.
+    per_segment = 1 + n
+    poly_of_segment = np.repeat(np.arange(len(polys)), seg_counts)
+    counts = np.bincount(poly_of_segment, weights=per_segment, minlength=len(polys)).astype(np.intp) + ~closed
+    out = np.empty((int(counts.sum()), 2))
+    poly_first = np.cumsum(counts) - counts
+    seg_offset_in_poly = np.cumsum(per_segment) - per_segment
+    seg_offset_in_poly -= np.repeat(seg_offset_in_poly[np.cumsum(seg_counts) - seg_counts], seg_counts)
+    seg_first = poly_first[poly_of_segment] + seg_offset_in_poly
+    out[seg_first] = p0
+    if len(interior):
+        m = n[curved]
+        slots = np.repeat(seg_first[curved] + 1, m) + (np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m))
+        out[slots] = interior
+    last_vertex = np.array([p.vertices[-1] for p in polys])
+    out[(poly_first + counts - 1)[~closed]] = last_vertex[~closed]
+    circle = np.array([_polyline_circle(p) for p in polys]).reshape(-1, 3)
+    return out, counts, closed, circle
+
+
+def _polyline_circle(p: Polyline) -> tuple[float, float, float]:
+    """(cx, cy, r) of a polyline known to be a circle, or closed and made only of arcs of one circle."""
+    if p.circle is not None:
+        return p.circle
+    if not p.closed or len(p.vertices) < 2 or not np.all(p.bulges != 0):
+        return (np.nan, np.nan, np.nan)
+    centre, radius, _, _ = bulge_arcs(p.vertices, np.roll(p.vertices, -1, axis=0), p.bulges)
+    r = radius.mean()
+    if np.ptp(radius) <= 1e-9 * r and np.ptp(centre, axis=0).max() <= 1e-9 * r:
+        return (float(centre[:, 0].mean()), float(centre[:, 1].mean()), float(r))
+    return (np.nan, np.nan, np.nan)
+
+
+# -- splines -----------------------------------------------------------------------------------
+
+
+def _splines(curves: CurveSet, tolerance: Tolerance) -> Block:
+    if not curves.splines:
+        return _empty_block()
+    parts = []
+    for spline in curves.splines:
+        pts = spline.flattening(tolerance.spline, segments=4 * max(spline.count, 1))
+        parts.append(np.array([(p.x, p.y) for p in pts], float))
+    counts = np.array([len(p) for p in parts], np.intp)
+    n = len(parts)
+    return np.concatenate(parts), counts, np.zeros(n, bool), np.full((n, 3), np.nan)

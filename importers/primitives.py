@@ -1,0 +1,177 @@
+"""The exact curves and points of a sketch, in drawing units, as the readers find them.
+
+Readers (DXF, CSV) add primitives here; :mod:`linkstress.importers.flatten` turns each curve into
+one piece of polyline. Circles, arcs and ellipses are all *conic arcs*:
+``p(t) = centre + cos(t) major + sin(t) minor`` for ``t`` from ``start`` to ``start + sweep`` [rad];
+a circle has perpendicular ``major`` and ``minor`` of equal length, its radius.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from ezdxf.math import BSpline
+from numpy.typing import ArrayLike, NDArray
+
+from linkstress.errors import SketchError
+from linkstress.importers.units import DrawingUnit
+
+Origin = tuple[str, "str | None", "str | None", "int | None"]
+"""Where a curve or point came from: (kind, DXF handle, layer, CSV line number)."""
+
+
+def describe(origin: Origin) -> str:
+    """``LINE (handle 2F, layer 'crank')`` or ``circle on line 12``: the culprit in a message."""
+    kind, handle, layer, line = origin
+    if line is not None:
+        return f"{kind} on line {line}"
+    details = [f"handle {handle}"] if handle else []
+    if layer is not None:
+        details.append(f"layer {layer!r}")
+    return f"{kind} ({', '.join(details)})" if details else kind
+
+
+@dataclass(frozen=True)
+class Polyline:
+    """Vertices (m, 2) with a bulge per vertex (tan of a quarter of the arc's sweep to the next vertex,
+    positive counter-clockwise); ``closed`` adds the segment from the last vertex back to the first.
+    ``circle`` (cx, cy, r) when the polyline is known to trace a circle (e.g. a sampled CSV circle)."""
+
+    vertices: NDArray[np.float64]
+    bulges: NDArray[np.float64]
+    closed: bool
+    circle: tuple[float, float, float] | None = None
+
+
+class CurveSet:
+    """Collects exact primitives and points from one sketch file (a builder, filled once by a reader)."""
+
+    def __init__(self) -> None:
+        self.lines: list[NDArray[np.float64]] = []  # chunks (n, 4): x0, y0, x1, y1
+        self.conics: list[NDArray[np.float64]] = []  # chunks (n, 9): centre, major, minor, start, sweep, closed
+        self.polylines: list[Polyline] = []
+        self.splines: list[BSpline] = []
+        self.points: list[NDArray[np.float64]] = []  # chunks (n, 2)
+        self.origins: dict[str, list[Origin]] = {k: [] for k in ("lines", "conics", "polylines", "splines", "points")}
+
+    # -- adding primitives -----------------------------------------------------------------
+
+    def add_lines(self, ends: ArrayLike, origins: list[Origin]) -> None:
+        """Straight lines, rows (x0, y0, x1, y1)."""
+        ends = _finite(ends, 4, origins)
+        self.lines.append(ends)
+        self.origins["lines"].extend(origins)
+
+    def add_arcs(self, centre: ArrayLike, radius: ArrayLike, start: ArrayLike, sweep: ArrayLike,
+                 origins: list[Origin]) -> None:
+        """Circular arcs from angle ``start`` through signed ``sweep`` [rad]; |sweep| = 2 pi is a full circle."""
+        centre = np.asarray(centre, float).reshape(-1, 2)
+        r = np.asarray(radius, float).reshape(-1)
+        zeros = np.zeros_like(r)
+        self.add_conics(centre, np.column_stack([r, zeros]), np.column_stack([zeros, r]), start, sweep, origins)
+
+    def add_conics(self, centre: ArrayLike, major: ArrayLike, minor: ArrayLike, start: ArrayLike,
+                   sweep: ArrayLike, origins: list[Origin]) -> None:
+        """Elliptic (or circular) arcs; |sweep| >= 2 pi (to rounding) makes a closed curve."""
+        start = np.asarray(start, float).reshape(-1)
+        sweep = np.asarray(sweep, float).reshape(-1)
+        full = np.abs(sweep) >= 2 * math.pi * (1 - 1e-12)
+        sweep = np.where(full, np.copysign(2 * math.pi, sweep), sweep)
+        rows = np.column_stack([
+            np.asarray(centre, float).reshape(-1, 2), np.asarray(major, float).reshape(-1, 2),
+            np.asarray(minor, float).reshape(-1, 2), start, sweep, full,
+        ])
+        rows = _finite(rows, 9, origins)
+        self.conics.append(rows)
+        self.origins["conics"].extend(origins)
+
+    def add_polyline(self, polyline: Polyline, origin: Origin) -> None:
+        _finite(polyline.vertices, 2, [origin])
+        _finite(polyline.bulges, 1, [origin])
+        self.polylines.append(polyline)
+        self.origins["polylines"].append(origin)
+
+    def add_polylines(self, polylines: list[Polyline], origins: list[Origin], *arrays: NDArray[np.float64]) -> None:
+        """Many polylines; ``arrays`` (their concatenated vertices and bulges) are checked at once."""
+        for array in arrays:
+            if not np.isfinite(array).all():
+                for p, origin in zip(polylines, origins):
+                    _finite(p.vertices, 2, [origin])
+                    _finite(p.bulges, 1, [origin])
+        self.polylines.extend(polylines)
+        self.origins["polylines"].extend(origins)
+
+    def add_spline(self, spline: BSpline, origin: Origin) -> None:
+        _finite(spline.control_points, None, [origin])
+        self.splines.append(spline)
+        self.origins["splines"].append(origin)
+
+    def add_points(self, xy: ArrayLike, origins: list[Origin]) -> None:
+        self.points.append(_finite(xy, 2, origins))
+        self.origins["points"].extend(origins)
+
+    # -- reading back --------------------------------------------------------------------------
+
+    def point_array(self) -> NDArray[np.float64]:
+        return np.concatenate(self.points) if self.points else np.empty((0, 2))
+
+    def curve_origins(self) -> list[Origin]:
+        """Origins of every curve in the order the flattened pieces come: lines, conics, polylines, splines."""
+        o = self.origins
+        return o["lines"] + o["conics"] + o["polylines"] + o["splines"]
+
+    def curve_count(self) -> int:
+        return len(self.curve_origins())
+
+    def bounds(self) -> tuple[float, float, float, float] | None:
+        """A box (minx, miny, maxx, maxy) holding every curve (conics and splines conservatively); None if none."""
+        boxes = []
+        for chunk in self.lines:
+            xy = chunk.reshape(-1, 2)
+            boxes.append(np.concatenate([xy.min(0), xy.max(0)]))
+        for chunk in self.conics:
+            half = np.hypot(chunk[:, 2:4], chunk[:, 4:6])  # (|major_x, minor_x|, |major_y, minor_y|)
+            boxes.append(np.concatenate([(chunk[:, :2] - half).min(0), (chunk[:, :2] + half).max(0)]))
+        pts = [p.vertices for p in self.polylines] + [
+            np.asarray([(v[0], v[1]) for v in s.control_points], float) for s in self.splines
+        ]
+        if pts:
+            xy = np.concatenate(pts)
+            boxes.append(np.concatenate([xy.min(0), xy.max(0)]))
+        if not boxes:
+            return None
+        b = np.array(boxes)
+        return float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()), float(b[:, 3].max())
+
+
+def _finite(values: ArrayLike, width: int | None, origins: list[Origin]) -> NDArray[np.float64]:
+    array = np.asarray(values, float)
+    if width is not None:
+        array = array.reshape(-1, width) if width > 1 else array.reshape(-1)
+    finite = np.isfinite(array)
+    if not finite.all():
+        rows = ~finite.reshape(len(array), -1).all(axis=1) if array.ndim > 1 else ~finite
+        k = int(np.argmax(rows)) if len(origins) > 1 else 0
+        raise SketchError(f"{describe(origins[min(k, len(origins) - 1)])} has a coordinate that is not a finite number")
+    return array
+
+
+@dataclass(frozen=True)
+class RawSketch:
+    """What a reader found in a file, before flattening: curves and points in ``unit``.
+
+    ``units_source`` says where the unit came from (the file, the caller, or an assumption);
+    ``ignored`` counts what was left out, by entity type; ``fixes`` lists repairs already made;
+    ``gap_tolerance`` is the reader's default endpoint tolerance, a fraction of the drawing size.
+    """
+
+    curves: CurveSet
+    unit: DrawingUnit
+    units_source: str
+    format: str
+    ignored: dict[str, int]
+    fixes: tuple[str, ...]
+    gap_tolerance: float
+

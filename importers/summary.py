@@ -1,0 +1,116 @@
+"""A sketch's links as text tables and as the JSON of DESIGN.md (``linkstress import``).
+
+Areas and moments are per unit thickness, in the sketch frame; each profile U(x), L(x) is in the
+member frame of the link's first two joints (origin at joint 0, +x toward joint 1).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from linkstress.importers.sketch import ImportedLink, Sketch
+from linkstress.tables import format_table
+
+NO_PROFILE = "a profile U(x), L(x) needs a member frame, which needs two joints; this link has {n}"
+
+
+def link_json(link: ImportedLink) -> dict:
+    """One link: DESIGN.md's keys (area_m2, centroid_m, polar_moment_area_m4, joints_m, holes, profile)
+    plus layer, joint_rules, largest_gap_m and the member frame of the profile."""
+    profile = link.profile(1.0)
+    props = profile.area_properties
+    holes = []
+    for ring, diameter in zip(link.outline.interiors, link.hole_diameters_m):
+        hole = type(link.outline)(ring)
+        holes.append({
+            "centroid_m": [hole.centroid.x, hole.centroid.y],
+            "area_m2": hole.area,
+            "diameter_m": diameter,
+        })
+    out = {
+        "name": link.name,
+        "layer": link.layer,
+        "area_m2": props.area,
+        "centroid_m": list(props.centroid),
+        "polar_moment_area_m4": props.polar,
+        "joints_m": link.joints.tolist(),
+        "joint_rules": list(link.joint_rules),
+        "holes": holes,
+        "largest_gap_m": link.largest_gap_m,
+    }
+    if len(link.joints) >= 2:
+        x, upper, lower = profile.bounds(0, 1).polyline()
+        frame = profile.frame(0, 1)
+        out["member_frame"] = {"origin_m": list(frame.origin), "angle_deg": math.degrees(frame.angle)}
+        out["profile"] = {"x_m": x.tolist(), "upper_m": upper.tolist(), "lower_m": lower.tolist()}
+    else:
+        out["profile"] = None
+        out["profile_note"] = NO_PROFILE.format(n=len(link.joints))
+    return out
+
+
+def sketch_json(sketch: Sketch) -> dict:
+    """``{"links": [...]}`` of DESIGN.md, with what was read, assumed, ignored and fixed."""
+    return {
+        "sketch": str(sketch.path),
+        "format": sketch.format,
+        "units": sketch.units,
+        "units_source": sketch.units_source,
+        "gap_tolerance_m": sketch.gap_tolerance_m,
+        "links": [link_json(link) for link in sketch.links],
+        "ignored": dict(sketch.ignored),
+        "fixes": list(sketch.fixes),
+    }
+
+
+def sketch_text(sketch: Sketch) -> str:
+    """A table per link (area, centroid, polar moment, joints and their rule, holes, largest gap)."""
+    units = f"units {sketch.units} ({sketch.units_source})"
+    parts = [f"{sketch.path.name}: {sketch.format}, {units}, {len(sketch.links)} link(s)"]
+    for link in sketch.links:
+        props = link.profile(1.0).area_properties
+        rows = [
+            ("area per unit thickness [m^2]", props.area),
+            ("centroid [m]", _pair(props.centroid)),
+            ("polar moment of area about centroid [m^4]", props.polar),
+        ]
+        rows += [(f"joint {k} [m]", f"{_pair(p)} ({rule})") for k, (p, rule) in enumerate(zip(link.joints, link.joint_rules))]
+        if not len(link.joints):
+            rows.append(("joints", "none: no POINTs and no circular holes"))
+        rows.append(("holes", _holes(link)))
+        rows.append(("largest gap closed [m]", link.largest_gap_m))
+        layer = f" (layer {link.layer})" if link.layer else ""
+        parts.append(f"link {link.name}{layer}\n" + format_table(("property", "value"), rows))
+    if sketch.ignored:
+        parts.append("ignored: " + ", ".join(f"{n} {kind}" for kind, n in sorted(sketch.ignored.items())))
+    if sketch.fixes:
+        parts.append("fixed:\n" + "\n".join(f"- {fix}" for fix in sketch.fixes))
+    return "\n\n".join(parts)
+
+
+def _pair(p) -> str:
+    return f"({float(p[0]):.6g}, {float(p[1]):.6g})"
+
+
+def _holes(link: ImportedLink) -> str:
+    n = len(link.hole_diameters_m)
+    if not n:
+        return "0"
+    diameters = [d for d in link.hole_diameters_m if d is not None]
+    text = f"{n}"
+    if diameters:
+        text += f" ({len(diameters)} circular, diameter {', '.join(f'{d:.6g}' for d in diameters)} m)"
+    return text
+
+
+def finite(data) -> bool:
+    """True when every number in ``data`` (nested lists/dicts) is finite."""
+    if isinstance(data, dict):
+        return all(finite(v) for v in data.values())
+    if isinstance(data, (list, tuple)):
+        return all(finite(v) for v in data)
+    if isinstance(data, float):
+        return math.isfinite(data)
+    return not isinstance(data, np.floating) or bool(np.isfinite(data))

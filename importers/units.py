@@ -1,0 +1,96 @@
+"""Drawing units: names a user may type, DXF ``$INSUNITS`` codes, and their size in metres.
+
+The codes and factors are ezdxf's (``ezdxf.units``); this module only adds the names a user types
+on the command line or in a scene (``mm``, ``inch``, ``millimetres``...).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ezdxf import units as ezdxf_units
+
+from linkstress.errors import SketchError
+
+_EXTRA_NAMES = {
+    "um": 13, "micron": 13, "microns": 13,
+    "inch": 1, "foot": 2, "meter": 6, "metre": 6, "metres": 6,
+    "millimetre": 4, "millimetres": 4, "millimeter": 4,
+    "centimetre": 5, "centimetres": 5, "centimeter": 5,
+    "decimetre": 14, "decimetres": 14, "kilometre": 7, "kilometres": 7, "yard": 10,
+}
+
+
+@dataclass(frozen=True)
+class DrawingUnit:
+    """A length unit of a drawing: ``name`` (short symbol, e.g. ``mm``) and its DXF ``$INSUNITS`` ``code``."""
+
+    name: str
+    code: int
+
+    @property
+    def per_metre(self) -> float:
+        """How many of this unit make a metre (ezdxf's factor): metres = value / per_metre."""
+        return float(ezdxf_units.METER_FACTOR[self.code])
+
+
+def _convertible_codes() -> dict[int, str]:
+    return {
+        code: ezdxf_units.decode(code)
+        for code in range(1, len(ezdxf_units.METER_FACTOR))
+        if ezdxf_units.METER_FACTOR[code] and ezdxf_units.decode(code)
+    }
+
+
+_CODES = _convertible_codes()
+_NAMES: dict[str, int] = {
+    **{name.lower(): code for code, name in _CODES.items()},
+    **{ezdxf_units.unit_name(code).lower(): code for code in _CODES},
+    **_EXTRA_NAMES,
+}
+
+
+def unit_named(name: str, where: str) -> DrawingUnit:
+    """The unit a user named (``mm``, ``cm``, ``m``, ``in``, ``ft``, ``inches``...); ``where`` names the source."""
+    code = _NAMES.get(str(name).strip().lower())
+    if code is None:
+        known = ", ".join(sorted({_CODES[c] for c in _CODES if _CODES[c].isascii()}))
+        raise SketchError(f"{where}: unknown length unit {name!r}; use one of {known}")
+    return DrawingUnit(_CODES[code], code)
+
+
+def unit_from_insunits(code: int) -> DrawingUnit | None:
+    """The unit of a DXF ``$INSUNITS`` code; None for 0 (unitless) or a code ezdxf cannot convert."""
+    if code in _CODES:
+        return DrawingUnit(_CODES[code], code)
+    return None
+
+
+def insunits_label(code: int) -> str:
+    """ezdxf's name of a ``$INSUNITS`` code, e.g. ``Mils`` or ``Unitless``."""
+    return ezdxf_units.unit_name(code)
+
+
+def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | None,
+                default: tuple[DrawingUnit, str] | None) -> tuple[DrawingUnit, str]:
+    """The unit of a sketch file and where it came from: the file's own (``declared``, found in
+    ``declared_by``) unless absent, then the caller's ``given`` name, then ``default`` (unit, reason).
+
+    A file that declares a unit other than the one given is an error: one of them is wrong.
+    """
+    chosen = unit_named(given, "units") if given is not None else None
+    if declared is not None and chosen is not None and declared.code != chosen.code:
+        raise SketchError(
+            f"the file declares its units as {declared.name} ({declared_by}) but units {given!r} were given; "
+            "drop the units option or fix the drawing's units"
+        )
+    if declared is not None:
+        return declared, declared_by
+    if chosen is not None:
+        return chosen, "given by the caller (--units or the scene's units)"
+    if default is not None:
+        return default
+    raise SketchError(
+        f"the file does not say its units ({declared_by} is unitless): pass --units (mm, cm, m, in or ft), "
+        "or set the scene's units"
+    )
