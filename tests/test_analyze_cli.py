@@ -108,7 +108,7 @@ def test_a_sweep_through_unreachable_angles_reports_them_and_never_writes_nan(tm
 
 def test_an_analysis_table_without_kinematics_leaves_the_link_data_out(tmp_path):
     out = tmp_path / "out.json"
-    assert main(["analyze", str(scene_file(tmp_path, SEED + "\n[analysis]\nforces = true\n")), "--json", str(out)]) == 0
+    assert main(["analyze", str(scene_file(tmp_path, SEED + "\n[analysis]\nstations = 11\n")), "--json", str(out)]) == 0
     assert [p["links"] for p in read_json(out)["positions"]] == [{}, {}]
 
 

@@ -37,7 +37,7 @@ class SectionStresses:
     reached at ``fibre_y`` (P, S) [m]; ``sigma``/``tau`` (P, S) [Pa] at that fibre. ``near_hole`` (S,):
     station within one section depth of a hole's centre (nominal values only). ``max_von_mises`` (P,) and
     ``max_at`` (P, 2) [m]: the largest over all stations; ``max_away_from_holes`` likewise over
-    stations not near a hole (0 where every station is near one).
+    stations not near a hole (None where every station is near one).
     """
 
     sections: SectionTable
@@ -63,9 +63,10 @@ class SectionStresses:
         return np.column_stack([self.x[k], self.fibre_y[rows, k]])
 
     @property
-    def max_away_from_holes(self) -> NDArray[np.float64]:
+    def max_away_from_holes(self) -> NDArray[np.float64] | None:
+        """(P,) largest von Mises over the stations not near a hole; None when every station is."""
         away = self.von_mises[:, ~self.near_hole]
-        return away.max(axis=1) if away.shape[1] else np.zeros(len(self.von_mises))
+        return away.max(axis=1) if away.shape[1] else None
 
 
 def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int) -> NDArray[np.float64]:

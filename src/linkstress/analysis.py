@@ -1,0 +1,133 @@
+"""What a scene asks for, and computing it: kinematics, joint forces, section stresses.
+
+Without an [analysis] table a scene gets everything its data allows (DESIGN.md, "Scene file"):
+kinematics always, forces when every moving link has mass data, section stresses for the moving
+links that have a profile and a material. With the table, exactly what it names, and a named stage
+whose data is missing is an error that says which keys would supply it.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.dynamics.machine_forces import MachineForces, machine_forces
+from linkstress.dynamics.section_stress import SectionStresses, default_stations, section_stresses
+from linkstress.errors import SceneError
+from linkstress.kinematics import MachineMotion, solve_machine
+from linkstress.scene import Scene
+
+DEFAULT_STATIONS = 101
+"""Section stations per link when the scene does not say (see the README's speed/error table)."""
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The stages to run: ``forces``; section stresses for ``stresses`` (link names) at ``stations``
+    per link; FEA for ``validate``; ``notes`` say why a stage or link is left out."""
+
+    forces: bool
+    stresses: tuple[str, ...]
+    stations: int
+    validate: tuple[str, ...]
+    notes: tuple[str, ...]
+
+    def describe(self) -> str:
+        lines = ["plan:", "  kinematics: every position"]
+        lines.append(f"  joint forces: {'yes' if self.forces else 'no'}")
+        lines.append(
+            f"  section stresses: {', '.join(self.stresses) if self.stresses else 'none'}"
+            + (f" ({self.stations} stations each)" if self.stresses else "")
+        )
+        lines.append(f"  FEA check: {', '.join(self.validate) if self.validate else 'none'}")
+        lines += [f"  note: {note}" for note in self.notes]
+        return "\n".join(lines)
+
+
+def plan_for(scene: Scene) -> Plan:
+    """The plan of ``scene``: its [analysis] table, or everything its data allows."""
+    moving = scene.moving_links
+    without_mass = [n for n in moving if scene.links[n].mass_data is None]
+    stressable = [n for n in moving if scene.links[n].profile is not None and scene.links[n].material is not None]
+    asked = scene.analysis
+    notes = []
+    if asked is None:
+        forces = not without_mass
+        if without_mass:
+            notes.append(f"no joint forces: {', '.join(without_mass)} lack mass data (mass, inertia, center_of_mass)")
+        stresses = tuple(stressable) if forces else ()
+        validate = stresses
+        stations = DEFAULT_STATIONS
+    else:
+        wants_stresses = asked.stresses or bool(asked.validate)
+        forces = asked.forces or wants_stresses
+        if forces and without_mass:
+            raise SceneError(
+                f"analysis: forces need the mass of every moving link; links.{without_mass[0]} has none: give "
+                "mass, inertia and center_of_mass, or a sketch with thickness and material"
+            )
+        stresses = tuple(stressable) if asked.stresses else tuple(asked.validate)
+        validate = tuple(asked.validate)
+        for name in validate:
+            if name not in stressable:
+                raise SceneError(f"analysis.validate: link {name!r} needs a sketch, a thickness and a material")
+        stations = asked.stations or DEFAULT_STATIONS
+    for name in moving:
+        if name not in stressable and (asked is None or asked.stresses):
+            notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
+    return Plan(forces, stresses, stations, validate, tuple(notes))
+
+
+@dataclass(frozen=True)
+class AnalysisResult:
+    """Everything computed for a scene over its P positions; ``feasible`` (P,) where every stage
+    that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage."""
+
+    scene: Scene
+    plan: Plan
+    kinematics: MachineMotion
+    forces: MachineForces | None
+    stresses: dict[str, SectionStresses]
+    seconds: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def feasible(self) -> NDArray[np.bool_]:
+        return self.kinematics.feasible if self.forces is None else self.forces.feasible
+
+    @property
+    def reasons(self) -> tuple[str, ...]:
+        return self.kinematics.reasons if self.forces is None else self.forces.reasons
+
+    def max_location(self, name: str) -> NDArray[np.float64]:
+        """Where each position's largest section von Mises of link ``name`` is, ground frame (P, 2) [m]."""
+        local = self.stresses[name].max_at
+        motion = self.kinematics.links[name]
+        c, s = np.cos(motion.angle), np.sin(motion.angle)
+        return motion.origin + np.column_stack([c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1]])
+
+
+def run_analysis(scene: Scene, plan: Plan | None = None) -> AnalysisResult:
+    """Run ``plan`` (default: the scene's) on ``scene``."""
+    plan = plan or plan_for(scene)
+    seconds = {}
+    start = time.perf_counter()
+    kinematics = solve_machine(scene.machine, scene.motion)
+    seconds["kinematics"] = time.perf_counter() - start
+    forces = None
+    stresses: dict[str, SectionStresses] = {}
+    if plan.forces:
+        start = time.perf_counter()
+        forces = machine_forces(scene, kinematics)
+        seconds["forces"] = time.perf_counter() - start
+        start = time.perf_counter()
+        for name in plan.stresses:
+            link = scene.links[name]
+            loads = forces.link_loads[name]
+            stresses[name] = section_stresses(
+                link.profile, loads, default_stations(link.profile, loads.frame_joints, plan.stations),
+            )
+        seconds["stresses"] = time.perf_counter() - start
+    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds)

@@ -1,0 +1,1 @@
+"""Reports of an analysis: JSON records, terminal text and self-contained HTML."""

@@ -1,0 +1,125 @@
+"""JSON records of an analysis: DESIGN.md's ``analyze`` shape, extended, never renamed.
+
+Per position: ``input_angle_deg``, ``feasible``, ``reason``; per link ``angle_deg``,
+``omega_rad_s``, ``alpha_rad_s2``, ``acc_G_m_s2`` (where the centre of mass is known),
+``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
+some station is at least a section depth from every pin hole) and ``equilibrium_mismatch`` where
+stresses were computed, and with ``stations`` the arrays along the
+link; per mechanism ``forces_n`` (Norton names) and ``driving_torque_nm`` (or ``driving_force_n``
+for an actuated slider) where forces were computed. Infeasible positions carry no link or
+mechanism data. Angles in degrees in [0, 360); SI units.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.analysis import AnalysisResult
+
+
+@dataclass(frozen=True)
+class LinkColumns:
+    """One link's kinematic values at every position: angle_deg in [0, 360), omega [rad/s],
+    alpha [rad/s^2], acc_g (P, 2) [m/s^2] or None when its centre of mass is unknown."""
+
+    angle_deg: NDArray[np.float64]
+    omega: NDArray[np.float64]
+    alpha: NDArray[np.float64]
+    acc_g: NDArray[np.float64] | None
+
+
+def degrees_360(angle: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Angles [rad] in degrees in [0, 360)."""
+    value = np.mod(np.rad2deg(angle), 360.0) + 0.0
+    return np.where(value >= 360.0, 0.0, value)
+
+
+def link_columns(result: AnalysisResult) -> dict[str, LinkColumns]:
+    """Every link's kinematic columns, in the scene's order."""
+    columns = {}
+    for name, link in result.scene.links.items():
+        motion = result.kinematics.links[name]
+        com = link.center_of_mass
+        acc_g = None if com is None else motion.point(com)[2]
+        columns[name] = LinkColumns(degrees_360(motion.angle), motion.omega, motion.alpha, acc_g)
+    return columns
+
+
+def position_records(result: AnalysisResult, stations: bool = False) -> list[dict]:
+    """One JSON-ready dict per position; ``stations`` adds N, V, M and von Mises along each link."""
+    analysis = result.scene.analysis
+    link_values: dict[str, dict[str, list]] = {}
+    if analysis is None or analysis.kinematics:
+        for name, c in link_columns(result).items():
+            values = {"angle_deg": c.angle_deg.tolist(), "omega_rad_s": c.omega.tolist(), "alpha_rad_s2": c.alpha.tolist()}
+            if c.acc_g is not None:
+                values["acc_G_m_s2"] = c.acc_g.tolist()
+            link_values[name] = values
+    for name, stress in result.stresses.items():
+        values = link_values.setdefault(name, {})
+        values["max_von_mises_pa"] = stress.max_von_mises.tolist()
+        values["max_at_m"] = result.max_location(name).tolist()
+        if stress.max_away_from_holes is not None:
+            values["max_von_mises_away_from_holes_pa"] = stress.max_away_from_holes.tolist()
+        values["equilibrium_mismatch"] = stress.forces.mismatch.tolist()
+        if stations:
+            values["stations"] = _station_lists(stress)
+    mechanism_values = _mechanism_lists(result)
+    feasible = result.feasible.tolist()
+    records = []
+    for k, angle in enumerate(result.scene.motion.angle_deg.tolist()):
+        record = {"input_angle_deg": angle, "feasible": feasible[k], "reason": result.reasons[k], "links": {}}
+        if feasible[k]:
+            record["links"] = {name: _at(values, k) for name, values in link_values.items()}
+        if result.forces is not None:
+            record["mechanisms"] = {name: _at(values, k) for name, values in mechanism_values.items()} if feasible[k] else {}
+        records.append(record)
+    return records
+
+
+def _station_lists(stress) -> dict[str, object]:
+    """Arrays along the link, member frame: ``x_m`` shared, the rest one list per position."""
+    return {
+        "x_m": stress.x.tolist(),
+        "near_hole": stress.near_hole.tolist(),
+        "normal_n": stress.forces.normal.tolist(),
+        "shear_n": stress.forces.shear.tolist(),
+        "moment_nm": stress.forces.moment.tolist(),
+        "von_mises_pa": stress.von_mises.tolist(),
+        "fibre_y_m": stress.fibre_y.tolist(),
+    }
+
+
+def _mechanism_lists(result: AnalysisResult) -> dict[str, dict[str, object]]:
+    if result.forces is None:
+        return {}
+    out = {}
+    for name, mech in result.forces.mechanisms.items():
+        values: dict[str, object] = {"forces_n": {k: v.tolist() for k, v in mech.forces.items()}}
+        if mech.driving_torque is not None:
+            values["driving_torque_nm"] = mech.driving_torque.tolist()
+            values["torque"] = mech.torque_name
+        if mech.driving_force is not None:
+            values["driving_force_n"] = mech.driving_force.tolist()
+        out[name] = values
+    return out
+
+
+def _at(values: dict, k: int) -> dict:
+    """The entries of position ``k``: per-position lists are indexed, dicts recursed, and what all
+    positions share (names, station abscissae) kept whole."""
+    out = {}
+    for key, column in values.items():
+        if isinstance(column, dict):
+            out[key] = _at(column, k)
+        elif isinstance(column, list) and key not in SHARED:
+            out[key] = column[k]
+        else:
+            out[key] = column
+    return out
+
+
+SHARED = ("x_m", "near_hole")

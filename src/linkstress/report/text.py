@@ -1,0 +1,153 @@
+"""The terminal report of an analysis: mechanisms, motion, joint forces and section stresses.
+
+Long sweeps are shown at most ``MAX_ROWS`` positions per table (evenly spaced, the table says so);
+the JSON output carries every position.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from linkstress.analysis import AnalysisResult
+from linkstress.kinematics.fourbar import FourBar
+from linkstress.kinematics.linkage_class import (
+    classify,
+    feasible_input_ranges,
+    output_limits,
+    slider_feasible_input_ranges,
+    slider_limits,
+    slider_toggle_angles,
+    stroke,
+    toggle_angles,
+)
+from linkstress.report.records import link_columns
+from linkstress.scene import Scene
+from linkstress.tables import format_table
+
+MAX_ROWS = 40
+
+
+def report(result: AnalysisResult) -> str:
+    """The text printed on stdout."""
+    scene = result.scene
+    feasible = result.feasible
+    parts = [f"scene {scene.path.name}: {len(feasible)} positions, {int(feasible.sum())} feasible"]
+    parts += [describe_loop(scene, loop.name) for loop in scene.machine.loops]
+    analysis = scene.analysis
+    if analysis is None or analysis.kinematics:
+        parts.append(motion_table(result))
+    if result.forces is not None:
+        parts.append(forces_table(result))
+    if result.stresses:
+        parts.append(stress_table(result))
+    bad = [(a, r) for a, r, ok in zip(scene.motion.angle_deg.tolist(), result.reasons, feasible) if not ok]
+    if bad:
+        parts.append("infeasible positions:\n" + "\n".join(f"  {a:.6g} deg: {r}" for a, r in bad))
+    return "\n\n".join(parts)
+
+
+def describe_loop(scene: Scene, name: str) -> str:
+    """A mechanism's geometry, class, toggles, feasible input range and limit positions."""
+    loop = scene.machine.loop(name)
+    linkage = scene.machine.geometry(loop)
+    drive = "" if loop.driven_by is None else f", driven by {loop.driven_by.loop}.{loop.driven_by.role}"
+    lines = [f"mechanism {name}: {loop.kind}, {loop.branch} branch{drive}"]
+    if isinstance(linkage, FourBar):
+        a, b, c, d = linkage.lengths
+        kind = classify(linkage)
+        lines.append(f"  crank {a:.6g} m, coupler {b:.6g} m, output {c:.6g} m, ground {d:.6g} m")
+        lines.append(f"  {kind.grashof}, Barker {kind.barker_class} {kind.code}: {kind.description}")
+        toggles, ranges = toggle_angles(linkage), feasible_input_ranges(linkage)
+        limits = output_limits(linkage)
+        limit_what = "output"
+    else:
+        lines.append(
+            f"  crank {linkage.crank:.6g} m, rod {linkage.rod:.6g} m, offset {linkage.offset:.6g} m, "
+            f"slider line at {math.degrees(linkage.slider_angle):.6g} deg; stroke {stroke(linkage):.6g} m"
+        )
+        toggles, ranges = slider_toggle_angles(linkage), slider_feasible_input_ranges(linkage)
+        limits = slider_limits(linkage)
+        limit_what = "slider"
+    listed = ", ".join(f"{_deg360(t):.6g}" for t in toggles)
+    lines.append(f"  toggles at input {listed} deg" if toggles else "  toggles: none")
+    lines.append("  feasible input: " + "; ".join(_range_text(lo, hi) for lo, hi in ranges))
+    for lim in limits:
+        value = f"{_deg360(lim.output):.6g} deg" if limit_what == "output" else f"{lim.output:.6g} m"
+        lines.append(f"  {limit_what} limit ({lim.kind}) at input {_deg360(lim.input_angle):.6g} deg: {value}")
+    return "\n".join(lines)
+
+
+def _range_text(lo: float, hi: float) -> str:
+    if hi - lo >= 2 * math.pi - 1e-12:
+        return "full turn"
+    return f"{_deg360(lo):.6g} to {_deg360(lo) + math.degrees(hi - lo):.6g} deg"
+
+
+def _deg360(angle: float) -> float:
+    """An angle [rad] in degrees in [0, 360)."""
+    value = math.degrees(angle) % 360.0
+    return 0.0 if value >= 360.0 else value + 0.0
+
+
+def shown_positions(result: AnalysisResult) -> tuple[np.ndarray, str]:
+    """Feasible positions to tabulate (at most MAX_ROWS, evenly spaced) and a note when thinned."""
+    ok = np.flatnonzero(result.feasible)
+    if len(ok) <= MAX_ROWS:
+        return ok, ""
+    pick = ok[np.linspace(0, len(ok) - 1, MAX_ROWS).round().astype(int)]
+    return pick, f"({MAX_ROWS} of {len(ok)} feasible positions shown; --json has all)"
+
+
+def motion_table(result: AnalysisResult) -> str:
+    columns = link_columns(result)
+    rows = []
+    shown, note = shown_positions(result)
+    for k in shown:
+        angle = float(result.scene.motion.angle_deg[k])
+        for name, c in columns.items():
+            acc = ("", "") if c.acc_g is None else (float(c.acc_g[k, 0]), float(c.acc_g[k, 1]))
+            rows.append((angle, name, float(c.angle_deg[k]), float(c.omega[k]), float(c.alpha[k]), *acc))
+    headers = ("input [deg]", "link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]", "a_Gx [m/s^2]", "a_Gy [m/s^2]")
+    return "\n".join(filter(None, ["motion", format_table(headers, rows), note]))
+
+
+def forces_table(result: AnalysisResult) -> str:
+    """Joint forces (Fij: force of link i on link j, ground frame) and the driving torque or force."""
+    rows = []
+    shown, note = shown_positions(result)
+    for k in shown:
+        angle = float(result.scene.motion.angle_deg[k])
+        for name, mech in result.forces.mechanisms.items():
+            for label, force in mech.forces.items():
+                rows.append((angle, name, label, float(force[k, 0]), float(force[k, 1]), float(np.hypot(*force[k]))))
+            if mech.driving_torque is not None:
+                rows.append((angle, name, f"{mech.torque_name} [N m]", float(mech.driving_torque[k]), "", ""))
+            if mech.driving_force is not None:
+                rows.append((angle, name, "P14 [N]", float(mech.driving_force[k]), "", ""))
+    headers = ("input [deg]", "mechanism", "force", "x [N]", "y [N]", "|F| [N]")
+    return "\n".join(filter(None, ["joint forces (Fij: of link i on link j) and driving torque", format_table(headers, rows), note]))
+
+
+def stress_table(result: AnalysisResult) -> str:
+    """Per link, the largest section von Mises over the sweep, where, and the equilibrium check."""
+    rows = []
+    ok = result.feasible
+    angles = result.scene.motion.angle_deg
+    for name, stress in result.stresses.items():
+        if not ok.any():
+            continue
+        peak = np.where(ok, stress.max_von_mises, -1.0)
+        k = int(peak.argmax())
+        where = result.max_location(name)[k]
+        away = "-" if stress.max_away_from_holes is None else float(np.where(ok, stress.max_away_from_holes, -1.0).max())
+        rows.append((
+            name, float(stress.max_von_mises[k]), float(angles[k]), f"({where[0]:.4g}, {where[1]:.4g})",
+            away, float(stress.forces.mismatch[ok].max()),
+        ))
+    headers = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m]", "away from holes [Pa]", "equilibrium check")
+    return "\n".join([
+        "section stresses (beam theory; within one section depth of a pin hole the value is nominal)",
+        format_table(headers, rows),
+    ])
