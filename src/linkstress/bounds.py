@@ -15,8 +15,8 @@ from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
 from linkstress.errors import GeometryError
-from linkstress.mass_properties import ring_edges
-from linkstress.sections import edge_crossings, height_on_edge, rounding_slack, within_extent
+from linkstress.boundary import Boundary, boundary_of
+from linkstress.sections import edge_crossings, height_on_edge, within_extent
 
 
 @dataclass(frozen=True)
@@ -68,9 +68,10 @@ class BoundingFunctions:
         return x[keep], upper[keep], lower[keep]
 
 
-def bounding_functions(outline: Polygon) -> BoundingFunctions:
-    """U(x) and L(x) of ``outline``, given in the member frame [m]."""
-    starts, ends = ring_edges(outline, snap_x=rounding_slack(outline))
+def bounding_functions(outline: Polygon | Boundary) -> BoundingFunctions:
+    """U(x) and L(x) of ``outline``, given in the member frame [m] (or as its Boundary)."""
+    edges = boundary_of(outline)
+    starts, ends = edges.starts, edges.ends
     breaks = np.unique(starts[:, 0])
     if len(breaks) < 2:
         raise GeometryError("the outline has no extent along the member axis")

@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
-from shapely.geometry.polygon import orient
+
+from linkstress.boundary import Boundary, oriented_rings
 
 
 @dataclass(frozen=True)
@@ -35,43 +36,10 @@ class AreaProperties:
         return self.i_xx + self.i_yy
 
 
-def ring_edges(polygon: Polygon, snap_x: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Start and end points (E, 2) of every boundary edge, exterior counter-clockwise, holes clockwise.
-
-    With ``snap_x`` > 0 [m], edges whose ends differ in x by at most that much are made exactly
-    vertical: a rotation into a member frame leaves a drawn vertical edge off by rounding, which
-    would otherwise turn the section at that end into a single point.
-    """
-    polygon = orient(polygon, sign=1.0)
-    starts, ends = [], []
-    for ring in [polygon.exterior, *polygon.interiors]:
-        xy = np.asarray(ring.coords, float)[:-1]
-        if snap_x > 0:
-            xy = _snap_vertical(xy, snap_x)
-        starts.append(xy)
-        ends.append(np.roll(xy, -1, axis=0))
-    return np.concatenate(starts), np.concatenate(ends)
-
-
-def _snap_vertical(xy: NDArray[np.float64], tol: float) -> NDArray[np.float64]:
-    """Give each run of vertices joined by near-vertical edges the x of the run's first vertex."""
-    steps = np.abs(np.diff(xy[:, 0], append=xy[0, 0])) <= tol
-    if steps.all() or not steps.any():
-        return xy
-    # Start the ring after a step that is not near-vertical, so no run wraps around the end.
-    shift = int(np.argmin(steps)) + 1
-    xy = np.roll(xy, -shift, axis=0)
-    steps = np.roll(steps, -shift)
-    index = np.arange(len(xy))
-    run_start = np.maximum.accumulate(np.where(np.concatenate([[False], steps[:-1]]), 0, index))
-    snapped = xy.copy()
-    snapped[:, 0] = xy[run_start, 0]
-    return snapped
-
-
 def area_properties(polygon: Polygon) -> AreaProperties:
     """Area, centroid and centroidal second moments of ``polygon`` (Green's theorem, exact)."""
-    p, q = ring_edges(polygon)
+    edges = Boundary.from_rings(oriented_rings(polygon))
+    p, q = edges.starts, edges.ends
     minx, miny, maxx, maxy = polygon.bounds
     ref = np.array([(minx + maxx) / 2, (miny + maxy) / 2])
     x0, y0 = (p - ref).T

@@ -16,6 +16,7 @@ from shapely import affinity
 from shapely.geometry import LinearRing, Point, Polygon
 from shapely.validation import explain_validity
 
+from linkstress.boundary import Boundary, oriented_rings, rounding_slack
 from linkstress.bounds import BoundingFunctions, bounding_functions
 from linkstress.errors import GeometryError
 from linkstress.frames import MemberFrame
@@ -109,24 +110,39 @@ class LinkProfile:
                 raise GeometryError(f"link {self.name!r} has {n} joints, no joint {k}")
         return MemberFrame.through(self.joints[i], self.joints[j])
 
+    @cached_property
+    def _rings(self) -> list[NDArray[np.float64]]:
+        return oriented_rings(self.outline)
+
     def local_outline(self, i: int = 0, j: int = 1) -> Polygon:
         """The outline [m] in member frame (i, j)."""
         f = self.frame(i, j)
         moved = affinity.translate(self.outline, -f.origin[0], -f.origin[1])
         return affinity.rotate(moved, -f.angle, origin=(0.0, 0.0), use_radians=True)
 
+    def boundary(self, i: int = 0, j: int = 1) -> Boundary:
+        """The outline's edges in member frame (i, j), computed once per frame (what every section,
+        bound and region moment of that frame walks)."""
+        cache = self.__dict__.setdefault("_boundaries", {})
+        key = (i % len(self.joints), j % len(self.joints))
+        if key not in cache:
+            frame = self.frame(i, j)
+            rings = [frame.to_local(r) for r in self._rings]
+            cache[key] = Boundary.from_rings(rings, rounding_slack(rings))
+        return cache[key]
+
     def bounds(self, i: int = 0, j: int = 1) -> BoundingFunctions:
         """U(x), L(x) [m] in member frame (i, j), over the outline's full x extent."""
-        return bounding_functions(self.local_outline(i, j))
+        return bounding_functions(self.boundary(i, j))
 
     def sections(self, stations: ArrayLike, i: int = 0, j: int = 1) -> SectionTable:
         """Section table at ``stations`` [m] along member frame (i, j): one call for all stations."""
-        return section_table(self.local_outline(i, j), stations, self.thickness)
+        return section_table(self.boundary(i, j), stations, self.thickness)
 
     def x_extent(self, i: int = 0, j: int = 1) -> tuple[float, float]:
         """Smallest and largest x [m] of the outline in member frame (i, j)."""
-        minx, _, maxx, _ = self.local_outline(i, j).bounds
-        return minx, maxx
+        edges = self.boundary(i, j)
+        return edges.x_min, edges.x_max
 
 
 def _check_outline(name: str, outline: Polygon) -> None:

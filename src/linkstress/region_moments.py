@@ -19,8 +19,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
-from linkstress.mass_properties import ring_edges
-from linkstress.sections import edge_crossings, rounding_slack, within_extent
+from linkstress.boundary import Boundary, boundary_of
+from linkstress.sections import edge_crossings, within_extent
 
 
 @dataclass(frozen=True)
@@ -51,11 +51,13 @@ def _cut_moments(starts, ends, xs, left_limit: bool) -> NDArray[np.float64]:
     return out
 
 
-def region_moments(outline: Polygon, stations: ArrayLike) -> RegionMoments:
-    """Moments of the part of ``outline`` (member frame, m) left of each of ``stations`` [m]."""
+def region_moments(outline: Polygon | Boundary, stations: ArrayLike) -> RegionMoments:
+    """Moments of the part of ``outline`` (member frame, m; or its Boundary) left of each of
+    ``stations`` [m]."""
     x = np.asarray(stations, float).ravel()
-    starts, ends = ring_edges(outline, snap_x=rounding_slack(outline))
-    lo, hi = starts[:, 0].min(), starts[:, 0].max()
+    edges = boundary_of(outline)
+    starts, ends = edges.starts, edges.ends
+    lo, hi = edges.x_min, edges.x_max
     x = within_extent(x, lo, hi, "station")
     nodes = np.unique(np.concatenate([starts[:, 0], x]))
     left, right = nodes[:-1], nodes[1:]

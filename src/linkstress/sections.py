@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
 from linkstress.errors import GeometryError
-from linkstress.mass_properties import ring_edges
+from linkstress.boundary import Boundary, boundary_of
 
 
 END_SLACK = 1e-9
@@ -38,12 +38,6 @@ def within_extent(x: NDArray[np.float64], lo: float, hi: float, what: str) -> ND
             f"{what} x = {bad!r} m is outside the link's extent [{lo:.6g}, {hi:.6g}] m in its member frame"
         )
     return x
-
-
-def rounding_slack(outline: Polygon) -> float:
-    """Differences in x [m] below this are rounding from moving the outline into a member frame."""
-    minx, miny, maxx, maxy = outline.bounds
-    return 1e-12 * max(abs(minx), abs(miny), abs(maxx), abs(maxy), maxx - minx)
 
 
 @dataclass(frozen=True)
@@ -143,16 +137,18 @@ class SectionTable:
         return q if y.ndim == 2 else q[:, 0]
 
 
-def section_table(outline: Polygon, stations: ArrayLike, thickness: float) -> SectionTable:
-    """Sections of ``outline`` (member frame, m) at ``stations`` [m] for a plate ``thickness`` [m].
+def section_table(outline: Polygon | Boundary, stations: ArrayLike, thickness: float) -> SectionTable:
+    """Sections of ``outline`` (member frame, m; or its Boundary) at ``stations`` [m] for a plate
+    ``thickness`` [m].
 
     A station on a vertical boundary takes the section just to its right, except at the outline's
     right end, which takes the section just to its left. Stations outside the outline's x extent
     (by more than ``END_SLACK`` of it) are an error.
     """
     x = np.asarray(stations, float).ravel()
-    starts, ends = ring_edges(outline, snap_x=rounding_slack(outline))
-    minx, maxx = starts[:, 0].min(), starts[:, 0].max()
+    edges = boundary_of(outline)
+    starts, ends = edges.starts, edges.ends
+    minx, maxx = edges.x_min, edges.x_max
     x = within_extent(x, minx, maxx, "station")
     order = np.argsort(x, kind="stable")
     xs = x[order]

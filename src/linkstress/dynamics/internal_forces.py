@@ -99,7 +99,7 @@ def internal_forces(
     x = sections.x
     joints = link.frame(i, j).to_local(link.joints)
     if moments is None:
-        moments = region_moments(link.local_outline(i, j), x)
+        moments = region_moments(link.boundary(i, j), x)
     rho_t = link.density * link.thickness
     cut = np.column_stack([x, sections.neutral_axis])
     coefficients = load_coefficients(loads)

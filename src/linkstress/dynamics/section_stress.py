@@ -79,11 +79,11 @@ def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: in
 def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: SectionTable) -> NDArray[np.bool_]:
     """Stations closer (along x) to a hole's centre than the local section depth (St-Venant: a pin's
     load spreads into a beam-like stress state about one depth from where it is applied)."""
-    outline = link.local_outline(*frame_joints)
+    frame = link.frame(*frame_joints)
     flags = np.zeros(len(sections.x), bool)
     depth = sections.top - sections.bottom
-    for ring in outline.interiors:
-        centre = Polygon(ring).centroid.x
+    for ring in link.outline.interiors:
+        centre = frame.to_local(Polygon(ring).centroid.coords[0])[0]
         flags |= np.abs(sections.x - centre) < depth
     return flags
 
@@ -124,7 +124,7 @@ def section_stresses(
     """
     frame_joints = loads.frame_joints
     table = link.sections(stations, *frame_joints)
-    moments = region_moments(link.local_outline(*frame_joints), table.x)
+    moments = region_moments(link.boundary(*frame_joints), table.x)
     forces = internal_forces(link, loads, table, moments)
     solid = (table.area > 0) & (table.second_moment > 0)
     inertia = np.where(solid, table.second_moment, 1.0)

@@ -1,0 +1,75 @@
+"""Benchmark: joint forces and section stresses of the seed four-bar, one position and a sweep.
+
+Run ``python -m linkstress.validation.bench_dynamics``. Prints figures (best of several runs); asserts
+nothing about time. Targets (issue 5): the seed case at one position, mass properties included,
+under 5 ms; forces and section stresses for 3,600 positions x 3 links x 200 stations under 0.2 s.
+For scale, the original program takes 31.8 s for the one-position case (mass properties at 1e-4 m
+strips plus one solve); ``bench_profile --full`` measures its strip sums here.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from linkstress.analysis import Plan, run_analysis
+from linkstress.kinematics.motion import angle_motion
+from linkstress.profile import LinkProfile
+from linkstress.scene import load_scene
+from linkstress.tables import format_table
+
+SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"
+
+
+def best_time(work, repeat: int = 7) -> float:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        work()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def fresh_mass_properties(scene) -> None:
+    """Mass and inertia of every profiled link from its outline, without any cached value."""
+    for link in scene.links.values():
+        if link.profile is not None:
+            p = link.profile
+            fresh = LinkProfile(p.outline, p.joints, p.thickness, p.material, p.name)
+            fresh.mass, fresh.mass_moment_of_inertia, fresh.center_of_mass
+
+
+def main() -> None:
+    scene = load_scene(SEED)
+    links = ("crank", "coupler", "output")
+    one = Plan(forces=True, stresses=links, stations=101, validate=(), notes=())
+    forces_only = Plan(forces=True, stresses=(), stations=101, validate=(), notes=())
+    t_mass = best_time(lambda: fresh_mass_properties(scene))
+    t_forces = best_time(lambda: run_analysis(scene, forces_only))
+    t_one = best_time(lambda: run_analysis(scene, one))
+    sweep_scene = replace(scene, motion=angle_motion(np.linspace(0.0, 360.0, 3600, endpoint=False), -1.0, 0.0))
+    sweep = Plan(forces=True, stresses=links, stations=200, validate=(), notes=())
+    result = run_analysis(sweep_scene, sweep)
+    t_sweep = best_time(lambda: run_analysis(sweep_scene, sweep), repeat=5)
+    stages = {k: 1e3 * v for k, v in result.seconds.items()}
+    rows = [
+        ("seed, 1 position: mass properties of 4 links", 1e3 * t_mass, ""),
+        ("seed, 1 position: kinematics + forces", 1e3 * t_forces, ""),
+        ("seed, 1 position: mass properties + forces + stresses (3 links x 101 stations)", 1e3 * (t_mass + t_one), 5.0),
+        ("sweep: 3,600 positions x 3 links x 200 stations, kinematics + forces + stresses", 1e3 * t_sweep, 200.0),
+    ]
+    print(format_table(("task", "time [ms]", "target [ms]"), rows))
+    print(
+        f"\nsweep stages (one run) [ms]: kinematics {stages['kinematics']:.1f}, forces {stages['forces']:.1f}, "
+        f"stresses {stages['stresses']:.1f}; {int(result.feasible.sum())} of 3600 positions feasible "
+        "(the seed linkage is a change point: 180 deg is a toggle)"
+    )
+    print(f"positions per second, whole pipeline: {3600 / t_sweep:,.0f}")
+    print(f"original program, 1 position: 31.8 s (measured by the project); here {31.8 / (t_mass + t_one):,.0f} x faster")
+
+
+if __name__ == "__main__":
+    main()
