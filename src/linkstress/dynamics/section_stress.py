@@ -127,17 +127,21 @@ def section_stresses(
     moments = region_moments(link.boundary(*frame_joints), table.x)
     forces = internal_forces(link, loads, table, moments)
     solid = (table.area > 0) & (table.second_moment > 0)
-    inertia = np.where(solid, table.second_moment, 1.0)
-    n = forces.normal / np.where(solid, table.area, 1.0)
-    m = forces.moment / inertia
-    w = forces.shear / (2 * inertia)
+    inv_inertia = np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0)
+    n = forces.normal * np.where(solid, 1.0 / np.where(solid, table.area, 1.0), 0.0)
+    m = forces.moment * inv_inertia
+    w = forces.shear * (inv_inertia / 2)
     yna = table.neutral_axis
     u_top, u_bottom = table.top - yna, table.bottom - yna
-    s_top, s_bottom = n + m * u_top, n + m * u_bottom
+    s_top = m * u_top
+    s_top += n
+    s_bottom = m * u_bottom
+    s_bottom += n
     top_wins = np.abs(s_top) >= np.abs(s_bottom)
     best_u = np.where(top_wins, u_top, u_bottom)
-    best = np.where(top_wins, s_top * s_top, s_bottom * s_bottom)
-    best_c = best_u * best_u  # C = u^2 at the outer fibres: tau = 0 there
+    best = np.where(top_wins, s_top, s_bottom)
+    best *= best
+    shape = np.zeros_like(best)  # C - u^2 at the chosen fibre: zero at the outer (free) fibres
     for k in range(table.lower.shape[1]):
         cols = np.flatnonzero((table.n_chords > k) & solid)
         ua = table.lower[cols, k] - yna[cols]
@@ -145,29 +149,31 @@ def section_stresses(
         c = 2 * table.first_moment(table.upper[:, k])[cols] / table.thickness + ub * ub
         inner_top = table.n_chords[cols] > k + 1
         for end, inner in ((ua, np.full(len(cols), k > 0)), (ub, inner_top)):
-            at = cols[inner]
-            if len(at):
-                f = _quartic(end[inner], n[:, at], m[:, at], w[:, at], c[inner])
-                _keep_larger(best, best_u, best_c, np.s_[:, at], f, end[inner], c[inner])
-        rows, sub = np.nonzero(m[:, cols] ** 2 < 6 * w[:, cols] ** 2 * c)
+            if inner.any():
+                where = (slice(None), cols[inner])
+                f = _quartic(end[inner], n[where], m[where], w[where], c[inner])
+                _keep_larger(best, best_u, shape, where, f, end[inner], c[inner] - end[inner] ** 2)
+        every = len(cols) == len(table.x)
+        m_k, w_k = (m, w) if every else (m[:, cols], w[:, cols])
+        rows, sub = np.nonzero(np.abs(m_k) < np.abs(w_k) * np.sqrt(6 * c))
         if len(rows):
             at = cols[sub]
-            u, exists = interior_maximum(n[rows, at], m[rows, at], w[rows, at], c[sub])
+            n_, m_, w_, c_ = n[rows, at], m[rows, at], w[rows, at], c[sub]
+            u, exists = interior_maximum(n_, m_, w_, c_)
             u = np.clip(u, ua[sub], ub[sub])
-            f = np.where(exists, _quartic(u, n[rows, at], m[rows, at], w[rows, at], c[sub]), -1.0)
-            _keep_larger(best, best_u, best_c, (rows, at), f, u, c[sub])
-    sigma = n + m * best_u
-    tau = w * (best_c - best_u * best_u)
-    vm = np.where(solid, np.sqrt(np.maximum(best, 0.0)), 0.0)
+            f = np.where(exists, _quartic(u, n_, m_, w_, c_), -1.0)
+            _keep_larger(best, best_u, shape, (rows, at), f, u, c_ - u * u)
+    sigma = m * best_u
+    sigma += n
     return SectionStresses(
-        table, forces, vm, yna + best_u, np.where(solid, sigma, 0.0), np.where(solid, tau, 0.0),
-        near_holes(link, frame_joints, table),
+        table, forces, np.sqrt(best), yna + best_u, sigma, w * shape, near_holes(link, frame_joints, table),
     )
 
 
-def _keep_larger(best, best_u, best_c, where, f, u, c) -> None:
-    """Where ``f`` beats ``best[where]``, take f and its fibre offset u and chord constant c."""
+def _keep_larger(best, best_u, shape, where, f, u, u_shape) -> None:
+    """Where ``f`` beats ``best[where]``, take f, its fibre offset u and its C - u^2."""
     wins = f > best[where]
-    best[where] = np.where(wins, f, best[where])
-    best_u[where] = np.where(wins, u, best_u[where])
-    best_c[where] = np.where(wins, c, best_c[where])
+    if wins.any():
+        best[where] = np.where(wins, f, best[where])
+        best_u[where] = np.where(wins, u, best_u[where])
+        shape[where] = np.where(wins, u_shape, shape[where])
