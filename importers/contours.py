@@ -175,6 +175,10 @@ def _loops(rings: Rings, eps: float, report: Report, fixes: list[str]) -> list[L
     cross = xy[:, 0] * xy[after, 1] - xy[after, 0] * xy[:, 1]
     area = np.abs(np.bincount(ring, weights=cross, minlength=len(rings))) / 2
     solid = (counts >= 3) & (area > eps * report.size)
+    # A ring whose signed area vanishes may still enclose some (a figure eight): ask its hull.
+    for r in np.flatnonzero(~solid & (counts >= 3)).tolist():
+        hull = shapely.multipoints(xy[start[r]:start[r + 1]]).convex_hull
+        solid[r] = hull.area > eps * report.size
     if not solid.all():
         k = int(np.argmin(solid))
         fixes.append(

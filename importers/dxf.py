@@ -31,29 +31,21 @@ GAP_TOLERANCE = 1e-4
 MAX_BLOCK_DEPTH = 16
 _BINARY = b"AutoCAD Binary DXF"
 _VERTEX_SPLINE_FRAME = 16
+_SUPPORTED = {"LINE", "POINT", "CIRCLE", "ARC", "ELLIPSE", "LWPOLYLINE", "POLYLINE", "SPLINE", "INSERT"}
 
 
 def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
     """The curves and points of the DXF file ``path`` (its bytes ``data``); ``units`` for a unitless file."""
     fixes: list[str] = []
-    simple = SimpleEntities()
     if data.startswith(_BINARY):
-        doc = _recovering(path, fixes, lambda: ezdxf.readfile(path))
+        doc, simple = _ezdxf_only(path, fixes, lambda: ezdxf.readfile(path))
+    elif not ezdxf.is_dxf_file(str(path)):
+        raise SketchError(
+            "not a DXF file (no DXF SECTION at its start); export the sketch from CAD as DXF, or give "
+            "a .csv sketch"
+        )
     else:
-        if not ezdxf.is_dxf_file(str(path)):
-            raise SketchError(
-                "not a DXF file (no DXF SECTION at its start); export the sketch from CAD as DXF, or give "
-                "a .csv sketch"
-            )
-        try:
-            info = ezdxf.filemanagement.dxf_file_info(str(path))
-            text = data.decode(info.encoding, errors="surrogateescape")
-            simple, rest = split_entities(text)
-            doc = ezdxf.read(io.StringIO(rest))
-        except (DamagedDXF, DXFError, LookupError, UnicodeError) as damage:
-            fixes.append(f"the file is damaged ({damage}); read in ezdxf's recover mode")
-            simple = SimpleEntities()
-            doc = _recover(path, fixes)
+        doc, simple = _read_text(path, data, fixes)
     code = _insunits(doc)
     declared = unit_from_insunits(code)
     if code and declared is None:
@@ -80,12 +72,31 @@ def _recover(path: Path, fixes: list[str]):
     return doc
 
 
-def _recovering(path: Path, fixes: list[str], read):
+def _read_text(path: Path, data: bytes, fixes: list[str]):
+    """An ASCII DXF: the fast path's simple entities and ezdxf's document of the rest, or, if the file
+    is damaged, all of it from ezdxf's recover mode."""
     try:
-        return read()
-    except (DXFError, OSError, ValueError) as damage:
-        fixes.append(f"the file is damaged ({damage}); read in ezdxf's recover mode")
-        return _recover(path, fixes)
+        info = ezdxf.filemanagement.dxf_file_info(str(path))
+    except Exception as damage:  # noqa: BLE001 - on damaged input ezdxf raises many types, all meaning the same
+        return _damaged(path, fixes, f"{type(damage).__name__}: {damage}")
+    try:
+        simple, rest = split_entities(data.decode(info.encoding, errors="surrogateescape"))
+    except (DamagedDXF, LookupError) as damage:
+        return _damaged(path, fixes, str(damage))
+    return _ezdxf_only(path, fixes, lambda: ezdxf.read(io.StringIO(rest)), simple)
+
+
+def _ezdxf_only(path: Path, fixes: list[str], read, simple: SimpleEntities | None = None):
+    """``read()``'s document with the fast path's entities, or the recovered file if ezdxf fails."""
+    try:
+        return read(), simple or SimpleEntities()
+    except Exception as damage:  # noqa: BLE001 - on damaged input ezdxf raises many types, all meaning the same
+        return _damaged(path, fixes, f"{type(damage).__name__}: {damage}")
+
+
+def _damaged(path: Path, fixes: list[str], reason: str):
+    fixes.append(f"the file is damaged ({reason}); read in ezdxf's recover mode")
+    return _recover(path, fixes), SimpleEntities()
 
 
 def _insunits(doc) -> int:
@@ -151,22 +162,23 @@ class _Collector:
 
     def entity(self, e, insert: tuple[str, str] | None, depth: int) -> None:
         kind = e.dxftype()
-        layer = e.dxf.get("layer", "0")
-        if insert is not None and layer == "0":
-            layer = insert[1]  # block contents on layer 0 take the layer of the reference
-        if layer.lower() in self.hidden or e.dxf.get("invisible", 0):
-            self.ignored[f"{kind} (hidden layer)"] += 1
+        handler = getattr(self, f"_{kind.lower()}", None) if kind in _SUPPORTED else None
+        if handler is None:
+            self.ignored[kind] += 1
             return
-        handle = e.dxf.get("handle") if insert is None else insert[0]
-        origin: Origin = (kind if insert is None else f"{kind} in block reference", handle, layer, None)
         try:
-            handler = getattr(self, f"_{kind.lower()}", None)
-            if handler is None:
-                self.ignored[kind] += 1
-            else:
-                handler(e, origin, (handle, layer), depth)
-        except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError) as error:
-            raise SketchError(f"{geo.describe(origin)} cannot be read ({error}); redraw or explode it") from None
+            layer = e.dxf.get("layer", "0")
+            if insert is not None and layer == "0":
+                layer = insert[1]  # block contents on layer 0 take the layer of the reference
+            handle = e.dxf.get("handle") if insert is None else insert[0]
+            origin: Origin = (kind if insert is None else f"{kind} in block reference", handle, layer, None)
+            if layer.lower() in self.hidden or e.dxf.get("invisible", 0):
+                self.ignored[f"{kind} (hidden layer)"] += 1
+                return
+            handler(e, origin, (handle, layer), depth)
+        except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError, IndexError) as error:
+            where = f"{kind} (handle {e.dxf.get('handle', '?')})" if insert is None else f"{kind} in block reference {insert[0]}"
+            raise SketchError(f"{where} cannot be read ({error}); redraw or explode it") from None
 
     def _line(self, e, origin, _insert, _depth) -> None:
         s, t = e.dxf.start, e.dxf.end

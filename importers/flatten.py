@@ -35,7 +35,7 @@ from numpy.typing import NDArray
 
 from linkstress.curves import MIN_SEGMENTS_PER_TURN
 from linkstress.errors import SketchError
-from linkstress.importers.primitives import CurveSet, Polyline
+from linkstress.importers.primitives import CurveSet, Polyline, bulge_arcs
 
 RELATIVE_SAGITTA = 1e-4
 """Default chord tolerance of an arc, as a fraction of its own (major) radius: 223 vertices per turn."""
@@ -203,22 +203,6 @@ def _conics(curves: CurveSet, tolerance: Tolerance) -> Block:
 
 
 # -- polylines with bulges ---------------------------------------------------------------------
-
-
-def bulge_arcs(p0: NDArray[np.float64], p1: NDArray[np.float64], bulge: NDArray[np.float64]):
-    """Centre, radius, start angle and signed sweep [rad] of the arcs from p0 to p1 with ``bulge``.
-
-    bulge = tan(sweep / 4), positive counter-clockwise; the centre lies at distance
-    (c / 4)(1 / b - b) from the chord's midpoint along its left normal (c = chord length).
-    """
-    u = p1 - p0
-    c = np.hypot(*u.T)
-    left = np.column_stack([-u[:, 1], u[:, 0]]) / c[:, None]
-    centre = (p0 + p1) / 2 + left * ((c / 4) * (1 / bulge - bulge))[:, None]
-    sweep = 4 * np.arctan(bulge)
-    radius = c / (2 * np.abs(np.sin(sweep / 2)))
-    start = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
-    return centre, radius, start, sweep
 
 
 def _polylines(curves: CurveSet, tolerance: Tolerance) -> Block:

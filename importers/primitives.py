@@ -136,7 +136,7 @@ class CurveSet:
             boxes.append(np.concatenate([(chunk[:, :2] - half).min(0), (chunk[:, :2] + half).max(0)]))
         pts = [p.vertices for p in self.polylines] + [
             np.asarray([(v[0], v[1]) for v in s.control_points], float) for s in self.splines
-        ]
+        ] + [_bulge_extent(p) for p in self.polylines if p.bulges.any()]
         if pts:
             xy = np.concatenate(pts)
             boxes.append(np.concatenate([xy.min(0), xy.max(0)]))
@@ -144,6 +144,35 @@ class CurveSet:
             return None
         b = np.array(boxes)
         return float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()), float(b[:, 3].max())
+
+
+def bulge_arcs(p0: NDArray[np.float64], p1: NDArray[np.float64], bulge: NDArray[np.float64]):
+    """Centre, radius, start angle and signed sweep [rad] of the arcs from p0 to p1 with ``bulge``.
+
+    bulge = tan(sweep / 4), positive counter-clockwise; the centre lies at distance
+    (c / 4)(1 / b - b) from the chord's midpoint along its left normal (c = chord length).
+    """
+    u = p1 - p0
+    c = np.hypot(*u.T)
+    left = np.column_stack([-u[:, 1], u[:, 0]]) / c[:, None]
+    centre = (p0 + p1) / 2 + left * ((c / 4) * (1 / bulge - bulge))[:, None]
+    sweep = 4 * np.arctan(bulge)
+    radius = c / (2 * np.abs(np.sin(sweep / 2)))
+    start = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
+    return centre, radius, start, sweep
+
+
+def _bulge_extent(p: Polyline) -> NDArray[np.float64]:
+    """Corners of boxes around the polyline's bulged segments (centre +- radius)."""
+    v = p.vertices
+    nxt = np.roll(v, -1, axis=0)
+    curved = (p.bulges != 0) & np.any(v != nxt, axis=1)
+    if not p.closed:
+        curved[-1] = False
+    if not curved.any():
+        return np.empty((0, 2))
+    centre, radius, _, _ = bulge_arcs(v[curved], nxt[curved], p.bulges[curved])
+    return np.concatenate([centre - radius[:, None], centre + radius[:, None]])
 
 
 def _finite(values: ArrayLike, width: int | None, origins: list[Origin]) -> NDArray[np.float64]:

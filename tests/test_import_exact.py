@@ -52,6 +52,20 @@ def sector(cx: float, cy: float, r: float, start: float, sweep: float) -> Part:
     return Part(area, (cx + d * math.cos(mid), cy + d * math.sin(mid)), about_centre - area * d * d)
 
 
+def half_ellipse_right(cx: float, cy: float, p: float, q: float) -> Part:
+    """The half of the ellipse with semi-axes p (along x) and q (along y) where x > cx:
+    A = pi p q / 2, centroid 4 p / (3 pi) right of the centre, J about the centre pi p q (p^2 + q^2) / 8."""
+    area = math.pi * p * q / 2
+    d = 4 * p / (3 * math.pi)
+    return Part(area, (cx + d, cy), math.pi * p * q * (p * p + q * q) / 8 - area * d * d)
+
+
+def regular_polygon(cx: float, cy: float, r: float, n: int) -> Part:
+    """Regular n-gon of circumradius r: A = (n / 2) r^2 sin(2 pi / n), J = A r^2 (2 + cos(2 pi / n)) / 6."""
+    area = n * r * r * math.sin(2 * math.pi / n) / 2
+    return Part(area, (cx, cy), area * r * r * (2 + math.cos(2 * math.pi / n)) / 6)
+
+
 def combine(*parts: Part) -> Part:
     area = sum(p.area for p in parts)
     cx = sum(p.area * p.centroid[0] for p in parts) / area
@@ -107,3 +121,17 @@ def test_combine_of_a_plate_with_a_hole_matches_shapely():
     assert abs(fine.area - exact.area) < 1e-9 * exact.area
     assert np.allclose(fine.centroid, exact.centroid, rtol=0, atol=1e-9)
     assert abs(fine.polar - exact.polar) < 1e-9 * exact.polar
+
+
+def test_half_ellipse_and_regular_polygon_formulas_match_shapely():
+    t = np.linspace(-math.pi / 2, math.pi / 2, 400_001)
+    half = area_properties(Polygon(np.column_stack([3 + 0.5 * np.cos(t), 1 + 2 * np.sin(t)])))
+    exact = half_ellipse_right(3, 1, 0.5, 2)
+    assert abs(half.area - exact.area) < 1e-9 * exact.area
+    assert np.allclose(half.centroid, exact.centroid, rtol=0, atol=1e-9)
+    assert abs(half.polar - exact.polar) < 1e-9 * exact.polar
+    phi = 2 * math.pi * np.arange(6) / 6
+    hexagon = area_properties(Polygon(np.column_stack([1 + 2 * np.cos(phi), -1 + 2 * np.sin(phi)])))
+    exact = regular_polygon(1, -1, 2, 6)
+    assert abs(hexagon.area - exact.area) < 1e-12 * exact.area
+    assert abs(hexagon.polar - exact.polar) < 1e-12 * exact.polar

@@ -34,6 +34,10 @@ def write(path: Path) -> None:
         for x in (0.0, length - 2 * END_TO_JOINT):
             msp.add_circle((x, y), HOLE_DIAMETER / 2, dxfattribs={"layer": name})
             msp.add_point((x, y), dxfattribs={"layer": name})
+    # ezdxf lists the CLASS definitions of the entity types in use from a set, in an order that
+    # follows Python's hash seed: add them now, sorted, so the file is the same on every run.
+    doc.classes.add_required_classes(doc.dxfversion)
+    doc.classes.classes = dict(sorted(doc.classes.classes.items()))
     doc.saveas(path)
 
 
