@@ -22,7 +22,7 @@ from ezdxf.lldxf.const import DXFError
 from linkstress.errors import SketchError
 from linkstress.importers import dxf_geometry as geo
 from linkstress.importers.dxf_tags import DamagedDXF, SimpleEntities, split_entities
-from linkstress.importers.primitives import CurveSet, Origin, RawSketch
+from linkstress.importers.primitives import CurveSet, Origin, RawSketch, with_damage
 from linkstress.importers.units import choose_unit, insunits_label, unit_from_insunits
 
 GAP_TOLERANCE = 1e-4
@@ -46,6 +46,19 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
         )
     else:
         doc, simple = _read_text(path, data, fixes)
+    try:
+        unit, source = _unit(doc, units)
+        curves = CurveSet()
+        ignored: Counter = Counter()
+        hidden = _hidden_layers(doc)
+        _add_simple(curves, simple, hidden, ignored)
+        _Collector(curves, hidden, ignored).entities(doc.modelspace(), None, 0)
+    except SketchError as error:
+        raise SketchError(with_damage(str(error), fixes)) from None
+    return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
+
+
+def _unit(doc, units: str | None):
     code = _insunits(doc)
     declared = unit_from_insunits(code)
     if code and declared is None:
@@ -53,13 +66,7 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
             f"$INSUNITS = {code} ({insunits_label(code)}) has no conversion to metres; "
             "save the drawing in mm, cm, m, in or ft"
         )
-    unit, source = choose_unit(declared, "$INSUNITS", units, default=None)
-    curves = CurveSet()
-    ignored: Counter = Counter()
-    hidden = _hidden_layers(doc)
-    _add_simple(curves, simple, hidden, ignored)
-    _Collector(curves, hidden, ignored).entities(doc.modelspace(), None, 0)
-    return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
+    return choose_unit(declared, "$INSUNITS", units, default=None)
 
 
 def _recover(path: Path, fixes: list[str]):

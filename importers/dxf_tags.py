@@ -66,7 +66,7 @@ def split_entities(text: str) -> tuple[SimpleEntities, str]:
     try:
         codes = np.fromiter(map(int, lines[0::2]), np.int64, len(lines) // 2)
     except ValueError:
-        bad = next(k for k, c in enumerate(lines[0::2]) if not c.strip().lstrip("-").isdigit())
+        bad = _first_not_int(lines[0::2])
         raise DamagedDXF(f"line {2 * bad + 1}: {lines[2 * bad]!r} is not a group code") from None
     values = lines[1::2]
     if not len(codes) or codes[-1] != 0 or values[-1].strip() != "EOF":
@@ -89,6 +89,15 @@ def split_entities(text: str) -> tuple[SimpleEntities, str]:
     edges = np.flatnonzero(np.diff(np.concatenate([[False], keep])))
     rest = "\n".join(itertools.chain.from_iterable(lines[2 * a:2 * b] for a, b in zip(edges[0::2], edges[1::2])))
     return found, rest
+
+
+def _first_not_int(texts: list[str]) -> int:
+    for k, text in enumerate(texts):
+        try:
+            int(text)
+        except ValueError:
+            return k
+    raise AssertionError("every text is an integer")
 
 
 def _ranks(lengths: NDArray[np.intp]) -> NDArray[np.intp]:

@@ -142,7 +142,8 @@ def _read_old(lines: list[str], separator: str, units: str | None) -> RawSketch:
     if joints:
         curves.add_points(joints, [("Point", None, None, n) for n in joint_lines])
     assumed = (unit_named(INVENTOR_UNITS, "units"),
-               "assumed: the old iLogic CSV carries no units and Inventor's API reports centimetres")
+               "assumed: the old iLogic CSV carries no units and Inventor's API reports centimetres; "
+               "pass --units to say otherwise")
     unit, source = choose_unit(None, "the old iLogic CSV", units, default=assumed)
     return RawSketch(curves, unit, source, "iLogic CSV (original format)", {}, (), OLD_GAP_TOLERANCE)
 

@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from linkstress.errors import SketchError
 from linkstress.importers.units import DrawingUnit
 
-Origin = tuple[str, "str | None", "str | None", "int | None"]
+Origin = tuple[str, str | None, str | None, int | None]
 """Where a curve or point came from: (kind, DXF handle, layer, CSV line number)."""
 
 
@@ -144,6 +144,12 @@ class CurveSet:
             return None
         b = np.array(boxes)
         return float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()), float(b[:, 3].max())
+
+
+def with_damage(message: str, fixes: tuple[str, ...] | list[str]) -> str:
+    """``message``, noting that the file was damaged (and read in recover mode) if it was."""
+    damage = next((fix for fix in fixes if fix.startswith("the file is damaged")), None)
+    return f"{message} (note: {damage})" if damage else message
 
 
 def bulge_arcs(p0: NDArray[np.float64], p1: NDArray[np.float64], bulge: NDArray[np.float64]):

@@ -25,7 +25,7 @@ from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
 from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.ilogic_csv import read_csv
-from linkstress.importers.primitives import RawSketch, describe
+from linkstress.importers.primitives import RawSketch, describe, with_damage
 from linkstress.materials import Material
 from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 
@@ -102,7 +102,7 @@ class Sketch:
 
 def read_sketch(path: str | Path, units: str | None = None, tolerance: float | None = None,
                 sagitta: float | None = None) -> Sketch:
-    """Read the DXF or CSV sketch at ``path`` (by suffix, else by content).
+    """Read the DXF or CSV sketch at ``path`` (by its suffix .dxf or .csv, else by its content).
 
     ``units``: the unit of a file that does not say (DXF ``$INSUNITS`` 0, CSV without header units);
     ``tolerance``: the endpoint gap tolerance as a fraction of the drawing's size (default 1e-4 for
@@ -119,18 +119,19 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
         raw = read_dxf(path, data, units) if _is_dxf(path, data) else read_csv(path, data, units)
         return _build(path, raw, tolerance, sagitta)
     except SketchError as error:
-        damaged = f" (note: {raw.fixes[0]})" if raw is not None and raw.fixes and "damaged" in raw.fixes[0] else ""
-        raise SketchError(f"{path.name}: {error}{damaged}") from None
+        message = str(error) if raw is None else with_damage(str(error), raw.fixes)
+        raise SketchError(f"{path.name}: {message}") from None
 
 
 def _is_dxf(path: Path, data: bytes) -> bool:
     suffix = path.suffix.lower()
     if suffix == ".dxf":
         return True
-    if suffix in (".csv", ".txt"):
+    if suffix == ".csv":
         return False
     head = data.lstrip()[:64]
-    return head.startswith(b"AutoCAD Binary DXF") or head.split(b"\n")[:2] == [b"0", b"SECTION"] or head[:3] == b"999"
+    first_two = [line.strip() for line in head.splitlines()[:2]]
+    return head.startswith(b"AutoCAD Binary DXF") or first_two == [b"0", b"SECTION"] or first_two[:1] == [b"999"]
 
 
 def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float | None) -> Sketch:

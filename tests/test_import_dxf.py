@@ -16,7 +16,9 @@ from ezdxf.math import rational_bspline_from_arc
 
 from linkstress.errors import SketchError
 from linkstress.importers import HOLE_RULE, POINT_RULE, read_sketch
-from test_import_exact import assert_matches, combine, ellipse, rectangle, scaled, sector, stadium_plate
+from test_import_exact import (
+    assert_matches, combine, ellipse, half_ellipse_right, rectangle, scaled, sector, stadium_plate,
+)
 
 REL = 1e-6
 
@@ -228,6 +230,16 @@ def test_polylines_2d_with_bulges_and_3d_are_read(tmp_path):
     exact = combine(rectangle(0, 0, 4, 2), sector(4, 1, 1, -math.pi / 2, math.pi), sector(0, 1, 1, math.pi / 2, math.pi),
                     rectangle(1, 0.5, 2, 1.5).hole())
     assert_matches(link.outline, exact, REL, 6)
+
+
+def test_a_partial_ellipse_closes_an_outline_with_a_line(tmp_path):
+    # Major axis (0, 2), ratio 0.5: minor axis Z x major x 0.5 = (-1, 0); parameters pi..2 pi run
+    # from (0, -2) through (1, 0) to (0, 2), the half ellipse right of the line x = 0.
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    msp.add_ellipse((0, 0), (0, 2), 0.5, start_param=math.pi, end_param=2 * math.pi)
+    msp.add_line((0, 2), (0, -2))
+    assert_matches(read_sketch(save(doc, tmp_path)).link().outline, half_ellipse_right(0, 0, 1, 2), REL, 4)
 
 
 def test_a_fit_point_spline_is_evaluated_from_the_spline_itself(tmp_path):

@@ -169,3 +169,12 @@ def test_a_link_inside_a_hole_is_a_link_of_its_own(tmp_path):
     sketch = read_sketch(save(doc, tmp_path))
     assert sketch.link("frame").outline.area == pytest.approx(16 - math.pi * 2.25, rel=1e-12)
     assert sketch.link("disc").outline.area == pytest.approx(math.pi, rel=1e-12)
+
+
+def test_a_sketch_without_a_known_suffix_is_read_by_its_content(tmp_path):
+    doc = ezdxf.new("R2013", units=6)
+    rectangle_lines(doc.modelspace(), 0, 0, 2, 1)
+    doc.saveas(tmp_path / "bar.dat")
+    assert read_sketch(tmp_path / "bar.dat").format.startswith("DXF")
+    (tmp_path / "bar.txt").write_text("# linkstress-sketch v1 units=m\ncircle, 0, 0, 1\n")
+    assert read_sketch(tmp_path / "bar.txt").format == "linkstress-sketch v1 CSV"
