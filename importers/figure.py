@@ -45,8 +45,9 @@ def _outline(ax, link) -> None:
         for k, (p, rule) in enumerate(zip(link.joints, link.joint_rules)):
             ax.annotate(f"{k} ({rule})", p, textcoords="offset points", xytext=(4, 4), fontsize=7)
     if len(link.joints) >= 2:
-        frame = link.profile(1.0).frame(0, 1)
-        lo, hi = link.profile(1.0).x_extent(0, 1)
+        profile = link.profile(1.0)
+        frame = profile.frame(0, 1)
+        lo, hi = profile.x_extent(0, 1)
         axis = frame.to_global(np.array([[lo, 0.0], [hi, 0.0]]))
         ax.plot(*axis.T, "--", color="tab:red", lw=0.8, zorder=4, label="member axis")
     ax.set_aspect("equal")
@@ -61,6 +62,7 @@ def _bounds(ax, link) -> None:
         ax.set_axis_off()
         return
     x, upper, lower = link.profile(1.0).bounds(0, 1).polyline()
+    ax.fill_between(x, lower, upper, color="0.9")
     ax.plot(x, upper, color="tab:green", lw=1, label="U(x)")
     ax.plot(x, lower, color="tab:purple", lw=1, label="L(x)")
     ax.axhline(0.0, color="tab:red", ls="--", lw=0.8)

@@ -183,7 +183,8 @@ def _conics(curves: CurveSet, tolerance: Tolerance) -> Block:
     rows = np.concatenate(curves.conics)
     centre, major, minor = rows[:, 0:2], rows[:, 2:4], rows[:, 4:6]
     start, sweep, closed = rows[:, 6], rows[:, 7], rows[:, 8] > 0
-    n = segment_counts(np.hypot(*major.T), sweep, tolerance)
+    # The step follows the larger semi-axis (a damaged file may have a "minor" axis longer than the major).
+    n = segment_counts(np.maximum(np.hypot(*major.T), np.hypot(*minor.T)), sweep, tolerance)
     counts = np.where(closed, n, n + 2)
     out = np.empty((int(counts.sum()), 2))
     first = np.cumsum(counts) - counts

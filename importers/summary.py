@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from shapely.geometry import Polygon
 
 from linkstress.importers.sketch import ImportedLink, Sketch
 from linkstress.tables import format_table
@@ -23,7 +24,7 @@ def link_json(link: ImportedLink) -> dict:
     props = profile.area_properties
     holes = []
     for ring, diameter in zip(link.outline.interiors, link.hole_diameters_m):
-        hole = type(link.outline)(ring)
+        hole = Polygon(ring)
         holes.append({
             "centroid_m": [hole.centroid.x, hole.centroid.y],
             "area_m2": hole.area,
