@@ -95,3 +95,35 @@ def test_an_unwritable_output_exits_2_and_leaves_no_file(tmp_path):
     assert result.returncode == 2
     assert result.stderr.startswith("linkstress: error: cannot write 'no/such/folder/x.png'")
     assert list(tmp_path.iterdir()) == []
+
+
+def _crossing(tmp_path):
+    doc = ezdxf.new("R2013", units=6)
+    doc.modelspace().add_lwpolyline([(0, 0), (2, 0), (2, 1), (0, 1)], close=True)
+    doc.modelspace().add_lwpolyline([(1, 0.5), (3, 0.5), (3, 2), (1, 2)], close=True)
+    return save(doc, tmp_path), "outlines cross or touch at"
+
+
+def _empty(tmp_path):
+    doc = ezdxf.new("R2013", units=6)
+    doc.modelspace().add_text("nothing")
+    return save(doc, tmp_path), "no outline: the drawing has no curves it reads"
+
+
+def _truncated(tmp_path):
+    doc = ezdxf.new("R2013", units=4)
+    draw(doc.modelspace(), plate_entities())
+    data = save(doc, tmp_path).read_bytes()
+    (tmp_path / "sketch.dxf").write_bytes(data[:data.index(b"ENTITIES") + 300])
+    return tmp_path / "sketch.dxf", "(note: the file is damaged"
+
+
+@pytest.mark.parametrize("make", [_crossing, _empty, _truncated])
+def test_more_bad_sketches_exit_2_in_process_with_one_line(tmp_path, capsys, monkeypatch, make):
+    sketch, expected = make(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    assert main(["import", str(sketch), "--json", "out.json", "--plot", "out.png"]) == 2
+    captured = capsys.readouterr()
+    assert captured.err.startswith("linkstress: error: sketch.dxf: ") and expected in captured.err
+    assert captured.err.count("\n") == 1 and captured.out == ""
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sketch.dxf"]
