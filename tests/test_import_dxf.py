@@ -17,7 +17,7 @@ from ezdxf.math import rational_bspline_from_arc
 from linkstress.errors import SketchError
 from linkstress.importers import HOLE_RULE, POINT_RULE, read_sketch
 from test_import_exact import (
-    assert_matches, combine, ellipse, half_ellipse_right, rectangle, scaled, sector, stadium_plate,
+    assert_matches, combine, disc, ellipse, half_ellipse_right, rectangle, scaled, sector, stadium_plate,
 )
 
 REL = 1e-6
@@ -313,3 +313,24 @@ def test_a_pin_hole_in_a_long_bar_stays_a_few_hundred_vertices(tmp_path):
     assert len(link.outline.interiors[0].coords) - 1 == 223
     assert link.outline.area == pytest.approx(0.6 - math.pi * 1e-4, rel=1e-12)
 
+
+
+@pytest.mark.parametrize("version, fmt", [("R12", "asc"), ("R2000", "asc"), ("R2018", "asc"), ("R2013", "bin")])
+def test_dxf_versions_and_binary_dxf_read_alike(tmp_path, version, fmt):
+    # A 4 x 2 stadium (closed 2D POLYLINE with bulge-1 ends), a pin hole r 0.25 with its POINT, and
+    # a half-disc hole r 0.25 (ARC and LINE). R12 stores no $INSUNITS: there the units are given.
+    doc = ezdxf.new(version)
+    msp = doc.modelspace()
+    msp.add_polyline2d([(0, 0, 0, 0, 0), (4, 0, 0, 0, 1), (4, 2, 0, 0, 0), (0, 2, 0, 0, 1)], format="xyseb", close=True)
+    msp.add_circle((1, 1), 0.25)
+    msp.add_point((1, 1))
+    msp.add_arc((3, 1), 0.25, 0, 180)
+    msp.add_line((2.75, 1), (3.25, 1))
+    if version != "R12":
+        doc.header["$INSUNITS"] = 6
+    doc.saveas(tmp_path / "v.dxf", fmt=fmt)
+    link = read_sketch(tmp_path / "v.dxf", units="m" if version == "R12" else None).link()
+    exact = combine(rectangle(0, 0, 4, 2), sector(4, 1, 1, -math.pi / 2, math.pi), sector(0, 1, 1, math.pi / 2, math.pi),
+                    disc(1, 1, 0.25).hole(), sector(3, 1, 0.25, 0, math.pi).hole())
+    assert_matches(link.outline, exact, REL, 6)
+    assert link.joints.tolist() == [[1.0, 1.0]]
