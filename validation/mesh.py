@@ -90,7 +90,7 @@ class PlaneMesh:
 
     @property
     def n_elements(self) -> int:
-        return self.mesh.t.shape[1]
+        return int(self.mesh.t.shape[1])
 
 
 def mesh_region(

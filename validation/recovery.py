@@ -18,11 +18,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
-from scipy.sparse.linalg import splu
 from skfem import BilinearForm, ElementTriP2, InteriorFacetBasis, asm
 
 from linkstress.validation.errors import FEAError
-from linkstress.validation.plane_stress import PlaneStressModel, plane_stress_matrix
+from linkstress.validation.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix
 
 OUTSIDE_TOLERANCE = 1e-3
 """Points this far outside an element (in its reference coordinates) still count as on it."""
@@ -54,7 +53,7 @@ def stress_recovery(model: PlaneStressModel) -> StressRecovery:
     """Assemble and factorise the projection of ``model``'s stresses onto continuous P2."""
     mass = asm(BilinearForm(lambda u, v, w: u * v), model.scalar).tocsc()
     projections = tuple(asm(form, model.basis, model.scalar).tocsr() for form in model.stress_forms())
-    return StressRecovery(model, projections, splu(mass, permc_spec="MMD_AT_PLUS_A"))
+    return StressRecovery(model, projections, factorise_spd(mass))
 
 
 def interpolation_matrix(model: PlaneStressModel, points: NDArray[np.float64]) -> sp.csr_matrix:
@@ -173,5 +172,5 @@ def cut_integrator(model: PlaneStressModel, cuts: tuple[NDArray[np.intp], ...]) 
         (model.thickness * sides[0].dx.ravel(), (np.repeat(owner, n_qp), np.arange(len(facets) * n_qp))),
         shape=(len(cuts), len(facets) * n_qp),
     )
-    y = sides[0].global_coordinates().value[1].ravel()
+    y = np.asarray(sides[0].global_coordinates())[1].ravel()
     return CutIntegrator(weights, y, stress)

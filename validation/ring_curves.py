@@ -13,8 +13,11 @@ the curves it came from:
   ``SMOOTH_TURN`` at each vertex, is an interpolating spline through its vertices;
 - every other chord stays a straight line.
 
-A circle through three consecutive vertices is their circumcircle; consecutive vertices belong to
-one circle when their circumcircles agree within ``CIRCLE_TOLERANCE`` of the radius.
+A whole ring is a circle when a least-squares circle through its vertices (Kasa's algebraic fit)
+has them all within ``CIRCLE_TOLERANCE`` of its radius. Within a ring, the circle through three
+consecutive vertices is their circumcircle; consecutive vertices belong to one circle when their
+circumcircles agree within ``CIRCLE_TOLERANCE`` of the radius plus the circumcentre's rounding
+error, which grows as 1 / (angle between chords)^2 for very fine flattening.
 """
 
 from __future__ import annotations
@@ -27,6 +30,8 @@ from numpy.typing import NDArray
 
 CIRCLE_TOLERANCE = 1e-6
 """Relative agreement of circumcentres and radii for vertices on one circle."""
+ROUNDING = 1e-14
+"""Relative rounding error of a circumcentre computed from vertices of that relative precision."""
 FINE_SAGITTA = 1e-3
 """Largest chord sagitta, relative to the radius, of a flattened (not a polygonal) circle."""
 MIN_ARC_CHORDS = 4
@@ -79,11 +84,12 @@ def ring_curves(coords: NDArray[np.float64], short: float) -> Circle | tuple[Pie
     xy = np.asarray(coords, float)
     if len(xy) > 1 and np.array_equal(xy[0], xy[-1]):
         xy = xy[:-1]
-    centres, radii = _circumcircles(xy)
-    same = _same_circle(centres, radii)
-    if same.all() and _finely_flattened(xy, radii):
+    centre, radius, spread = _fitted_circle(xy)
+    if spread <= CIRCLE_TOLERANCE * radius and _finely_flattened(xy, radius):
         area = abs(_signed_area(xy))
-        return Circle(_centroid(xy), math.sqrt(area / math.pi))
+        return Circle(centre, math.sqrt(area / math.pi))
+    centres, radii = _circumcircles(xy)
+    same = _same_circle(xy, centres, radii)
     arc_id, arc_centres = _arc_edges(xy, centres, radii, same)
     breaks = _breaks(xy, arc_id, arc_centres, short)
     return tuple(_pieces(xy, breaks, arc_id, arc_centres))
@@ -106,22 +112,36 @@ def _circumcircles(xy: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArra
     return centres, radii
 
 
-def _same_circle(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.bool_]:
-    """same[k]: vertices k and k + 1 have one circumcircle (within ``CIRCLE_TOLERANCE``)."""
-    nxt_c, nxt_r = np.roll(centres, -1, axis=0), np.roll(radii, -1)
-    scale = np.minimum(radii, nxt_r)
-    with np.errstate(invalid="ignore"):
+def _same_circle(xy, centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.bool_]:
+    """same[k]: vertices k and k + 1 have one circumcircle (within ``CIRCLE_TOLERANCE`` and rounding)."""
+    chord = np.hypot(*(np.roll(xy, -1, axis=0) - xy).T)
+    magnitude = np.abs(xy).max()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        turn = (chord + np.roll(chord, 1)) / (2 * radii)
+        tolerance = CIRCLE_TOLERANCE * radii + ROUNDING * magnitude / (turn * turn)
+        allowed = np.minimum(tolerance, np.roll(tolerance, -1))
+        nxt_c, nxt_r = np.roll(centres, -1, axis=0), np.roll(radii, -1)
         gap = np.hypot(*(centres - nxt_c).T)
-        return np.isfinite(scale) & (gap <= CIRCLE_TOLERANCE * scale) & (
-            np.abs(radii - nxt_r) <= CIRCLE_TOLERANCE * scale
+        return (
+            np.isfinite(radii) & np.isfinite(nxt_r) & (gap <= allowed) & (np.abs(radii - nxt_r) <= allowed)
         )
 
 
-def _finely_flattened(xy: NDArray[np.float64], radii: NDArray[np.float64]) -> bool:
+def _fitted_circle(xy: NDArray[np.float64]) -> tuple[NDArray[np.float64], float, float]:
+    """Kasa's least-squares circle through ``xy``: centre, mean radius, spread of the vertex radii."""
+    mean = xy.mean(axis=0)
+    d = xy - mean
+    rows = np.column_stack([d, np.ones(len(d))])
+    (a, b, _), *_ = np.linalg.lstsq(rows, (d * d).sum(axis=1), rcond=None)
+    centre = mean + np.array([a, b]) / 2
+    r = np.hypot(*(xy - centre).T)
+    return centre, float(r.mean()), float(r.max() - r.min())
+
+
+def _finely_flattened(xy: NDArray[np.float64], radius: float) -> bool:
     chord = np.hypot(*(np.roll(xy, -1, axis=0) - xy).T)
-    r = float(np.median(radii))
-    sagitta = r - np.sqrt(np.maximum(r * r - chord * chord / 4, 0.0))
-    return bool((sagitta <= FINE_SAGITTA * r).all())
+    sagitta = radius - np.sqrt(np.maximum(radius * radius - chord * chord / 4, 0.0))
+    return bool((sagitta <= FINE_SAGITTA * radius).all())
 
 
 def _arc_edges(xy, centres, radii, same) -> tuple[NDArray[np.intp], list[NDArray[np.float64]]]:
@@ -135,12 +155,12 @@ def _arc_edges(xy, centres, radii, same) -> tuple[NDArray[np.intp], list[NDArray
     # ends[i] .. ends[i + 1] (from the vertex before the run to the vertex after it).
     for a, b in zip(ends, np.roll(ends, -1)):
         run = (a + 1 + np.arange((b - a) % n or n)) % n
-        edges = np.unique(np.concatenate([[a], run]))
+        edges = np.concatenate([[a], run])[:n]
         r = float(np.median(radii[run]))
         fine = math.isfinite(r) and bool((chord[edges] <= 2 * r * math.sqrt(2 * FINE_SAGITTA)).all())
         if len(edges) >= MIN_ARC_CHORDS and fine and (arc_id[edges] == -1).all():
             arc_id[edges] = len(arc_centres)
-            arc_centres.append(centres[run].mean(axis=0))
+            arc_centres.append(_fitted_circle(xy[np.concatenate([edges, [(edges[-1] + 1) % n]])])[0])
     return arc_id, arc_centres
 
 
@@ -212,13 +232,3 @@ def _pieces(xy, breaks, arc_id, arc_centres):
 def _signed_area(xy: NDArray[np.float64]) -> float:
     x, y = xy[:, 0] - xy[0, 0], xy[:, 1] - xy[0, 1]
     return 0.5 * float((x * np.roll(y, -1) - np.roll(x, -1) * y).sum())
-
-
-def _centroid(xy: NDArray[np.float64]) -> NDArray[np.float64]:
-    x0 = xy[0]
-    x, y = xy[:, 0] - x0[0], xy[:, 1] - x0[1]
-    cross = x * np.roll(y, -1) - np.roll(x, -1) * y
-    a = cross.sum() / 2
-    cx = ((x + np.roll(x, -1)) * cross).sum() / (6 * a)
-    cy = ((y + np.roll(y, -1)) * cross).sum() / (6 * a)
-    return x0 + np.array([cx, cy])

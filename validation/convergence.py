@@ -1,0 +1,160 @@
+"""Mesh convergence: a refinement study of nominal stresses with a Richardson estimate of the error.
+
+The link is solved on three (or more) meshes, each ``ratio`` times finer than the last. The
+quantities are the von Mises stresses at given nominal points (fibres of the comparison stations).
+A result is called converged when they change by less than ``tolerance`` (0.5 %) between the two
+finest meshes, relative to the largest of them at that position.
+
+The discretisation error of the finest mesh is estimated by Richardson extrapolation with the
+observed order of accuracy, following Celik et al., "Procedure for estimation and reporting of
+uncertainty due to discretization in CFD applications", J. Fluids Eng. 130 (2008) 078001, eqs. 1-7
+(representative spacing h = sqrt(area / elements), so unequal refinement ratios are allowed).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from linkstress.loads import LinkLoadCase
+from linkstress.profile import LinkProfile
+from linkstress.validation.errors import FEAError
+from linkstress.validation.link_fea import LinkFEAResult, solve_link
+from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.recovery import von_mises
+
+CONVERGED_CHANGE = 0.005
+ORDER_ITERATIONS = 50
+
+
+@dataclass(frozen=True)
+class RichardsonEstimate:
+    """Per quantity: observed ``order`` p, ``extrapolated`` value, ``error`` = |extrapolated - finest|.
+
+    ``gci``: Celik's fine-grid convergence index 1.25 |phi_1 - phi_2| / (r21^p - 1), in the
+    quantity's units. ``determined`` is False where the three values do not converge monotonically
+    (a change of sign or no change): there the order is 0, the extrapolation is the finest value and
+    ``error`` and ``gci`` fall back to the last change |phi_1 - phi_2|.
+    """
+
+    order: NDArray[np.float64]
+    extrapolated: NDArray[np.float64]
+    error: NDArray[np.float64]
+    gci: NDArray[np.float64]
+    determined: NDArray[np.bool_]
+
+
+def richardson(values: ArrayLike, spacing: ArrayLike) -> RichardsonEstimate:
+    """Richardson estimate from ``values`` (3, ...) on meshes of representative ``spacing`` (3,) [m].
+
+    Any order of the three meshes; the finest (smallest spacing) is phi_1 (Celik et al. eqs. 3-7).
+    """
+    phi = np.asarray(values, float)
+    h = np.asarray(spacing, float)
+    if phi.shape[0] != 3 or h.shape != (3,):
+        raise ValueError(f"Richardson needs three meshes, got values {phi.shape} and spacing {h.shape}")
+    order = np.argsort(h)
+    h1, h2, h3 = h[order]
+    phi1, phi2, phi3 = phi[order]
+    if not h1 < h2 < h3:
+        raise ValueError(f"the three mesh spacings must differ, got {h.tolist()}")
+    r21, r32 = h2 / h1, h3 / h2
+    e21, e32 = phi2 - phi1, phi3 - phi2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = e32 / e21
+        determined = np.isfinite(ratio) & (ratio > 0) & (e21 != 0)
+        s = np.sign(np.where(determined, ratio, 1.0))
+        log_ratio = np.log(np.abs(np.where(determined, ratio, 2.0)))
+        p = np.abs(log_ratio) / math.log(r21)
+        for _ in range(ORDER_ITERATIONS):
+            q = np.log((r21**p - s) / (r32**p - s))
+            p = np.abs(log_ratio + q) / math.log(r21)
+        determined &= np.isfinite(p) & (p > 0)
+        p = np.where(determined, p, 0.0)
+        gain = np.where(determined, r21**p - 1, 1.0)
+        extrapolated = np.where(determined, phi1 + (phi1 - phi2) / gain, phi1)
+    change = np.abs(e21)
+    error = np.where(determined, np.abs(extrapolated - phi1), change)
+    gci = np.where(determined, 1.25 * change / gain, change)
+    return RichardsonEstimate(p, extrapolated, error, gci, determined)
+
+
+@dataclass(frozen=True)
+class ConvergenceStudy:
+    """Nominal von Mises ``values`` (levels, P, Q) [Pa] on ever finer meshes, coarsest first.
+
+    ``spacing`` (levels,) [m]: sqrt(area / elements); ``change`` (P,): largest change between the
+    two finest levels over the largest finest value, per position; ``richardson`` from the three
+    finest levels; ``finest``: the finest level's full result.
+    """
+
+    settings: tuple[MeshSettings, ...]
+    spacing: NDArray[np.float64]
+    dofs: NDArray[np.int64]
+    seconds: NDArray[np.float64]
+    values: NDArray[np.float64]
+    change: NDArray[np.float64]
+    tolerance: float
+    richardson: RichardsonEstimate
+    finest: LinkFEAResult
+
+    @property
+    def converged(self) -> bool:
+        return bool((self.change < self.tolerance).all())
+
+    @property
+    def relative_error(self) -> NDArray[np.float64]:
+        """Richardson error estimate (P,) of the finest mesh over its largest nominal value, per position."""
+        return _relative(self.richardson.error, self.values[-1])
+
+
+def convergence_study(
+    link: LinkProfile,
+    loads: LinkLoadCase,
+    settings: MeshSettings,
+    points: ArrayLike,
+    levels: int = 3,
+    ratio: float = 1.5,
+    tolerance: float = CONVERGED_CHANGE,
+) -> ConvergenceStudy:
+    """Solve ``link`` on ``levels`` meshes from ``settings``, each ``ratio`` finer, and compare the
+    von Mises stresses at the nominal ``points`` (Q, 2) [m, member frame of the load case]."""
+    if levels < 3:
+        raise FEAError(f"a convergence study needs at least three mesh levels, got {levels}")
+    if not ratio > 1:
+        raise FEAError(f"the refinement ratio must be > 1, got {ratio}")
+    points = np.asarray(points, float).reshape(-1, 2)
+    area = link.area
+    meshes, spacing, dofs, seconds, values = [], [], [], [], []
+    result = None
+    for level in range(levels):
+        level_settings = settings.refined(ratio**level)
+        result = solve_link(link, loads, level_settings)
+        meshes.append(level_settings)
+        spacing.append(math.sqrt(area / result.n_elements))
+        dofs.append(result.dofs)
+        seconds.append(result.mesh_seconds + result.solve_seconds)
+        values.append(von_mises(result.stress_at(points)))
+    values_arr = np.array(values)
+    change = _relative(np.abs(values_arr[-1] - values_arr[-2]), values_arr[-1])
+    return ConvergenceStudy(
+        settings=tuple(meshes),
+        spacing=np.array(spacing),
+        dofs=np.array(dofs),
+        seconds=np.array(seconds),
+        values=values_arr,
+        change=change,
+        tolerance=tolerance,
+        richardson=richardson(values_arr[-3:], np.array(spacing[-3:])),
+        finest=result,
+    )
+
+
+def _relative(difference: NDArray[np.float64], finest: NDArray[np.float64]) -> NDArray[np.float64]:
+    """max over points of ``difference`` (P, Q) over max |finest| (P,), 0 where nothing is loaded."""
+    scale = np.abs(finest).max(axis=-1)
+    worst = difference.max(axis=-1)
+    return np.divide(worst, scale, out=np.zeros_like(worst), where=scale > 0)
