@@ -1,4 +1,4 @@
-"""``linkstress analyze SCENE [--json OUT] [--stations] [--explain]``: motion, joint forces and
+"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--explain]``: motion, joint forces and
 section stresses of a scene's machine at every input position.
 
 stdout: each mechanism's class (Grashof, Barker), toggles, feasible input range and limit
@@ -13,7 +13,8 @@ import argparse
 from pathlib import Path
 
 from linkstress.analysis import plan_for, run_analysis
-from linkstress.output import check_folder, write_json
+from linkstress.output import check_folder, write_json, write_text
+from linkstress.report.html import analysis_html
 from linkstress.report.records import position_records
 from linkstress.report.text import report
 from linkstress.scene import load_scene
@@ -36,12 +37,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--stations", action="store_true",
         help="add N, V, M and von Mises along every link (member frame) to the JSON",
     )
+    parser.add_argument("--html", type=Path, metavar="OUT", help="also write a self-contained HTML report to OUT")
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     check_folder(args.json, "--json")
+    check_folder(args.html, "--html")
     scene = load_scene(args.scene)
     plan = plan_for(scene)
     if args.explain:
@@ -51,4 +54,6 @@ def run(args: argparse.Namespace) -> int:
     print(report(result))
     if args.json is not None:
         write_json(args.json, {"positions": position_records(result, stations=args.stations)})
+    if args.html is not None:
+        write_text(args.html, analysis_html(result))
     return 0

@@ -1,0 +1,172 @@
+"""Figures of an analysis (matplotlib, Agg): the mechanism with its real outlines and joint forces,
+stresses along each link, and plots over a sweep's input angle. Ground frame, SI units."""
+
+from __future__ import annotations
+
+import io
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+from numpy.typing import NDArray  # noqa: E402
+
+from linkstress.analysis import AnalysisResult  # noqa: E402
+
+LINK_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf")
+
+
+def png_bytes(fig: Figure, dpi: int = 110) -> bytes:
+    """The figure as PNG; the figure is closed."""
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=dpi)
+    plt.close(fig)
+    return buffer.getvalue()
+
+
+def _to_ground(result: AnalysisResult, name: str, k: int, local: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Member-frame points (n, 2) of link ``name`` at position ``k`` in the ground frame."""
+    motion = result.kinematics.links[name]
+    c, s = np.cos(motion.angle[k]), np.sin(motion.angle[k])
+    return motion.origin[k] + local @ np.array([[c, s], [-s, c]])
+
+
+def _link_rings(result: AnalysisResult, name: str) -> list[NDArray[np.float64]]:
+    """The link's outline rings in its member frame, or the polyline through its joints."""
+    link = result.scene.links[name]
+    frame = result.kinematics.links[name].frame_joints
+    if link.profile is not None and frame[0] != frame[1]:
+        outline = link.profile.local_outline(*frame)
+        return [np.asarray(r.coords) for r in [outline.exterior, *outline.interiors]]
+    return [link.to_member(link.joints)]
+
+
+def mechanism_figure(result: AnalysisResult, k: int) -> Figure:
+    """Every link at position ``k`` with its outline, and the joint forces as arrows."""
+    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    names = list(result.scene.links)
+    points = []
+    for index, name in enumerate(names):
+        colour = LINK_COLOURS[index % len(LINK_COLOURS)]
+        for ring_index, ring in enumerate(_link_rings(result, name)):
+            xy = _to_ground(result, name, k, ring)
+            points.append(xy)
+            style = dict(color=colour, lw=1.6 if ring_index == 0 else 1.0)
+            ax.plot(xy[:, 0], xy[:, 1], label=name if ring_index == 0 else None, **style)
+            if ring_index == 0 and len(ring) > 3:
+                ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.15)
+    cloud = np.vstack(points)
+    size = float(np.ptp(cloud, axis=0).max()) or 1.0
+    if result.forces is not None:
+        _force_arrows(ax, result, k, size)
+    for name in result.stresses:
+        where = result.max_location(name)[k]
+        ax.plot(*where, marker="*", color="k", ms=12)
+        ax.annotate(f"max {name}", where, textcoords="offset points", xytext=(6, 6), fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(f"input angle {result.scene.motion.angle_deg[k]:.4g} deg")
+    ax.legend(fontsize=8, loc="best")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def _force_arrows(ax, result: AnalysisResult, k: int, size: float) -> None:
+    """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing."""
+    arrows = []
+    for loop_name, mech in result.forces.mechanisms.items():
+        joints = result.kinematics.loops[loop_name].joints
+        at = {"F12": "O2", "F32": "A", "F43": "B", "F14": "O4" if "O4" in joints else "B"}
+        for label, force in mech.forces.items():
+            arrows.append((f"{loop_name}.{label}", joints[at[label]].position[k], force[k]))
+    largest = max((np.hypot(*f) for _, _, f in arrows), default=0.0)
+    if largest <= 0:
+        return
+    scale = 0.25 * size / largest
+    for label, p, f in arrows:
+        ax.annotate(
+            "", xy=p, xytext=p - scale * f,
+            arrowprops=dict(arrowstyle="->", color="crimson", lw=1.5),
+        )
+        ax.annotate(f"{label} {np.hypot(*f):.4g} N", p - scale * f, fontsize=7, color="crimson")
+
+
+def stress_along_figure(
+    result: AnalysisResult, name: str, k: int, fea_x=None, fea_von_mises=None,
+) -> Figure:
+    """Von Mises (largest over each section) and N, V, M along link ``name`` at position ``k``;
+    FEA values at the comparison stations when given."""
+    stress = result.stresses[name]
+    x = stress.x
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
+    top.plot(x, stress.von_mises[k] / 1e6, label="beam sections", color="#1f77b4")
+    if fea_x is not None:
+        top.plot(fea_x, np.asarray(fea_von_mises) / 1e6, "o", label="FEA, same fibre", color="#d62728")
+    for a, b in _runs(x, stress.near_hole):
+        top.axvspan(a, b, color="0.85", lw=0)
+    top.set_ylabel("von Mises [MPa]")
+    top.set_title(f"{name} at input {result.scene.motion.angle_deg[k]:.4g} deg (grey: within a depth of a pin hole)")
+    top.legend(fontsize=8)
+    top.grid(alpha=0.3)
+    bottom.plot(x, stress.forces.normal[k], label="N [N]")
+    bottom.plot(x, stress.forces.shear[k], label="V [N]")
+    bottom.plot(x, stress.forces.moment[k], label="M [N m]")
+    bottom.set_xlabel("x along the member [m]")
+    bottom.legend(fontsize=8)
+    bottom.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def _runs(x: NDArray[np.float64], flags: NDArray[np.bool_]) -> list[tuple[float, float]]:
+    """(start, end) abscissae of each run of True flags."""
+    runs, start = [], None
+    for xi, flag in zip(x, flags):
+        if flag and start is None:
+            start = xi
+        if not flag and start is not None:
+            runs.append((start, xi))
+            start = None
+    if start is not None:
+        runs.append((start, x[-1]))
+    return runs
+
+
+def sweep_figure(result: AnalysisResult) -> Figure:
+    """Over the input angle: driving torque, largest section stress per link, transmission angle."""
+    ok = result.feasible
+    angle = result.scene.motion.angle_deg
+    panels = 1 + (result.forces is not None) + bool(result.stresses)
+    fig, axes = plt.subplots(panels, 1, figsize=(7.5, 2.6 * panels), sharex=True, squeeze=False)
+    axes = list(axes[:, 0])
+    if result.forces is not None:
+        ax = axes.pop(0)
+        for name, mech in result.forces.mechanisms.items():
+            if mech.driving_torque is not None:
+                ax.plot(angle[ok], mech.driving_torque[ok], ".-", ms=3, label=f"{name} {mech.torque_name}")
+            if mech.driving_force is not None:
+                ax.plot(angle[ok], mech.driving_force[ok], ".-", ms=3, label=f"{name} P14 [N]")
+        ax.set_ylabel("driving torque [N m]")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    if result.stresses:
+        ax = axes.pop(0)
+        for name, stress in result.stresses.items():
+            ax.plot(angle[ok], stress.max_von_mises[ok] / 1e6, ".-", ms=3, label=name)
+        ax.set_ylabel("max von Mises [MPa]")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    ax = axes.pop(0)
+    for name, loop in result.kinematics.loops.items():
+        ax.plot(angle[ok], np.degrees(loop.transmission_angle[ok]), ".-", ms=3, label=name)
+    ax.set_ylabel("transmission angle [deg]")
+    ax.set_xlabel("input angle [deg]")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig

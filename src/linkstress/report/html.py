@@ -1,0 +1,189 @@
+"""One self-contained HTML file per run: figures inline (base64 PNG), no network, no scripts.
+
+The page states the exact loads that were applied and the versions that produced it, so that
+everything in it can be reproduced from the scene file alone.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+from importlib import metadata
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from linkstress import __version__
+from linkstress.analysis import AnalysisResult
+from linkstress.report.figures import mechanism_figure, png_bytes, stress_along_figure, sweep_figure
+from linkstress.report.records import link_columns
+
+DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
+MAX_DRAWN_POSITIONS = 4
+
+STYLE = """
+body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1000px; color: #222; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.2em; border-bottom: 1px solid #ccc; margin-top: 2em; }
+table { border-collapse: collapse; margin: 0.5em 0; font-size: 0.9em; }
+th, td { border: 1px solid #ccc; padding: 0.2em 0.6em; text-align: right; }
+th { background: #f2f2f2; } td.text, th.text { text-align: left; }
+img { max-width: 100%; display: block; margin: 0.5em 0; }
+.note { color: #555; font-size: 0.9em; }
+"""
+
+
+def figure_tag(fig: Figure, alt: str) -> str:
+    """The figure as an inline PNG <img>; the figure is closed."""
+    data = base64.b64encode(png_bytes(fig)).decode("ascii")
+    return f'<img alt="{html.escape(alt)}" src="data:image/png;base64,{data}">'
+
+
+def table_html(headers, rows) -> str:
+    def cell(value, tag):
+        text = f"{value:.6g}" if isinstance(value, float) else html.escape(str(value))
+        kind = "" if isinstance(value, (int, float)) else ' class="text"'
+        return f"<{tag}{kind}>{text}</{tag}>"
+
+    head = "".join(cell(h, "th") for h in headers)
+    body = "".join("<tr>" + "".join(cell(v, "td") for v in row) + "</tr>" for row in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def versions_html() -> str:
+    rows = [("linkstress", __version__)]
+    for name in DEPENDENCIES:
+        try:
+            rows.append((name, metadata.version(name)))
+        except metadata.PackageNotFoundError:
+            rows.append((name, "not installed"))
+    return table_html(("package", "version"), rows)
+
+
+def page(title: str, sections: list[str]) -> str:
+    body = "\n".join(sections)
+    return (
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+        f"<title>{html.escape(title)}</title><style>{STYLE}</style></head>\n"
+        f"<body><h1>{html.escape(title)}</h1>\n{body}\n</body></html>\n"
+    )
+
+
+def drawn_positions(result: AnalysisResult) -> list[int]:
+    """Positions worth drawing: each link's worst stress and the largest driving torque, or all
+    feasible positions when there are few."""
+    ok = np.flatnonzero(result.feasible)
+    if len(ok) <= MAX_DRAWN_POSITIONS:
+        return ok.tolist()
+    picks = []
+    for stress in result.stresses.values():
+        picks.append(int(ok[np.argmax(stress.max_von_mises[ok])]))
+    if result.forces is not None:
+        for mech in result.forces.mechanisms.values():
+            if mech.driving_torque is not None:
+                picks.append(int(ok[np.argmax(np.abs(mech.driving_torque[ok]))]))
+    picks.append(int(ok[0]))
+    return sorted(dict.fromkeys(picks))[:MAX_DRAWN_POSITIONS]
+
+
+def loads_html(result: AnalysisResult) -> str:
+    """The exact loads and motion applied."""
+    scene = result.scene
+    motion = scene.motion
+    rows = [
+        ("input angles", f"{len(motion.angle_deg)} from {motion.angle_deg.min():.6g} to {motion.angle_deg.max():.6g} deg"),
+        ("input speed [rad/s]", _span(motion.speed)),
+        ("input acceleration [rad/s^2]", _span(motion.acceleration)),
+        ("actuator (unknown driving torque)", scene.actuator),
+        ("gravity [m/s^2]", f"({scene.loads.gravity[0]:.6g}, {scene.loads.gravity[1]:.6g})"),
+    ]
+    rows += [(f"couple on {c.link} at joint {c.at_joint} [N m, ccw]", f"{c.value:.6g}") for c in scene.loads.couples]
+    rows += [
+        (f"force on {f.link} at ({f.at[0]:.6g}, {f.at[1]:.6g}) m, member frame [N]", f"({f.force[0]:.6g}, {f.force[1]:.6g})")
+        for f in scene.loads.forces
+    ]
+    rows += [(f"Coulomb friction on the slider of {name}", f"{mu:.6g}") for name, mu in scene.loads.friction.items()]
+    for name in scene.moving_links:
+        data = scene.links[name].mass_data
+        if data is not None:
+            rows.append((f"{name}: mass [kg], inertia about G [kg m^2], G (member frame) [m]",
+                         f"{data.mass:.6g}, {data.inertia:.6g}, ({data.center_of_mass[0]:.6g}, {data.center_of_mass[1]:.6g})"))
+    return table_html(("load", "value"), rows)
+
+
+def _span(values) -> str:
+    lo, hi = float(np.min(values)), float(np.max(values))
+    return f"{lo:.6g}" if lo == hi else f"{lo:.6g} to {hi:.6g}"
+
+
+def analysis_sections(result: AnalysisResult) -> list[str]:
+    """The sections every report of an analysis has (``validate`` adds its own after them)."""
+    scene = result.scene
+    feasible = result.feasible
+    sections = [
+        f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} positions, '
+        f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
+        "<h2>Loads applied</h2>", loads_html(result),
+        "<h2>Mechanism</h2>",
+    ]
+    for k in drawn_positions(result):
+        sections.append(figure_tag(mechanism_figure(result, k), f"mechanism at position {k}"))
+    if len(feasible) > 1:
+        sections += ["<h2>Over the sweep</h2>", figure_tag(sweep_figure(result), "sweep plots")]
+    sections += ["<h2>Accelerations</h2>", _accelerations_table(result)]
+    if result.forces is not None:
+        sections += ["<h2>Joint forces and driving torque</h2>", _forces_table(result)]
+    if result.stresses:
+        sections.append("<h2>Section stresses (beam theory)</h2>")
+        sections.append(
+            '<p class="note">Largest von Mises over each section: sigma = N/A + M y/I, Jourawski shear, '
+            "at the same fibre. Within one section depth of a pin hole the value is nominal; the FEA "
+            "check (linkstress validate) gives the peak there.</p>"
+        )
+        for name, stress in result.stresses.items():
+            ok = np.flatnonzero(feasible)
+            if len(ok):
+                k = int(ok[np.argmax(stress.max_von_mises[ok])])
+                sections.append(figure_tag(stress_along_figure(result, name, k), f"stresses along {name}"))
+    if result.seconds:
+        rows = [(stage, 1e3 * seconds) for stage, seconds in result.seconds.items()]
+        sections += ["<h2>Timings</h2>", table_html(("stage", "time [ms]"), rows)]
+    sections += ["<h2>Versions</h2>", versions_html()]
+    return sections
+
+
+def analysis_html(result: AnalysisResult) -> str:
+    return page(f"linkstress analyze: {result.scene.path.name}", analysis_sections(result))
+
+
+def _shown(result: AnalysisResult) -> list[int]:
+    ok = np.flatnonzero(result.feasible)
+    if len(ok) <= 24:
+        return ok.tolist()
+    return ok[np.linspace(0, len(ok) - 1, 24).round().astype(int)].tolist()
+
+
+def _accelerations_table(result: AnalysisResult) -> str:
+    columns = link_columns(result)
+    rows = []
+    for k in _shown(result):
+        angle = float(result.scene.motion.angle_deg[k])
+        for name, c in columns.items():
+            acc = ("", "") if c.acc_g is None else (float(c.acc_g[k, 0]), float(c.acc_g[k, 1]))
+            rows.append((angle, name, float(c.angle_deg[k]), float(c.omega[k]), float(c.alpha[k]), *acc))
+    return table_html(
+        ("input [deg]", "link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]", "a_Gx [m/s^2]", "a_Gy [m/s^2]"), rows,
+    )
+
+
+def _forces_table(result: AnalysisResult) -> str:
+    rows = []
+    for k in _shown(result):
+        angle = float(result.scene.motion.angle_deg[k])
+        for name, mech in result.forces.mechanisms.items():
+            for label, force in mech.forces.items():
+                rows.append((angle, name, label, float(force[k, 0]), float(force[k, 1])))
+            if mech.driving_torque is not None:
+                rows.append((angle, name, f"{mech.torque_name} [N m]", float(mech.driving_torque[k]), ""))
+            if mech.driving_force is not None:
+                rows.append((angle, name, "P14 [N]", float(mech.driving_force[k]), ""))
+    return table_html(("input [deg]", "mechanism", "force", "x [N]", "y [N]"), rows)
