@@ -27,7 +27,8 @@ from linkstress.validation.mesh import MeshSettings
 from linkstress.validation.recovery import von_mises
 
 CONVERGED_CHANGE = 0.005
-ORDER_ITERATIONS = 50
+MIN_ORDER, MAX_ORDER = 1e-3, 20.0
+ORDER_ITERATIONS = 80
 
 
 @dataclass(frozen=True)
@@ -36,8 +37,9 @@ class RichardsonEstimate:
 
     ``gci``: Celik's fine-grid convergence index 1.25 |phi_1 - phi_2| / (r21^p - 1), in the
     quantity's units. ``determined`` is False where the three values do not converge monotonically
-    (a change of sign or no change): there the order is 0, the extrapolation is the finest value and
-    ``error`` and ``gci`` fall back to the last change |phi_1 - phi_2|.
+    (a change of sign, no change, or an order outside (0, 20]): there the order is 0, the
+    extrapolation is the finest value and ``error`` and ``gci`` fall back to the last change
+    |phi_1 - phi_2|.
     """
 
     order: NDArray[np.float64]
@@ -65,13 +67,8 @@ def richardson(values: ArrayLike, spacing: ArrayLike) -> RichardsonEstimate:
     e21, e32 = phi2 - phi1, phi3 - phi2
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = e32 / e21
-        determined = np.isfinite(ratio) & (ratio > 0) & (e21 != 0)
-        s = np.sign(np.where(determined, ratio, 1.0))
-        log_ratio = np.log(np.abs(np.where(determined, ratio, 2.0)))
-        p = np.abs(log_ratio) / math.log(r21)
-        for _ in range(ORDER_ITERATIONS):
-            q = np.log((r21**p - s) / (r32**p - s))
-            p = np.abs(log_ratio + q) / math.log(r21)
+        determined = np.isfinite(ratio) & (ratio > 0)
+        p = _observed_order(np.log(np.where(determined, ratio, 1.0)), r21, r32)
         determined &= np.isfinite(p) & (p > 0)
         p = np.where(determined, p, 0.0)
         gain = np.where(determined, r21**p - 1, 1.0)
@@ -80,6 +77,25 @@ def richardson(values: ArrayLike, spacing: ArrayLike) -> RichardsonEstimate:
     error = np.where(determined, np.abs(extrapolated - phi1), change)
     gci = np.where(determined, 1.25 * change / gain, change)
     return RichardsonEstimate(p, extrapolated, error, gci, determined)
+
+
+def _observed_order(log_ratio: NDArray[np.float64], r21: float, r32: float) -> NDArray[np.float64]:
+    """p solving ln(e32 / e21) = p ln r21 + ln((r32^p - 1) / (r21^p - 1)) (Celik eq. 5, s = 1), by bisection.
+
+    The right side grows monotonically from ln(ln r32 / ln r21) at p = 0; no root in (0, MAX_ORDER]
+    gives nan (order not determined).
+    """
+    def side(p):
+        return p * math.log(r21) + np.log(np.expm1(p * math.log(r32)) / np.expm1(p * math.log(r21)))
+
+    lo = np.full(np.shape(log_ratio), MIN_ORDER)
+    hi = np.full(np.shape(log_ratio), MAX_ORDER)
+    bracketed = (side(lo) <= log_ratio) & (log_ratio <= side(hi))
+    for _ in range(ORDER_ITERATIONS):
+        mid = (lo + hi) / 2
+        below = side(mid) < log_ratio
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    return np.where(bracketed, (lo + hi) / 2, np.nan)
 
 
 @dataclass(frozen=True)
