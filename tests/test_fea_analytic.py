@@ -43,9 +43,16 @@ def test_kirsch_field_is_free_at_the_hole_and_uniaxial_far_away():
     a, s = 0.01, 1.0
     phi = np.linspace(0, 2 * math.pi, 13)
     on_hole = analytic.kirsch_stress(a * np.array([np.cos(phi), np.sin(phi)]), s, a)
-    traction = np.array([on_hole[0] * np.cos(phi) + on_hole[2] * np.sin(phi), on_hole[2] * np.cos(phi) + on_hole[1] * np.sin(phi)])
+    traction = np.array(
+        [
+            on_hole[0] * np.cos(phi) + on_hole[2] * np.sin(phi),
+            on_hole[2] * np.cos(phi) + on_hole[1] * np.sin(phi),
+        ]
+    )
     np.testing.assert_allclose(traction, 0, atol=1e-14)
-    np.testing.assert_allclose(analytic.kirsch_stress(np.array([[1e3 * a], [7e2 * a]]), s, a)[:, 0], [s, 0, 0], atol=1e-5)
+    np.testing.assert_allclose(
+        analytic.kirsch_stress(np.array([[1e3 * a], [7e2 * a]]), s, a)[:, 0], [s, 0, 0], atol=1e-5
+    )
     assert analytic.kirsch_stress(np.array([[0.0], [a]]), s, a)[0, 0] == pytest.approx(3 * s)
 
 
@@ -68,7 +75,11 @@ def test_cantilever_displacements_strain_to_its_stresses_and_clamp_the_root_axis
     tip = -p * length**3 / (3 * e * i) - (4 + 5 * nu) * p * depth**2 * length / (24 * e * i)
     assert analytic.cantilever_tip_deflection(p, length, depth, t, e, nu) == pytest.approx(tip, rel=1e-12)
     # the end shear sums to the load P (downward)
-    shear = quad(lambda yy: analytic.cantilever_stress(np.array([[length], [yy]]), p, length, depth, t)[2, 0], -depth / 2, depth / 2)[0]
+    shear = quad(
+        lambda yy: analytic.cantilever_stress(np.array([[length], [yy]]), p, length, depth, t)[2, 0],
+        -depth / 2,
+        depth / 2,
+    )[0]
     assert shear * t == pytest.approx(-p, rel=1e-12)
 
 
@@ -102,5 +113,7 @@ def test_winkler_bach_resolves_to_the_moment_with_no_net_force():
 
 
 def test_spinning_bar_force_is_largest_at_the_middle_and_zero_at_the_ends():
-    assert analytic.spinning_bar_normal_force(0.0, 7850.0, 4e-4, 300.0, 0.4) == pytest.approx(7850 * 4e-4 * 9e4 * 0.04 / 2)
+    assert analytic.spinning_bar_normal_force(0.0, 7850.0, 4e-4, 300.0, 0.4) == pytest.approx(
+        7850 * 4e-4 * 9e4 * 0.04 / 2
+    )
     assert analytic.spinning_bar_normal_force(0.2, 7850.0, 4e-4, 300.0, 0.4) == pytest.approx(0.0, abs=1e-9)

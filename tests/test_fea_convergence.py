@@ -52,7 +52,11 @@ def test_the_seed_crank_converges_to_half_a_percent_in_three_levels():
     # The seed's crank at 60 degrees under its published joint forces; nominal fibres at x = 0.25,
     # 0.5, 0.75 m. Three meshes, each 1.5 times finer; "converged" is a change below 0.5 %.
     study = convergence_study(
-        seed_crank(), seed_position(), MeshSettings(0.12, 0.004, (0.25, 0.5, 0.75)), nominal_points(), ratio=1.5
+        seed_crank(),
+        seed_position(),
+        MeshSettings(0.12, 0.004, (0.25, 0.5, 0.75)),
+        nominal_points(),
+        ratio=1.5,
     )
     assert study.values.shape == (3, 1, 6)
     assert (np.diff(study.dofs) > 0).all() and (np.diff(study.spacing) < 0).all()
@@ -63,4 +67,6 @@ def test_the_seed_crank_converges_to_half_a_percent_in_three_levels():
 
 def test_a_study_needs_three_levels():
     with pytest.raises(FEAError, match="at least three mesh levels"):
-        convergence_study(seed_crank(), seed_position(), MeshSettings(0.12, 0.004), nominal_points(), levels=2)
+        convergence_study(
+            seed_crank(), seed_position(), MeshSettings(0.12, 0.004), nominal_points(), levels=2
+        )

@@ -52,7 +52,9 @@ def crank_sweep():
     bar = straight_bar(1.0, 0.5, 0.1, 0.1, STRUCTURAL_STEEL, hole_diameter=0.02, name="crank")
     phi = np.linspace(0, 2 * math.pi, 6, endpoint=False)
     force = 1000.0 * np.column_stack([np.cos(phi), np.sin(phi)])
-    result = solve_link(bar, pinned_pair(bar, force), MeshSettings(0.05, 0.004, stations=STATIONS, station_size=0.02))
+    result = solve_link(
+        bar, pinned_pair(bar, force), MeshSettings(0.05, 0.004, stations=STATIONS, station_size=0.02)
+    )
     return bar, force, result
 
 
@@ -114,7 +116,9 @@ def test_peak_von_mises_is_at_a_pin_hole_and_is_the_largest_nodal_value(crank_sw
 def test_a_sweep_gives_each_position_what_solving_it_alone_gives(crank_sweep):
     bar, force, result = crank_sweep
     alone = solve_link(bar, pinned_pair(bar, force[3:4]), result.plane.settings)
-    np.testing.assert_allclose(alone.nodal_stress[0], result.nodal_stress[3], rtol=1e-9, atol=1e-9 * alone.von_mises_peak[0])
+    np.testing.assert_allclose(
+        alone.nodal_stress[0], result.nodal_stress[3], rtol=1e-9, atol=1e-9 * alone.von_mises_peak[0]
+    )
     assert result.mesh_seconds > 0 and result.solve_seconds > 0
     assert result.dofs == 2 * len(result.nodes) and result.n_elements > 0
 
@@ -132,7 +136,9 @@ def test_vtu_files_per_position_hold_displacement_stresses_and_von_mises(tmp_pat
     np.testing.assert_allclose(ux, result.displacement[result.model.components[0], 2])
     datasets = ElementTree.parse(paths[-1]).getroot().iter("DataSet")
     assert [d.get("file") for d in datasets] == [p.name for p in paths[:-1]]
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(p.name for p in paths)  # no temp files
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(
+        p.name for p in paths
+    )  # no temp files
 
 
 def banana(length=0.4, rise=0.15, half_width=0.02, hole=0.012) -> LinkProfile:
@@ -147,7 +153,9 @@ def banana(length=0.4, rise=0.15, half_width=0.02, hole=0.012) -> LinkProfile:
     right_cap = arc_points((length, 0.0), half_width, a0 + math.pi, a0 + 2 * math.pi, tol)
     shell = np.vstack([outer[:-1], left_cap[:-1], inner[:-1], right_cap[:-1]])
     holes = [circle_points(j, hole / 2, tol)[::-1] for j in ((0.0, 0.0), (length, 0.0))]
-    return LinkProfile(Polygon(shell, holes), np.array([[0.0, 0.0], [length, 0.0]]), 0.01, STRUCTURAL_STEEL, "banana")
+    return LinkProfile(
+        Polygon(shell, holes), np.array([[0.0, 0.0], [length, 0.0]]), 0.01, STRUCTURAL_STEEL, "banana"
+    )
 
 
 def test_a_curved_coupler_meshes_from_its_arcs_and_its_cut_resultants_are_its_free_body():
@@ -156,7 +164,9 @@ def test_a_curved_coupler_meshes_from_its_arcs_and_its_cut_resultants_are_its_fr
     stations = (0.1, 0.2, 0.3)
     # Resultants of element stresses converge as h^2: 0.56 % of |F| at 12 elements across the cut,
     # 0.14 % at 25 (station_size 2 mm on this 50 mm inclined cut).
-    result = solve_link(link, pinned_pair(link, force), MeshSettings(0.01, 0.002, stations=stations, station_size=0.002))
+    result = solve_link(
+        link, pinned_pair(link, force), MeshSettings(0.01, 0.002, stations=stations, station_size=0.002)
+    )
     assert result.reaction_ratio[0] < 1e-9
     res = result.section_resultants(stations)
     assert (res.neutral_axis > 0.05).all()  # the crown sits well above the line of the joints

@@ -44,7 +44,16 @@ def balanced(bar, pin_at_a, omega, alpha, gravity=(0.0, 0.0), points=()):
     open_case = LinkLoadCase((0, 1), pins, np.zeros((n, 2)), omega, alpha, np.zeros((n, 2)), g, tuple(points))
     force, moment = open_case.residual(bar)
     pins[:, 0] = -force
-    return LinkLoadCase((0, 1), pins, np.column_stack([-moment, np.zeros(n)]), omega, alpha, np.zeros((n, 2)), g, tuple(points))
+    return LinkLoadCase(
+        (0, 1),
+        pins,
+        np.column_stack([-moment, np.zeros(n)]),
+        omega,
+        alpha,
+        np.zeros((n, 2)),
+        g,
+        tuple(points),
+    )
 
 
 @settings(max_examples=15, deadline=None)
@@ -95,8 +104,15 @@ def test_body_force_resultant_is_mass_times_the_dalembert_acceleration_of_the_ce
     # = r_G x m g - alpha I_O (Norton, eq. 11.1 with d'Alembert).
     bar, model = crank
     w, al, g = 3.0, 2.0, np.array([0.0, -9.81])
-    loads = LinkLoadCase((0, 1), np.zeros((1, 2, 2)), np.zeros((1, 2)), np.array([w]), np.array([al]),
-                         np.zeros((1, 2)), g[None])
+    loads = LinkLoadCase(
+        (0, 1),
+        np.zeros((1, 2, 2)),
+        np.zeros((1, 2)),
+        np.array([w]),
+        np.array([al]),
+        np.zeros((1, 2)),
+        g[None],
+    )
     force, moment = nodal_resultant(model, body_loads(model, loads, bar.density), about=np.zeros(2))
     m, r_g = bar.mass, np.array([0.5, 0.0])
     a_g = al * np.array([-r_g[1], r_g[0]]) - w * w * r_g
@@ -122,7 +138,11 @@ def test_reactions_vanish_for_a_load_case_in_dynamic_equilibrium():
     bar = straight_bar(1.0, 0.5, 0.1, 0.1, STRUCTURAL_STEEL, hole_diameter=0.02, name="crank")
     phi = np.linspace(0, 2 * math.pi, 5, endpoint=False)
     loads = balanced(
-        bar, 800 * np.column_stack([np.cos(phi), np.sin(phi)]), np.full(5, -4.0), np.sin(phi), gravity=(0, -9.81),
+        bar,
+        800 * np.column_stack([np.cos(phi), np.sin(phi)]),
+        np.full(5, -4.0),
+        np.sin(phi),
+        gravity=(0, -9.81),
         points=[PointForce(np.array([0.6, 0.1]), np.column_stack([50 * np.cos(phi), np.zeros(5)]))],
     )
     result = solve_link(bar, loads, SETTINGS)
@@ -136,8 +156,15 @@ def test_reactions_show_a_load_case_out_of_equilibrium():
     bar = straight_bar(1.0, 0.5, 0.1, 0.1, STRUCTURAL_STEEL, hole_diameter=0.02, name="crank")
     loads = balanced(bar, np.array([[0.0, 500.0]]), np.zeros(1), np.zeros(1))
     torque = loads.joint_couples[0, 0]
-    broken = LinkLoadCase((0, 1), loads.pin_forces, np.zeros((1, 2)), loads.omega, loads.alpha,
-                          loads.origin_acceleration, loads.gravity)
+    broken = LinkLoadCase(
+        (0, 1),
+        loads.pin_forces,
+        np.zeros((1, 2)),
+        loads.omega,
+        loads.alpha,
+        loads.origin_acceleration,
+        loads.gravity,
+    )
     result = solve_link(bar, broken, SETTINGS)
     assert result.reactions[0, 2] == pytest.approx(torque, rel=1e-9)
     assert result.reaction_ratio[0] > 0.1
@@ -146,20 +173,37 @@ def test_reactions_show_a_load_case_out_of_equilibrium():
 def test_a_loaded_joint_without_a_hole_is_an_error_naming_the_link_and_joint():
     bar = straight_bar(1.0, 0.5, 0.1, 0.1, STRUCTURAL_STEEL, name="solid crank")
     loads = balanced(bar, np.array([[0.0, 500.0]]), np.zeros(1), np.zeros(1))
-    with pytest.raises(FEAError, match=r"link 'solid crank': joint 0 carries a pin force of up to 500 N .* has no hole"):
+    with pytest.raises(
+        FEAError, match=r"link 'solid crank': joint 0 carries a pin force of up to 500 N .* has no hole"
+    ):
         solve_link(bar, loads, SETTINGS)
 
 
 def test_an_unloaded_joint_without_a_hole_is_fine():
     bar = straight_bar(0.4, 0.04, 0.0, 0.01, STRUCTURAL_STEEL, name="spinner")
-    loads = LinkLoadCase((0, 1), np.zeros((1, 2, 2)), np.zeros((1, 2)), np.array([10.0]), np.zeros(1),
-                         np.array([[100 * 0.2, 0.0]]), np.zeros((1, 2)))
+    loads = LinkLoadCase(
+        (0, 1),
+        np.zeros((1, 2, 2)),
+        np.zeros((1, 2)),
+        np.array([10.0]),
+        np.zeros(1),
+        np.array([[100 * 0.2, 0.0]]),
+        np.zeros((1, 2)),
+    )
     assert solve_link(bar, loads, MeshSettings(0.01)).reaction_ratio[0] < 1e-9
 
 
 def test_a_load_case_of_the_wrong_shape_is_an_error():
     bar = straight_bar(1.0, 0.5, 0.1, 0.1, STRUCTURAL_STEEL, hole_diameter=0.02, name="crank")
-    loads = LinkLoadCase((0, 1), np.zeros((2, 3, 2)), np.zeros((2, 3)), np.zeros(2), np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2)))
+    loads = LinkLoadCase(
+        (0, 1),
+        np.zeros((2, 3, 2)),
+        np.zeros((2, 3)),
+        np.zeros(2),
+        np.zeros(2),
+        np.zeros((2, 2)),
+        np.zeros((2, 2)),
+    )
     with pytest.raises(FEAError, match=r"pin_forces has shape \(2, 3, 2\), expected \(2, 2, 2\)"):
         solve_link(bar, loads, SETTINGS)
 

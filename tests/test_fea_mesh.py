@@ -106,7 +106,9 @@ def test_elements_are_fine_at_holes_and_coarse_far_from_them(crank_mesh):
     mesh = crank_mesh.mesh
     corners = mesh.p[:, mesh.t]
     a, b = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
-    size = np.sqrt(np.abs(a[0] * b[1] - a[1] * b[0]) * 2)  # side of the equilateral triangle of that area, roughly
+    size = np.sqrt(
+        np.abs(a[0] * b[1] - a[1] * b[0]) * 2
+    )  # side of the equilateral triangle of that area, roughly
     centre = corners.mean(axis=1)
     near_hole = np.hypot(*centre) < 0.015
     far = (np.abs(centre[0] - 0.5) < 0.1) & (np.abs(centre[0] - 0.25) > 0.1) & (np.abs(centre[1]) < 0.15)
@@ -134,7 +136,9 @@ def test_finer_flattening_of_the_drawing_does_not_refine_the_mesh():
 
 
 def test_a_link_thinner_than_two_elements_is_an_error_naming_it_and_the_size():
-    with pytest.raises(FEAError, match=r"thin bar: a part of the outline .* narrower than 2 elements of size = 20 mm"):
+    with pytest.raises(
+        FEAError, match=r"thin bar: a part of the outline .* narrower than 2 elements of size = 20 mm"
+    ):
         mesh_region(box(0, 0, 1, 0.03), MeshSettings(0.02), name="thin bar")
 
 

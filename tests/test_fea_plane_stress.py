@@ -51,7 +51,9 @@ def test_passing_skfems_plane_stress_pair_through_lame_parameters_would_be_wrong
     assert np.abs(wrong - plane_stress_matrix(E, NU)).max() > 0.1 * E
     # Plane strain's D11 = E (1 - nu) / ((1 + nu)(1 - 2 nu)) is (1 - nu)^2 / (1 - 2 nu) = 1.225 times
     # plane stress's E / (1 - nu^2) for nu = 0.3: the stiffness this module must not use.
-    assert plane_strain[0, 0] / plane_stress_matrix(E, NU)[0, 0] == pytest.approx((1 - NU) ** 2 / (1 - 2 * NU), rel=1e-12)
+    assert plane_strain[0, 0] / plane_stress_matrix(E, NU)[0, 0] == pytest.approx(
+        (1 - NU) ** 2 / (1 - 2 * NU), rel=1e-12
+    )
 
 
 @pytest.fixture(scope="module")

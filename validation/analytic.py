@@ -14,15 +14,20 @@ from numpy.typing import NDArray
 
 
 def polar_to_cartesian(
-    theta: NDArray[np.float64], s_rr: NDArray[np.float64], s_tt: NDArray[np.float64], s_rt: NDArray[np.float64]
+    theta: NDArray[np.float64],
+    s_rr: NDArray[np.float64],
+    s_tt: NDArray[np.float64],
+    s_rt: NDArray[np.float64],
 ) -> NDArray[np.float64]:
     """(sigma_xx, sigma_yy, tau_xy) (3, Q) from polar components at angles ``theta`` [rad] (stress rotation)."""
     c, s = np.cos(theta), np.sin(theta)
-    return np.array([
-        s_rr * c * c + s_tt * s * s - 2 * s_rt * s * c,
-        s_rr * s * s + s_tt * c * c + 2 * s_rt * s * c,
-        (s_rr - s_tt) * s * c + s_rt * (c * c - s * s),
-    ])
+    return np.array(
+        [
+            s_rr * c * c + s_tt * s * s - 2 * s_rt * s * c,
+            s_rr * s * s + s_tt * c * c + 2 * s_rt * s * c,
+            (s_rr - s_tt) * s * c + s_rt * (c * c - s * s),
+        ]
+    )
 
 
 def kirsch_stress(points: NDArray[np.float64], S: float, a: float) -> NDArray[np.float64]:
@@ -42,7 +47,9 @@ def kirsch_stress(points: NDArray[np.float64], S: float, a: float) -> NDArray[np
     return polar_to_cartesian(theta, s_rr, s_tt, s_rt)
 
 
-def cantilever_stress(points: NDArray[np.float64], P: float, L: float, D: float, t: float) -> NDArray[np.float64]:
+def cantilever_stress(
+    points: NDArray[np.float64], P: float, L: float, D: float, t: float
+) -> NDArray[np.float64]:
     """Cantilever of length ``L``, depth ``D`` [m], clamped at x = 0, end shear ``P`` [N] (-y) at x = L.
 
     Timoshenko & Goodier, section 21 (parabolic end shear), as written by Augarde & Deeks, Finite
@@ -105,14 +112,18 @@ def curved_bar_polar(r: NDArray[np.float64], M: float, a: float, b: float, t: fl
     return s_rr, s_tt
 
 
-def curved_bar_stress(points: NDArray[np.float64], M: float, a: float, b: float, t: float) -> NDArray[np.float64]:
+def curved_bar_stress(
+    points: NDArray[np.float64], M: float, a: float, b: float, t: float
+) -> NDArray[np.float64]:
     """Cartesian stresses (3, Q) of :func:`curved_bar_polar`, bar centred on the origin."""
     x, y = points
     s_rr, s_tt = curved_bar_polar(np.hypot(x, y), M, a, b, t)
     return polar_to_cartesian(np.arctan2(y, x), s_rr, s_tt, np.zeros_like(x))
 
 
-def winkler_bach_stress(r: NDArray[np.float64] | float, M: float, a: float, b: float, t: float) -> NDArray[np.float64]:
+def winkler_bach_stress(
+    r: NDArray[np.float64] | float, M: float, a: float, b: float, t: float
+) -> NDArray[np.float64]:
     """Curved-beam (Winkler-Bach) hoop stress [Pa] at radius ``r`` of a rectangular section a..b, depth b - a.
 
     sigma = M (r_n - r) / (A e r), with A = t (b - a), neutral radius r_n = (b - a) / ln(b/a) and
@@ -125,7 +136,9 @@ def winkler_bach_stress(r: NDArray[np.float64] | float, M: float, a: float, b: f
     return M * (r_n - np.asarray(r, float)) / (area * e * np.asarray(r, float))
 
 
-def straight_beam_stress(y: NDArray[np.float64] | float, M: float, depth: float, t: float) -> NDArray[np.float64]:
+def straight_beam_stress(
+    y: NDArray[np.float64] | float, M: float, depth: float, t: float
+) -> NDArray[np.float64]:
     """Straight-beam bending stress -M y / I [Pa] at ``y`` from the mid-depth, I = t depth^3 / 12.
 
     With y measured outward (away from the centre of curvature), the sign matches
@@ -134,7 +147,9 @@ def straight_beam_stress(y: NDArray[np.float64] | float, M: float, depth: float,
     return -M * np.asarray(y, float) / (t * depth**3 / 12)
 
 
-def spinning_bar_normal_force(x: NDArray[np.float64] | float, rho: float, area: float, omega: float, L: float):
+def spinning_bar_normal_force(
+    x: NDArray[np.float64] | float, rho: float, area: float, omega: float, L: float
+):
     """Axial force N(x) [N] in a bar of length ``L`` spinning at ``omega`` [rad/s] about its middle.
 
     x [m] from the middle; from the free body of the outer part: N = rho A omega^2 (L^2/4 - x^2) / 2.

@@ -104,9 +104,11 @@ def one_position(size: float, repeat: int) -> tuple[list[tuple], MeshSettings]:
         return result
 
     single, result = best_time(single_position, repeat)
-    print(f"convergence study: dofs {study.dofs.tolist()}, change between the finest two "
-          f"{study.change[0]:.3%} ({'converged' if study.converged else 'NOT converged'}), "
-          f"Richardson error estimate {study.relative_error[0]:.3%}, reaction ratio {result.reaction_ratio[0]:.2e}")
+    print(
+        f"convergence study: dofs {study.dofs.tolist()}, change between the finest two "
+        f"{study.change[0]:.3%} ({'converged' if study.converged else 'NOT converged'}), "
+        f"Richardson error estimate {study.relative_error[0]:.3%}, reaction ratio {result.reaction_ratio[0]:.2e}"
+    )
     return [
         ("three-level convergence study, one position", study.dofs[-1], study_seconds, "-"),
         ("one position on the converged mesh (mesh + solve + stresses)", result.dofs, single, 2.0),
@@ -124,8 +126,10 @@ def sweep(settings: MeshSettings, n: int, repeat: int) -> tuple:
         return result
 
     elapsed, result = best_time(whole_sweep, repeat)
-    print(f"sweep of {n}: mesh {result.mesh_seconds:.2f} s, solve and recovery {result.solve_seconds:.2f} s, "
-          f"largest reaction ratio {result.reaction_ratio.max():.2e}")
+    print(
+        f"sweep of {n}: mesh {result.mesh_seconds:.2f} s, solve and recovery {result.solve_seconds:.2f} s, "
+        f"largest reaction ratio {result.reaction_ratio.max():.2e}"
+    )
     return (f"{n}-position sweep, one factorisation", result.dofs, elapsed, 15.0)
 
 
@@ -156,12 +160,16 @@ def main() -> None:
     rows.append(sweep(finest, args.positions, args.repeat))
     child = subprocess.run(
         [sys.executable, "-m", "linkstress.validation.bench_fea", "--memory-child", str(args.dofs)],
-        capture_output=True, text=True, check=True,
+        capture_output=True,
+        text=True,
+        check=True,
     )
     memory = json.loads(child.stdout.strip().splitlines()[-1])
     rows.append((f"solve at {memory['dofs']} dofs", memory["dofs"], memory["seconds"], "-"))
     print(format_table(("task", "dofs", "time [s]", "target [s]"), rows))
-    print(f"\npeak resident memory at {memory['dofs']} dofs: {memory['peak_rss_mb']:.0f} MB (target < 2048 MB)")
+    print(
+        f"\npeak resident memory at {memory['dofs']} dofs: {memory['peak_rss_mb']:.0f} MB (target < 2048 MB)"
+    )
 
 
 if __name__ == "__main__":

@@ -122,9 +122,13 @@ def solve_exact_traction(
     return ExactTractionSolution(model, u, stress_recovery(model).nodal_stress(u))
 
 
-def kirsch_plate(a: float = 0.01, half_width: float = 0.04, S: float = 100e6, refinement: float = 1.0) -> BenchmarkResult:
+def kirsch_plate(
+    a: float = 0.01, half_width: float = 0.04, S: float = 100e6, refinement: float = 1.0
+) -> BenchmarkResult:
     """Plate with a round hole under uniaxial tension: sigma_xx at the hole's top and bottom = 3 S."""
-    region = Polygon(box(-half_width, -half_width, half_width, half_width).exterior, [circle_points((0, 0), a, SAGITTA)])
+    region = Polygon(
+        box(-half_width, -half_width, half_width, half_width).exterior, [circle_points((0, 0), a, SAGITTA)]
+    )
     settings = MeshSettings(size=a, hole_size=a / 16).refined(refinement)
     solution = solve_exact_traction(region, settings, lambda p: analytic.kirsch_stress(p, S, a))
     top = solution.stress_at(np.array([[0.0, a], [0.0, -a]]))[:, 0] / S
@@ -136,7 +140,9 @@ def kirsch_plate(a: float = 0.01, half_width: float = 0.04, S: float = 100e6, re
     )
 
 
-def timoshenko_cantilever(L: float = 0.5, D: float = 0.1, P: float = 1000.0, refinement: float = 1.0) -> BenchmarkResult:
+def timoshenko_cantilever(
+    L: float = 0.5, D: float = 0.1, P: float = 1000.0, refinement: float = 1.0
+) -> BenchmarkResult:
     """Cantilever with a parabolic end shear: root bending stress and tip deflection."""
     settings = MeshSettings(size=D / 4, hole_size=D / 4, station_size=D / 4).refined(refinement)
     solution = solve_exact_traction(
@@ -154,8 +160,12 @@ def timoshenko_cantilever(L: float = 0.5, D: float = 0.1, P: float = 1000.0, ref
         solution.model.n_dofs,
         (
             Comparison("sigma_xx at the root, top fibre [Pa]", float(root[0]), float(exact_root[0]), 0.005),
-            Comparison("sigma_xx at mid-span, bottom fibre [Pa]", float(root[1]), float(exact_root[1]), 0.005),
-            Comparison("tip deflection [m]", float(tip), analytic.cantilever_tip_deflection(P, L, D, T, E, NU), 0.005),
+            Comparison(
+                "sigma_xx at mid-span, bottom fibre [Pa]", float(root[1]), float(exact_root[1]), 0.005
+            ),
+            Comparison(
+                "tip deflection [m]", float(tip), analytic.cantilever_tip_deflection(P, L, D, T, E, NU), 0.005
+            ),
         ),
     )
 
@@ -173,7 +183,14 @@ def lame_ring(a: float = 0.05, b: float = 0.1, p: float = 50e6, refinement: floa
         "Lame thick ring",
         "Timoshenko & Goodier section 28",
         solution.model.n_dofs,
-        (Comparison("hoop stress at the bore, worst of 8 points [Pa]", float(worst), float(analytic.lame_hoop_stress(a, p, a, b)), 0.005),),
+        (
+            Comparison(
+                "hoop stress at the bore, worst of 8 points [Pa]",
+                float(worst),
+                float(analytic.lame_hoop_stress(a, p, a, b)),
+                0.005,
+            ),
+        ),
     )
 
 
@@ -181,12 +198,20 @@ def curved_bar(a: float = 0.05, b: float = 0.1, M: float = 500.0, refinement: fl
     """Quarter-ring bar in pure bending: hoop stress at the inner and outer fibres, mid-angle."""
     outer = arc_points((0, 0), b, 0.0, math.pi / 2, SAGITTA)
     inner = arc_points((0, 0), a, math.pi / 2, 0.0, SAGITTA)
-    settings = MeshSettings(size=(b - a) / 12, hole_size=(b - a) / 12, station_size=(b - a) / 12).refined(refinement)
-    solution = solve_exact_traction(Polygon(np.vstack([outer, inner])), settings, lambda q: analytic.curved_bar_stress(q, M, a, b, T))
+    settings = MeshSettings(size=(b - a) / 12, hole_size=(b - a) / 12, station_size=(b - a) / 12).refined(
+        refinement
+    )
+    solution = solve_exact_traction(
+        Polygon(np.vstack([outer, inner])), settings, lambda q: analytic.curved_bar_stress(q, M, a, b, T)
+    )
     mid = math.pi / 4
     radii = np.array([a, b])
     s = solution.stress_at(np.column_stack([radii * math.cos(mid), radii * math.sin(mid)]))
-    hoop = s[:, 0] * math.sin(mid) ** 2 + s[:, 1] * math.cos(mid) ** 2 - 2 * s[:, 2] * math.sin(mid) * math.cos(mid)
+    hoop = (
+        s[:, 0] * math.sin(mid) ** 2
+        + s[:, 1] * math.cos(mid) ** 2
+        - 2 * s[:, 2] * math.sin(mid) * math.cos(mid)
+    )
     exact = analytic.curved_bar_polar(radii, M, a, b, T)[1]
     winkler = analytic.winkler_bach_stress(radii, M, a, b, T)
     straight = analytic.straight_beam_stress(radii - (a + b) / 2, M, b - a, T)
@@ -195,14 +220,21 @@ def curved_bar(a: float = 0.05, b: float = 0.1, M: float = 500.0, refinement: fl
         "Timoshenko & Goodier section 29 (Golovin); Winkler-Bach and Mc/I beside",
         solution.model.n_dofs,
         tuple(
-            Comparison(f"hoop stress, {fibre} fibre [Pa]", float(h), float(x), 0.01,
-                       (("Winkler-Bach", float(w)), ("Mc/I", float(m))))
+            Comparison(
+                f"hoop stress, {fibre} fibre [Pa]",
+                float(h),
+                float(x),
+                0.01,
+                (("Winkler-Bach", float(w)), ("Mc/I", float(m))),
+            )
             for fibre, h, x, w, m in zip(("inner", "outer"), hoop, exact, winkler, straight)
         ),
     )
 
 
-def spinning_bar(L: float = 0.4, h: float = 0.04, omega: float = 300.0, refinement: float = 1.0) -> BenchmarkResult:
+def spinning_bar(
+    L: float = 0.4, h: float = 0.04, omega: float = 300.0, refinement: float = 1.0
+) -> BenchmarkResult:
     """A bar spinning about its middle, loaded only by its d'Alembert body force: N(x) over FEA cuts."""
     steel = Material("steel", 7850.0, E, NU)
     bar = straight_bar(L, h, 0.0, T, steel, name="spinning bar")
@@ -224,7 +256,10 @@ def spinning_bar(L: float = 0.4, h: float = 0.04, omega: float = 300.0, refineme
         "Spinning bar",
         "free body of the outer part: N = rho A w^2 (L^2/4 - x^2) / 2",
         result.dofs,
-        tuple(Comparison(f"N at x = {s:g} m [N]", float(n), float(x), 0.005) for s, n, x in zip(stations, normal, exact)),
+        tuple(
+            Comparison(f"N at x = {s:g} m [N]", float(n), float(x), 0.005)
+            for s, n, x in zip(stations, normal, exact)
+        ),
     )
 
 
@@ -236,8 +271,22 @@ def format_results(results: list[BenchmarkResult]) -> str:
     rows = []
     for result in results:
         for c in result.comparisons:
-            beside = ", ".join(f"{name} {value:.6g} ({abs(value - c.reference) / abs(c.reference):.2%} off)" for name, value in c.beside)
-            rows.append((result.case, c.quantity, c.fea, c.reference, f"{c.error:.3%}", f"{c.tolerance:.1%}", result.dofs, beside))
+            beside = ", ".join(
+                f"{name} {value:.6g} ({abs(value - c.reference) / abs(c.reference):.2%} off)"
+                for name, value in c.beside
+            )
+            rows.append(
+                (
+                    result.case,
+                    c.quantity,
+                    c.fea,
+                    c.reference,
+                    f"{c.error:.3%}",
+                    f"{c.tolerance:.1%}",
+                    result.dofs,
+                    beside,
+                )
+            )
     return format_table(("case", "quantity", "FEA", "exact", "error", "tolerance", "dofs", "beside"), rows)
 
 

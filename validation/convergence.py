@@ -85,6 +85,7 @@ def _observed_order(log_ratio: NDArray[np.float64], r21: float, r32: float) -> N
     The right side grows monotonically from ln(ln r32 / ln r21) at p = 0; no root in (0, MAX_ORDER]
     gives nan (order not determined).
     """
+
     def side(p):
         return p * math.log(r21) + np.log(np.expm1(p * math.log(r32)) / np.expm1(p * math.log(r21)))
 

@@ -24,8 +24,19 @@ from linkstress.profile import LinkProfile
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_loads import check_load_case, link_loads
 from linkstress.validation.mesh import MeshSettings, PlaneMesh, mesh_region
-from linkstress.validation.plane_stress import PlaneStressModel, factorise, minimal_support, plane_stress_model
-from linkstress.validation.recovery import CutIntegrator, cut_integrator, interpolation_matrix, stress_recovery, von_mises
+from linkstress.validation.plane_stress import (
+    PlaneStressModel,
+    factorise,
+    minimal_support,
+    plane_stress_model,
+)
+from linkstress.validation.recovery import (
+    CutIntegrator,
+    cut_integrator,
+    interpolation_matrix,
+    stress_recovery,
+    von_mises,
+)
 from linkstress.validation.vtu import write_sweep
 
 
@@ -186,7 +197,9 @@ def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> Li
     )
 
 
-def _reactions(model: PlaneStressModel, fixed: NDArray[np.intp], support: NDArray[np.float64]) -> NDArray[np.float64]:
+def _reactions(
+    model: PlaneStressModel, fixed: NDArray[np.intp], support: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """Support reactions (P, 3): force x, y [N] and moment about the origin [N m], from the fixed dofs."""
     position = np.empty((model.n_dofs, 2))
     for c in range(2):

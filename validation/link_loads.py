@@ -33,17 +33,24 @@ FACET_INTORDER = 8
 
 
 def nodal_resultant(
-    model: PlaneStressModel, forces: NDArray[np.float64], about: NDArray[np.float64] = np.zeros(2)
+    model: PlaneStressModel, forces: NDArray[np.float64], about: NDArray[np.float64] | None = None
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Net force (P, 2) [N] and moment (P,) [N m] about ``about`` (2,) [m] of nodal ``forces`` (dofs, P)."""
-    xy = model.scalar.doflocs - np.asarray(about, float)[:, None]
+    """Net force (P, 2) [N] and moment (P,) [N m] of nodal ``forces`` (dofs, P).
+
+    The moment is taken about ``about`` (2,) [m], the origin by default.
+    """
+    origin = np.zeros(2) if about is None else np.asarray(about, float)
+    xy = model.scalar.doflocs - origin[:, None]
     fx, fy = forces[model.components[0]], forces[model.components[1]]
     force = np.column_stack([fx.sum(axis=0), fy.sum(axis=0)])
     return force, xy[0] @ fy - xy[1] @ fx
 
 
 def bearing_loads(
-    model: PlaneStressModel, facets: NDArray[np.intp], centre: NDArray[np.float64], forces: NDArray[np.float64]
+    model: PlaneStressModel,
+    facets: NDArray[np.intp],
+    centre: NDArray[np.float64],
+    forces: NDArray[np.float64],
 ) -> NDArray[np.float64]:
     """Cosine bearing pressure of pin forces (P, 2) [N] on the hole ``facets`` around ``centre`` (2,) [m]."""
     basis = FacetBasis(model.plane.mesh, ElementTriP2(), facets=facets, intorder=FACET_INTORDER)
@@ -51,7 +58,9 @@ def bearing_loads(
     radius = points - np.asarray(centre, float)[:, None]
     radial = radius / np.hypot(*radius)
     magnitude = np.hypot(forces[:, 0], forces[:, 1])
-    direction = np.where(magnitude[:, None] > 0, forces / np.where(magnitude > 0, magnitude, 1.0)[:, None], [1.0, 0.0])
+    direction = np.where(
+        magnitude[:, None] > 0, forces / np.where(magnitude > 0, magnitude, 1.0)[:, None], [1.0, 0.0]
+    )
     cos = direction @ radial
     sin = direction[:, :1] * radial[1] - direction[:, 1:] * radial[0]
     loaded = cos > 0
@@ -64,7 +73,10 @@ def bearing_loads(
 
 
 def shaft_couple_loads(
-    model: PlaneStressModel, facets: NDArray[np.intp], centre: NDArray[np.float64], couples: NDArray[np.float64]
+    model: PlaneStressModel,
+    facets: NDArray[np.intp],
+    centre: NDArray[np.float64],
+    couples: NDArray[np.float64],
 ) -> NDArray[np.float64]:
     """Uniform tangential traction on the hole ``facets`` carrying couples (P,) [N m] about ``centre``."""
     basis = FacetBasis(model.plane.mesh, ElementTriP2(), facets=facets, intorder=FACET_INTORDER)
@@ -114,7 +126,9 @@ def patch_loads(
     return vector_loads(model, weights, forces[:, :, None] * shape[None, None, :])
 
 
-def link_loads(model: PlaneStressModel, link: LinkProfile, loads: LinkLoadCase, patch_radius: float) -> NDArray[np.float64]:
+def link_loads(
+    model: PlaneStressModel, link: LinkProfile, loads: LinkLoadCase, patch_radius: float
+) -> NDArray[np.float64]:
     """All the loads of ``loads`` on ``link`` meshed in ``model`` (its member frame): forces (dofs, P) [N]."""
     check_load_case(link, loads)
     frame = link.frame(*loads.frame_joints)
@@ -158,4 +172,6 @@ def check_load_case(link: LinkProfile, loads: LinkLoadCase) -> None:
             raise FEAError(f"link {link.name!r}: load case {key} has non-finite values")
     for point in loads.point_forces:
         if np.shape(point.force) != (n_pos, 2) or not np.isfinite(point.force).all():
-            raise FEAError(f"link {link.name!r}: a point force at {np.asarray(point.at).tolist()} needs finite (P, 2) forces")
+            raise FEAError(
+                f"link {link.name!r}: a point force at {np.asarray(point.at).tolist()} needs finite (P, 2) forces"
+            )

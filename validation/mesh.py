@@ -68,7 +68,10 @@ class MeshSettings:
     def refined(self, ratio: float) -> MeshSettings:
         """The same settings with every element size divided by ``ratio``."""
         return replace(
-            self, size=self.size / ratio, hole_size=self.hole_size / ratio, station_size=self.station_size / ratio
+            self,
+            size=self.size / ratio,
+            hole_size=self.hole_size / ratio,
+            station_size=self.station_size / ratio,
         )
 
 
@@ -127,7 +130,9 @@ def mesh_region(
         except FEAError:
             raise
         except Exception as error:
-            raise FEAError(f"{name}: gmsh could not mesh it ({error}); check the outline or change the sizes")
+            raise FEAError(
+                f"{name}: gmsh could not mesh it ({error}); check the outline or change the sizes"
+            ) from error
     return PlaneMesh(
         mesh=mesh,
         outline=facets["outline"],
@@ -147,9 +152,14 @@ def _gmsh_model(name: str) -> Iterator[None]:
         gmsh.initialize(interruptible=False)
     gmsh.model.add(f"linkstress {name}")
     try:
-        for option, value in (("General.Terminal", 0), ("General.NumThreads", 1), ("Mesh.Algorithm", 6),
-                              ("Mesh.MeshSizeExtendFromBoundary", 0), ("Mesh.MeshSizeFromPoints", 0),
-                              ("Mesh.MeshSizeFromCurvature", 0)):
+        for option, value in (
+            ("General.Terminal", 0),
+            ("General.NumThreads", 1),
+            ("Mesh.Algorithm", 6),
+            ("Mesh.MeshSizeExtendFromBoundary", 0),
+            ("Mesh.MeshSizeFromPoints", 0),
+            ("Mesh.MeshSizeFromCurvature", 0),
+        ):
             gmsh.option.setNumber(option, value)
         yield
     finally:
@@ -166,7 +176,9 @@ def _build_geometry(region, stations, settings, points) -> dict[str, list[int]]:
     surface = occ.addPlaneSurface(loops)
     _, miny, _, maxy = region.bounds
     pad = 0.01 * (maxy - miny)
-    cut_lines = [occ.addLine(occ.addPoint(s, miny - pad, 0), occ.addPoint(s, maxy + pad, 0)) for s in stations]
+    cut_lines = [
+        occ.addLine(occ.addPoint(s, miny - pad, 0), occ.addPoint(s, maxy + pad, 0)) for s in stations
+    ]
     cut_pieces: list[list[int]] = [[] for _ in stations]
     if cut_lines:
         _, pieces = occ.fragment([(2, surface)], [(1, c) for c in cut_lines])
@@ -181,7 +193,9 @@ def _build_geometry(region, stations, settings, points) -> dict[str, list[int]]:
     boundary = [t for _, t in gmsh.model.getEntities(1) if t not in cut_tags]
     nearest = [_nearest_ring(_curve_midpoint(t), rings) for t in boundary]
     groups = {"outline": [t for t, r in zip(boundary, nearest) if r == 0]}
-    groups |= {f"hole {k}": [t for t, r in zip(boundary, nearest) if r == k + 1] for k in range(len(rings) - 1)}
+    groups |= {
+        f"hole {k}": [t for t, r in zip(boundary, nearest) if r == k + 1] for k in range(len(rings) - 1)
+    }
     groups |= {f"cut {k}": piece for k, piece in enumerate(cut_pieces)}
     gmsh.model.addPhysicalGroup(2, [t for _, t in gmsh.model.getEntities(2)], name="material")
     for key, tags in groups.items():

@@ -82,7 +82,13 @@ def plane_stress_model(
     components[:, scalar.facet_dofs[0]] = basis.facet_dofs
     stiffness = thickness * asm(linear_elasticity(*plane_stress(youngs_modulus, poisson_ratio)), basis)
     return PlaneStressModel(
-        plane, float(youngs_modulus), float(poisson_ratio), float(thickness), basis, scalar, components,
+        plane,
+        float(youngs_modulus),
+        float(poisson_ratio),
+        float(thickness),
+        basis,
+        scalar,
+        components,
         stiffness.tocsr(),
     )
 
@@ -102,7 +108,9 @@ def quadrature_weights(basis: Basis) -> tuple[sp.csr_matrix, NDArray[np.float64]
     return weights, points
 
 
-def vector_loads(model: PlaneStressModel, weights: sp.csr_matrix, density: NDArray[np.float64]) -> NDArray[np.float64]:
+def vector_loads(
+    model: PlaneStressModel, weights: sp.csr_matrix, density: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """Nodal forces (dofs, P) [N] of a load ``density`` (P, 2, Nq) per unit area [Pa = N/m^2] or volume.
 
     ``weights`` from :func:`quadrature_weights` (facet basis: traction [Pa] times t; cell basis:
@@ -137,7 +145,9 @@ class FactorisedStiffness:
         rhs = loads[self.free] - self.stiffness[self.free][:, self.fixed] @ u[self.fixed]
         u[self.free] = self.lu.solve(rhs)
         if not np.isfinite(u).all():
-            raise FEAError("the solver returned non-finite displacements: the supports leave a rigid mode free")
+            raise FEAError(
+                "the solver returned non-finite displacements: the supports leave a rigid mode free"
+            )
         reactions = self.stiffness[self.fixed] @ u - loads[self.fixed]
         return u, reactions
 
@@ -151,7 +161,9 @@ def factorise(model: PlaneStressModel, fixed: NDArray[np.intp]) -> FactorisedSti
     try:
         lu = factorise_spd(model.stiffness[free][:, free])
     except RuntimeError as error:
-        raise FEAError(f"the stiffness could not be factorised ({error}): the supports leave a rigid mode free")
+        raise FEAError(
+            f"the stiffness could not be factorised ({error}): the supports leave a rigid mode free"
+        ) from error
     return FactorisedStiffness(model.stiffness, fixed, free, lu)
 
 
@@ -161,7 +173,9 @@ def factorise_spd(matrix: sp.spmatrix):
     Minimum degree ordering on A^T + A, symmetric mode and no pivoting (the diagonal of an SPD
     matrix is a safe pivot): about four times less fill and time than SuperLU's defaults.
     """
-    return splu(matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    return splu(
+        matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
+    )
 
 
 def minimal_support(model: PlaneStressModel) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
@@ -176,5 +190,11 @@ def minimal_support(model: PlaneStressModel) -> tuple[NDArray[np.intp], NDArray[
     second = int(np.lexsort((-p[1], -p[0]))[0])
     if np.isclose(p[0, first], p[0, second]):
         raise FEAError("the region has no extent in x: cannot place a minimal support")
-    dofs = np.array([model.basis.nodal_dofs[0, first], model.basis.nodal_dofs[1, first], model.basis.nodal_dofs[1, second]])
+    dofs = np.array(
+        [
+            model.basis.nodal_dofs[0, first],
+            model.basis.nodal_dofs[1, first],
+            model.basis.nodal_dofs[1, second],
+        ]
+    )
     return dofs, p[:, [first, second]].T

@@ -96,7 +96,10 @@ def _locate(nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.f
                 jac += node[:, None, :] * dphi[None, :, :]
             det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
             r = target - x
-            local = local + np.array([jac[1, 1] * r[0] - jac[0, 1] * r[1], -jac[1, 0] * r[0] + jac[0, 0] * r[1]]) / det
+            local = (
+                local
+                + np.array([jac[1, 1] * r[0] - jac[0, 1] * r[1], -jac[1, 0] * r[0] + jac[0, 0] * r[1]]) / det
+            )
         outside = np.max([-local[0], -local[1], local.sum(axis=0) - 1, np.zeros(len(cell))], axis=0)
     outside = np.where(np.isfinite(outside), outside, np.inf).reshape(len(points), k)
     best = np.argmin(outside, axis=1)
@@ -123,7 +126,8 @@ def strain_operators(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix
     }
     shape = (n_el * n_qp, basis.N)
     return tuple(
-        sp.csr_matrix((np.concatenate(v).ravel(), (rows.ravel(), cols.ravel())), shape=shape) for v in parts.values()
+        sp.csr_matrix((np.concatenate(v).ravel(), (rows.ravel(), cols.ravel())), shape=shape)
+        for v in parts.values()
     )
 
 
@@ -162,10 +166,14 @@ def cut_integrator(model: PlaneStressModel, cuts: tuple[NDArray[np.intp], ...]) 
     if len(facets) == 0:
         empty = sp.csr_matrix((0, model.n_dofs))
         return CutIntegrator(sp.csr_matrix((len(cuts), 0)), np.zeros(0), (empty, empty, empty))
-    sides = [InteriorFacetBasis(model.plane.mesh, model.basis.elem, facets=facets, side=s, intorder=4) for s in (0, 1)]
+    sides = [
+        InteriorFacetBasis(model.plane.mesh, model.basis.elem, facets=facets, side=s, intorder=4)
+        for s in (0, 1)
+    ]
     strains = [strain_operators(b) for b in sides]
     stress = tuple(
-        (0.5 * sum(d[c, 0] * e[0] + d[c, 1] * e[1] + d[c, 2] * e[2] for e in strains)).tocsr() for c in range(3)
+        (0.5 * sum(d[c, 0] * e[0] + d[c, 1] * e[1] + d[c, 2] * e[2] for e in strains)).tocsr()
+        for c in range(3)
     )
     n_qp = sides[0].dx.shape[1]
     weights = sp.csr_matrix(

@@ -122,9 +122,7 @@ def _same_circle(xy, centres: NDArray[np.float64], radii: NDArray[np.float64]) -
         allowed = np.minimum(tolerance, np.roll(tolerance, -1))
         nxt_c, nxt_r = np.roll(centres, -1, axis=0), np.roll(radii, -1)
         gap = np.hypot(*(centres - nxt_c).T)
-        return (
-            np.isfinite(radii) & np.isfinite(nxt_r) & (gap <= allowed) & (np.abs(radii - nxt_r) <= allowed)
-        )
+        return np.isfinite(radii) & np.isfinite(nxt_r) & (gap <= allowed) & (np.abs(radii - nxt_r) <= allowed)
 
 
 def _fitted_circle(xy: NDArray[np.float64]) -> tuple[NDArray[np.float64], float, float]:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
 import meshio
@@ -36,7 +37,9 @@ def write_sweep(
     stem = _safe(name)
     paths = []
     for p in range(displacement.shape[1]):
-        u = np.column_stack([displacement[model.components[0], p], displacement[model.components[1], p], np.zeros(scalar.N)])
+        u = np.column_stack(
+            [displacement[model.components[0], p], displacement[model.components[1], p], np.zeros(scalar.N)]
+        )
         s = nodal_stress[p]
         data = {
             "displacement": u,
@@ -46,15 +49,22 @@ def write_sweep(
             "von_mises": von_mises(s),
         }
         path = folder / f"{stem}_{p:04d}.vtu"
-        _atomic(path, lambda tmp: meshio.write(tmp, meshio.Mesh(points, cells, point_data=data), file_format="vtu"))
+        mesh = meshio.Mesh(points, cells, point_data=data)
+        _atomic(path, lambda tmp, mesh=mesh: meshio.write(tmp, mesh, file_format="vtu"))
         paths.append(path)
-    entries = "\n".join(
-        f'    <DataSet timestep="{p}" part="0" file="{path.name}"/>' for p, path in enumerate(paths)
-    )
     pvd = folder / f"{stem}.pvd"
-    text = f'<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n{entries}\n  </Collection>\n</VTKFile>\n'
-    _atomic(pvd, lambda tmp: Path(tmp).write_text(text))
+    _atomic(pvd, lambda tmp: _collection(paths).write(tmp, xml_declaration=True, encoding="utf-8"))
     return [*paths, pvd]
+
+
+def _collection(paths: list[Path]) -> ElementTree.ElementTree:
+    """A ParaView collection (PVD) listing ``paths`` as time steps 0, 1, ..."""
+    root = ElementTree.Element("VTKFile", type="Collection", version="0.1")
+    collection = ElementTree.SubElement(root, "Collection")
+    for step, path in enumerate(paths):
+        ElementTree.SubElement(collection, "DataSet", timestep=str(step), part="0", file=path.name)
+    ElementTree.indent(root)
+    return ElementTree.ElementTree(root)
 
 
 def _safe(name: str) -> str:
