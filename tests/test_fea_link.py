@@ -104,6 +104,17 @@ def test_stress_at_points_has_one_row_per_position_and_point(crank_sweep):
     np.testing.assert_allclose(s, result.nodal_stress[:, :5], rtol=1e-9, atol=1e-6)
 
 
+def test_every_point_of_the_plate_is_found_in_a_graded_mesh(crank_sweep):
+    # 4 mm elements at the holes grade to 50 mm: a point in a large element may have smaller
+    # elements' centroids nearer to it than its own, so the search must widen until it finds it.
+    bar, _, result = crank_sweep
+    rng = np.random.default_rng(7)
+    points = np.column_stack([rng.uniform(-0.1, 1.1, 3000), rng.uniform(-0.25, 0.25, 3000)])
+    clear = np.min([np.hypot(*(points - j).T) for j in bar.joints], axis=0) > 0.0101
+    s = result.stress_at(points[clear])
+    assert s.shape == (6, clear.sum(), 3) and np.isfinite(s).all()
+
+
 def test_peak_von_mises_is_at_a_pin_hole_and_is_the_largest_nodal_value(crank_sweep):
     bar, _, result = crank_sweep
     peak, where = result.von_mises_peak, result.von_mises_peak_at

@@ -74,15 +74,38 @@ def interpolation_matrix(model: PlaneStressModel, points: NDArray[np.float64]) -
 
 
 def _locate(nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
-    """Element (Q,) and reference coordinates (2, Q) of each point, by Newton on the P2 map."""
+    """Element (Q,) and reference coordinates (2, Q) of each point, by Newton on the P2 map.
+
+    Candidates are the elements with the nearest centroids; points not found among them (a small
+    element's centroid can be nearer than the large element holding the point) are searched again
+    among ever more candidates, up to every element.
+    """
     n_el = element_dofs.shape[1]
-    vertices = nodes[:, element_dofs[:3]]
-    tree = cKDTree(vertices.mean(axis=1).T)
-    k = min(CANDIDATES, n_el)
-    candidates = tree.query(points, k)[1].reshape(len(points), k)
-    q = np.repeat(np.arange(len(points)), k)
+    tree = cKDTree(nodes[:, element_dofs[:3]].mean(axis=1).T)
+    cells = np.zeros(len(points), dtype=np.intp)
+    local = np.zeros((2, len(points)))
+    todo = np.arange(len(points))
+    for k in (CANDIDATES, 8 * CANDIDATES, 64 * CANDIDATES, n_el):
+        k = min(k, n_el)
+        candidates = tree.query(points[todo], k)[1].reshape(len(todo), k)
+        found_cell, found_local, outside = _best_candidate(nodes, element_dofs, points[todo], candidates)
+        found = outside <= OUTSIDE_TOLERANCE
+        cells[todo[found]], local[:, todo[found]] = found_cell[found], found_local[:, found]
+        todo = todo[~found]
+        if len(todo) == 0 or k == n_el:
+            break
+    if len(todo):
+        bad = points[todo[0]]
+        raise FEAError(f"the point ({bad[0]:.6g}, {bad[1]:.6g}) m is outside the meshed plate")
+    chosen = np.clip(local, 0.0, 1.0)
+    return cells, chosen - np.maximum(chosen.sum(axis=0) - 1, 0.0) / 2
+
+
+def _best_candidate(nodes, element_dofs, points, candidates):
+    """For each point, the candidate element it is least outside of: cell, reference coords, outsideness."""
+    n_points, k = candidates.shape
     cell = candidates.ravel()
-    target = points[q].T
+    target = np.repeat(points, k, axis=0).T
     local = np.full((2, len(cell)), 1 / 3)
     element = ElementTriP2()
     with np.errstate(all="ignore"):
@@ -96,21 +119,13 @@ def _locate(nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.f
                 jac += node[:, None, :] * dphi[None, :, :]
             det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
             r = target - x
-            local = (
-                local
-                + np.array([jac[1, 1] * r[0] - jac[0, 1] * r[1], -jac[1, 0] * r[0] + jac[0, 0] * r[1]]) / det
-            )
+            step = np.array([jac[1, 1] * r[0] - jac[0, 1] * r[1], -jac[1, 0] * r[0] + jac[0, 0] * r[1]])
+            local = local + step / det
         outside = np.max([-local[0], -local[1], local.sum(axis=0) - 1, np.zeros(len(cell))], axis=0)
-    outside = np.where(np.isfinite(outside), outside, np.inf).reshape(len(points), k)
+    outside = np.where(np.isfinite(outside), outside, np.inf).reshape(n_points, k)
     best = np.argmin(outside, axis=1)
-    worst = outside[np.arange(len(points)), best]
-    if (worst > OUTSIDE_TOLERANCE).any():
-        bad = points[np.argmax(worst)]
-        raise FEAError(f"the point ({bad[0]:.6g}, {bad[1]:.6g}) m is outside the meshed plate")
-    pick = np.arange(len(points)) * k + best
-    chosen = np.clip(local[:, pick], 0.0, 1.0)
-    excess = np.maximum(chosen.sum(axis=0) - 1, 0.0) / 2
-    return cell[pick], chosen - excess
+    pick = np.arange(n_points) * k + best
+    return cell[pick], local[:, pick], outside[np.arange(n_points), best]
 
 
 def strain_operators(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
