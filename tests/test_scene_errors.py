@@ -112,7 +112,7 @@ CASES = [
     ("[motion]", "[analysis]\nstations = 1\n[motion]", "analysis.stations: must be >= 2, got 1"),
     ("[links.ground]", "[links.spare]\njoints = [[0.0, 0.0], [1.0, 0.0]]\n[links.ground]",
      "links.spare: no mechanism uses this link; name it in a [mechanisms] table or remove it"),
-    ("[motion]", "[extra]\n[motion]", "scene.toml: extra: unknown key; allowed keys are: units, materials, links,"),
+    ("[motion]", "[extra]\n[motion]", "scene.toml: extra: unknown key; allowed keys are: title, notes, units, materials, links,"),
     ("[motion]\ninput_angle_deg = {start = 0.0, stop = 350.0, num = 36}\ninput_speed_rad_s = 10.0\n", "",
      "scene.toml: motion: missing table; add [motion]"),
     ('type = "four-bar"', 'type = "four-bar"\n= oops', "scene.toml: not valid TOML: "),

@@ -191,3 +191,18 @@ def test_a_centre_of_mass_from_explicit_data_is_in_the_member_frame_of_the_links
     assert link.to_member(np.array([5.0, 5.75])) == pytest.approx([0.75, 0.0])
     motion = solve_machine(scene.machine, scene.motion)
     assert motion.links["coupler"].point(link.center_of_mass)[2][0] == pytest.approx((-0.758, -0.605), abs=5e-4)
+
+
+def test_title_and_notes_are_read_for_the_reports(tmp_path):
+    scene = load_scene(write(tmp_path, 'title = "Seed check"\nnotes = ["loads as stated", "no gravity"]\n' + SEED))
+    assert scene.title == "Seed check"
+    assert scene.notes == ("loads as stated", "no gravity")
+    plain = load_scene(write(tmp_path, SEED, name="plain.toml"))
+    assert plain.title == "plain" and plain.notes == ()
+
+
+def test_notes_must_be_text(tmp_path):
+    from linkstress.errors import SceneError
+
+    with pytest.raises(SceneError, match="notes: must be a string or a list of strings"):
+        load_scene(write(tmp_path, "notes = [1, 2]\n" + SEED))

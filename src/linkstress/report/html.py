@@ -122,6 +122,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
     sections = [
         f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} positions, '
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
+        *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
         "<h2>Loads applied</h2>", loads_html(result),
         "<h2>Mechanism</h2>",
     ]
@@ -152,7 +153,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
 
 
 def analysis_html(result: AnalysisResult) -> str:
-    return page(f"linkstress analyze: {result.scene.path.name}", analysis_sections(result))
+    return page(f"linkstress analyze: {result.scene.title}", analysis_sections(result))
 
 
 def _shown(result: AnalysisResult) -> list[int]:

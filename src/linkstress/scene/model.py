@@ -128,7 +128,8 @@ class Analysis:
 
 @dataclass(frozen=True)
 class Scene:
-    """A whole scene, checked. ``actuator``: the link carrying the unknown driving torque."""
+    """A whole scene, checked. ``actuator``: the link carrying the unknown driving torque;
+    ``title`` and ``notes``: what reports say about the case (the title defaults to the file's stem)."""
 
     path: Path
     units: str | None
@@ -139,6 +140,8 @@ class Scene:
     actuator: str
     loads: Loads
     analysis: Analysis | None
+    title: str = ""
+    notes: tuple[str, ...] = ()
 
     @property
     def moving_links(self) -> tuple[str, ...]:

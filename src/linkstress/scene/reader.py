@@ -1,7 +1,9 @@
 """Read a scene file (TOML) into a checked ``Scene``.
 
-Top-level tables: ``units`` (optional: the length unit of unitless sketches, e.g. "mm"; the
-importers check the name; bare joints and every key ending ``_m`` are always metres), ``[materials.NAME]``,
+Top-level keys: ``title`` and ``notes`` (optional strings shown at the top of every report: what
+the case is and what a reader must know to judge it), ``units`` (optional: the length unit of
+unitless sketches, e.g. "mm"; the importers check the name; bare joints and every key ending ``_m``
+are always metres), ``[materials.NAME]``,
 ``[links.NAME]``, ``[mechanisms.NAME]``, ``[motion]``, ``[loads]``, ``[analysis]``. Every error
 names the file, the key's dotted path and what to do.
 """
@@ -21,7 +23,7 @@ from linkstress.scene.mechanisms import read_mechanisms
 from linkstress.scene.model import Scene, SceneLink
 from linkstress.scene.motion import read_actuator, read_motion
 
-TOP_KEYS = ("units", "materials", "links", "mechanisms", "motion", "loads", "analysis")
+TOP_KEYS = ("title", "notes", "units", "materials", "links", "mechanisms", "motion", "loads", "analysis")
 
 
 def load_scene(path: str | Path) -> Scene:
@@ -47,6 +49,12 @@ def load_scene(path: str | Path) -> Scene:
 
 def _scene(top: Table, path: Path) -> Scene:
     top.allow(TOP_KEYS)
+    title = top.string("title", path.stem)
+    notes = top.data.get("notes", [])
+    if isinstance(notes, str):
+        notes = [notes]
+    if not isinstance(notes, list) or not all(isinstance(n, str) for n in notes):
+        raise top.error("notes", "must be a string or a list of strings")
     units = top.string("units")
     materials = read_materials(top.table("materials"))
     sources = read_links(top.table("links", required=True), materials, units, path.parent)
@@ -69,5 +77,5 @@ def _scene(top: Table, path: Path) -> Scene:
     analysis = read_analysis(top.table("analysis"), links)
     return Scene(
         path, units, MappingProxyType(materials), MappingProxyType(links), machine, motion, actuator, loads,
-        analysis,
+        analysis, title, tuple(notes),
     )
