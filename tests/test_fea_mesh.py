@@ -160,6 +160,13 @@ def test_a_ligament_narrower_than_two_hole_elements_is_an_error():
         mesh_region(region, MeshSettings(0.05, 0.004))
 
 
+def test_a_self_intersecting_region_is_refused_before_gmsh_sees_it():
+    with pytest.raises(
+        FEAError, match=r"bow tie: the region to mesh is not a valid polygon \(Self-intersection"
+    ):
+        mesh_region(Polygon([(0, 0), (1, 1), (1, 0), (0, 1)]), MeshSettings(0.1), name="bow tie")
+
+
 def test_a_station_outside_the_link_is_an_error():
     with pytest.raises(FEAError, match="station x = 1.5 m is not inside"):
         mesh_region(box(0, 0, 1, 0.2), MeshSettings(0.05, stations=(0.5, 1.5)))

@@ -128,3 +128,10 @@ def test_fixing_a_dof_twice_is_an_error(stretched_bar):
     model = stretched_bar[0]
     with pytest.raises(FEAError, match="fixed twice"):
         factorise(model, np.array([0, 0, 1]))
+
+
+def test_a_support_that_leaves_rigid_modes_free_is_a_solver_error(stretched_bar):
+    # One fixed dof: the bar can still slide in y and turn; the unbalanced load cannot be carried.
+    model, loads, _, _, _ = stretched_bar
+    with pytest.raises(FEAError, match="the solver failed .* supports leave a rigid mode free"):
+        factorise(model, np.array([0])).solve(np.ones(model.n_dofs))

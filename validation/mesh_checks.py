@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.ops import nearest_points
+from shapely.validation import explain_validity
 
 from linkstress.validation.errors import FEAError
 
@@ -20,7 +21,14 @@ MIN_ELEMENTS_ACROSS = 2
 
 
 def check_meshable(region: Polygon, settings, name: str) -> None:
-    """Raise FEAError naming ``name`` and the place when ``region`` is too thin for ``settings``' sizes."""
+    """Raise FEAError naming ``name`` and the place when ``region`` is too thin for ``settings``' sizes.
+
+    An invalid polygon (self-intersecting, holes crossing) is refused first: gmsh may never return
+    on one.
+    """
+    if not isinstance(region, Polygon) or region.is_empty or not region.is_valid:
+        reason = explain_validity(region) if isinstance(region, Polygon) else type(region).__name__
+        raise FEAError(f"{name}: the region to mesh is not a valid polygon ({reason})")
     need = MIN_ELEMENTS_ACROSS * settings.hole_size
     rings = [("the outline", region.exterior)] + [(f"hole {k}", r) for k, r in enumerate(region.interiors)]
     for k, ring in enumerate(region.interiors):

@@ -31,6 +31,8 @@ from linkstress.validation.mesh import PlaneMesh
 
 INTORDER = 4
 """Quadrature degree on cells: exact for the P2 stiffness and for P2 x linear loads on straight cells."""
+SOLVE_TOLERANCE = 1e-8
+"""Largest residual |K u - f| of the free dofs, relative to |f| + |K u|, of a successful solve."""
 
 
 def plane_stress_matrix(youngs_modulus: float, poisson_ratio: float) -> NDArray[np.float64]:
@@ -144,12 +146,18 @@ class FactorisedStiffness:
             u[self.fixed] = np.asarray(prescribed, float).reshape(len(self.fixed), -1)
         rhs = loads[self.free] - self.stiffness[self.free][:, self.fixed] @ u[self.fixed]
         u[self.free] = self.lu.solve(rhs)
-        if not np.isfinite(u).all():
-            raise FEAError(
-                "the solver returned non-finite displacements: the supports leave a rigid mode free"
+        internal = self.stiffness @ u
+        residual = np.linalg.norm(internal[self.free] - loads[self.free], axis=0)
+        scale = np.linalg.norm(loads[self.free], axis=0) + np.linalg.norm(internal[self.free], axis=0)
+        if not np.isfinite(u).all() or (residual > SOLVE_TOLERANCE * scale).any():
+            worst = float(
+                np.max(np.divide(residual, scale, out=np.full_like(residual, np.inf), where=scale > 0))
             )
-        reactions = self.stiffness[self.fixed] @ u - loads[self.fixed]
-        return u, reactions
+            raise FEAError(
+                f"the solver failed (relative residual {worst:.2g}): the stiffness is singular, "
+                "the supports leave a rigid mode free or the mesh has a loose part"
+            )
+        return u, internal[self.fixed] - loads[self.fixed]
 
 
 def factorise(model: PlaneStressModel, fixed: NDArray[np.intp]) -> FactorisedStiffness:
