@@ -126,7 +126,7 @@ def mesh_region(
             gmsh.model.mesh.generate(2)
             gmsh.model.mesh.setOrder(2)
             mesh, facet_of = _read_mesh()
-            facets = {key: facet_of(_group_edges(key, tags)) for key, tags in groups.items()}
+            facets = {key: facet_of(_group_edges(tags)) for key, tags in groups.items()}
         except FEAError:
             raise
         except Exception as error:
@@ -279,7 +279,7 @@ def _nearest_ring(xy: tuple[float, float], rings) -> int:
     return int(np.argmin([ring.distance(point) for ring in rings]))
 
 
-def _group_edges(key: str, curve_tags: list[int]) -> NDArray[np.int64]:
+def _group_edges(curve_tags: list[int]) -> NDArray[np.int64]:
     """gmsh node tags (E, 2) of the end vertices of the line elements on ``curve_tags``."""
     edges = [np.zeros((0, 2), dtype=np.int64)]
     for tag in curve_tags:
