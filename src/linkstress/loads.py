@@ -52,6 +52,15 @@ class LinkLoadCase:
     def n_positions(self) -> int:
         return len(self.omega)
 
+    def at(self, positions: NDArray[np.intp]) -> "LinkLoadCase":
+        """The same loads at a subset of the positions (indices into this sweep)."""
+        k = np.asarray(positions, dtype=np.intp)
+        return LinkLoadCase(
+            self.frame_joints, self.pin_forces[k], self.joint_couples[k], self.omega[k], self.alpha[k],
+            self.origin_acceleration[k], self.gravity[k],
+            tuple(PointForce(pf.at, pf.force[k]) for pf in self.point_forces),
+        )
+
     def body_force_density(self, points: NDArray[np.float64], density: float) -> NDArray[np.float64]:
         """d'Alembert load per unit volume [N/m^3] at ``points`` (Q, 2) [m]: shape (P, Q, 2), member frame."""
         r = points[None, :, :]

@@ -91,6 +91,10 @@ def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: in
     return lo + (hi - lo) * (np.arange(count) + 0.5) / count
 
 
+NEAR_HOLE_SLACK = 1e-9
+"""A station exactly one depth from a pin (the midpoint of a bar as long as two depths) is not near it."""
+
+
 def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: SectionTable) -> NDArray[np.bool_]:
     """Stations closer (along x) to a hole's centre than the local section depth (St-Venant: a pin's
     load spreads into a beam-like stress state about one depth from where it is applied)."""
@@ -99,7 +103,7 @@ def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: Secti
     depth = sections.top - sections.bottom
     for ring in link.outline.interiors:
         centre = frame.to_local(Polygon(ring).centroid.coords[0])[0]
-        flags |= np.abs(sections.x - centre) < depth
+        flags |= np.abs(sections.x - centre) < depth * (1 - NEAR_HOLE_SLACK)
     return flags
 
 

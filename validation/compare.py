@@ -1,0 +1,177 @@
+"""Beam sections against plane-stress FEA of the same link under the same loads.
+
+Three comparisons per link and position (DESIGN.md, "FEA cross-check"):
+
+- section resultants: N, V, M integrated over FEA cuts at the comparison stations against the
+  beam's free-body values; error = largest difference over the stations, relative to the largest
+  section force (N, V) or moment (M) of the link at that position;
+- nominal von Mises: at stations at least one section depth from every pin hole's centre, the FEA
+  von Mises at the beam's critical fibre against the beam's; error = largest difference over those
+  stations relative to the largest beam value among them;
+- peak von Mises: the FEA's largest anywhere against the beam's largest (which is nominal near
+  holes); their difference is the stress concentration beam theory does not see.
+
+The comparison stations avoid cutting pin holes (a cut through a hole splits the bearing pressure
+between its two sides, which a beam cannot), and always include the midpoints between joints.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from shapely.geometry import Polygon
+
+from linkstress.dynamics.section_stress import SectionStresses, section_stresses
+from linkstress.loads import LinkLoadCase
+from linkstress.profile import LinkProfile
+from linkstress.validation.convergence import ConvergenceStudy, convergence_study
+from linkstress.validation.link_fea import LinkFEAResult, SectionResultants, solve_link
+from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.recovery import von_mises
+
+COMPARISON_STATIONS = 15
+"""Evenly spaced candidate stations per link (those cutting a hole are dropped)."""
+ELEMENTS_PER_DEPTH = 6
+"""Default element size: the smallest section depth at the comparison stations over this."""
+ELEMENTS_PER_HOLE_DIAMETER = 8
+HOLE_CLEARANCE = 5.0
+"""A comparison station stays this many hole radii from a hole's centre: closer, the stress a pin
+puts into the hole's rim (a driving torque on a small pin above all) is too steep for the cut's
+integral to converge at practical mesh sizes."""
+
+
+@dataclass(frozen=True)
+class LinkComparison:
+    """One link compared over the positions ``positions`` (indices into the sweep).
+
+    ``beam`` holds the beam stresses at ``stations`` for those positions; ``fea`` the finest FEA;
+    ``fea_von_mises`` (Pc, S) the FEA von Mises at the beam's critical fibre of each station;
+    ``away`` (S,) the stations used for the nominal comparison; ``study`` the mesh refinement study
+    (None with a single mesh level).
+    """
+
+    name: str
+    positions: NDArray[np.intp]
+    stations: NDArray[np.float64]
+    away: NDArray[np.bool_]
+    beam: SectionStresses
+    fea: LinkFEAResult
+    fea_resultants: SectionResultants
+    fea_von_mises: NDArray[np.float64]
+    beam_seconds: float
+    fea_seconds: float
+    study: ConvergenceStudy | None
+
+    @property
+    def resultant_error(self) -> NDArray[np.float64]:
+        """(Pc,) [-]: largest N, V, M difference over the stations, relative to the link's largest."""
+        b, f = self.beam.forces, self.fea_resultants
+        force_scale = np.maximum(np.abs(b.normal), np.abs(b.shear)).max(axis=1)
+        moment_scale = np.abs(b.moment).max(axis=1)
+        d_force = np.maximum(np.abs(f.normal - b.normal), np.abs(f.shear - b.shear)).max(axis=1)
+        d_moment = np.abs(f.moment - b.moment).max(axis=1)
+        return np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, moment_scale))
+
+    @property
+    def nominal_error(self) -> NDArray[np.float64] | None:
+        """(Pc,) [-] over the stations away from holes; None when every station is near one."""
+        if not self.away.any():
+            return None
+        beam = self.beam.von_mises[:, self.away]
+        fea = self.fea_von_mises[:, self.away]
+        return _ratio(np.abs(fea - beam).max(axis=1), beam.max(axis=1))
+
+    @property
+    def beam_max(self) -> NDArray[np.float64]:
+        return self.beam.max_von_mises
+
+    @property
+    def fea_peak(self) -> NDArray[np.float64]:
+        return self.fea.von_mises_peak
+
+    @property
+    def peak_error(self) -> NDArray[np.float64]:
+        """(Pc,) [-]: (FEA peak - beam largest) / FEA peak: what the beam misses near holes."""
+        return _ratio(self.fea_peak - self.beam_max, self.fea_peak)
+
+    @property
+    def discretisation_error(self) -> NDArray[np.float64] | None:
+        """(Pc,) [-]: Richardson estimate of the finest mesh's error at the nominal points."""
+        return None if self.study is None else self.study.relative_error
+
+
+def _ratio(difference, scale):
+    return np.divide(difference, scale, out=np.zeros_like(difference), where=scale > 0)
+
+
+def comparison_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> NDArray[np.float64]:
+    """Stations [m, member frame]: ``count`` cell centres between the link's outermost joints and the
+    midpoint between each pair of consecutive joints, all keeping clear of pin holes. (Past the
+    outermost joints a link carries only its own inertia: small resultants among large local
+    stresses around a loaded pin, a comparison that says nothing about the beam.)"""
+    frame = link.frame(*frame_joints)
+    joints_x = np.sort(frame.to_local(link.joints)[:, 0])
+    lo, hi = joints_x[0], joints_x[-1]
+    candidates = lo + (hi - lo) * (np.arange(count) + 0.5) / count
+    candidates = np.concatenate([candidates, (joints_x[:-1] + joints_x[1:]) / 2])
+    keep = np.ones(len(candidates), bool)
+    for ring in link.outline.interiors:
+        hole = Polygon(ring)
+        centre = frame.to_local(hole.centroid.coords[0])[0]
+        radius = math.sqrt(hole.area / math.pi)
+        keep &= np.abs(candidates - centre) > HOLE_CLEARANCE * radius
+    return np.unique(np.round(candidates[keep], 12))
+
+
+def default_mesh(link: LinkProfile, frame_joints: tuple[int, int], stations: NDArray[np.float64], size: float | None = None) -> MeshSettings:
+    """Mesh settings sized from the link: about ELEMENTS_PER_DEPTH elements across its slenderest
+    compared section, ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
+    table = link.sections(stations, *frame_joints)
+    depth = float((table.top - table.bottom).min())
+    size = size or depth / ELEMENTS_PER_DEPTH
+    diameters = [2 * math.sqrt(Polygon(r).area / math.pi) for r in link.outline.interiors]
+    hole = min(diameters) / ELEMENTS_PER_HOLE_DIAMETER if diameters else size / 4
+    return MeshSettings(size=size, hole_size=min(hole, size / 2), stations=tuple(stations.tolist()))
+
+
+def compare_link(
+    name: str,
+    link: LinkProfile,
+    loads: LinkLoadCase,
+    positions: NDArray[np.intp],
+    mesh: MeshSettings | None = None,
+    levels: int = 3,
+    stations: NDArray[np.float64] | None = None,
+) -> LinkComparison:
+    """Compare link ``name`` at sweep ``positions``; ``levels`` >= 3 runs a refinement study and
+    compares with its finest mesh, 1 compares with ``mesh`` alone."""
+    frame_joints = loads.frame_joints
+    stations = comparison_stations(link, frame_joints) if stations is None else np.asarray(stations, float)
+    mesh = mesh or default_mesh(link, frame_joints, stations)
+    selected = loads.at(positions)
+    start = time.perf_counter()
+    beam = section_stresses(link, selected, stations)
+    beam_seconds = time.perf_counter() - start
+    start = time.perf_counter()
+    away = ~beam.near_hole
+    points = np.column_stack([np.broadcast_to(stations, beam.fibre_y.shape).ravel(), beam.fibre_y.ravel()])
+    study = None
+    if levels >= 3:
+        nominal = np.unique(points[np.tile(away, len(positions))], axis=0)
+        study = convergence_study(link, selected, mesh, nominal if len(nominal) else points[:1], levels=levels)
+        fea = study.finest
+    else:
+        fea = solve_link(link, selected, mesh)
+    fea_seconds = time.perf_counter() - start
+    sampled = von_mises(fea.stress_at(points))  # (Pc, Pc * S): each position's fibres at every position
+    count = len(stations)
+    rows = np.arange(len(positions))
+    fea_vm = sampled.reshape(len(positions), len(positions), count)[rows, rows]
+    return LinkComparison(
+        name, np.asarray(positions), stations, away, beam, fea, fea.section_resultants(stations), fea_vm,
+        beam_seconds, fea_seconds, study,
+    )
