@@ -52,8 +52,10 @@ def run(args: argparse.Namespace) -> int:
         return 0
     result = run_analysis(scene, plan)
     print(report(result))
+    # Every output is made before any is written, so a failure leaves none half-done.
+    document = analysis_html(result) if args.html is not None else None
     if args.json is not None:
         write_json(args.json, {"positions": position_records(result, stations=args.stations)})
-    if args.html is not None:
-        write_text(args.html, analysis_html(result))
+    if document is not None:
+        write_text(args.html, document)
     return 0

@@ -1,0 +1,95 @@
+"""Validate a scene: every link the plan names is solved by FEA under its kinetic loads and compared
+with the beam sections (``compare``). A link that cannot be meshed or solved gets an error entry
+with the reason; the others still finish.
+
+A link fails the check when its FEA support reactions are not ~0 (the kinetics' loads are not in
+equilibrium) or its section resultants differ from the beam's by more than RESULTANT_LIMIT (the
+two engines disagree on the loads). Stress differences are reported, not judged: they measure
+beam theory, and the report says where it falls short.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.analysis import AnalysisResult, Plan, run_analysis
+from linkstress.scene import Scene
+from linkstress.validation.compare import LinkComparison, compare_link, comparison_stations, default_mesh
+from linkstress.validation.errors import FEAError
+
+REACTION_LIMIT = 1e-6
+"""Largest support reaction, relative to the applied load, for loads in equilibrium."""
+RESULTANT_LIMIT = 0.01
+"""Largest section-resultant difference between beam and FEA (relative) before the check fails."""
+MAX_POSITIONS = 36
+"""Positions of a sweep compared by default (evenly spread over the feasible ones)."""
+
+
+@dataclass(frozen=True)
+class ValidationResult:
+    """The analysis, the compared positions (indices into the sweep), one comparison per link that
+    could be solved and an error message per link that could not."""
+
+    analysis: AnalysisResult
+    positions: NDArray[np.intp]
+    comparisons: dict[str, LinkComparison]
+    errors: dict[str, str]
+    seconds: dict[str, float] = field(default_factory=dict)
+
+    def failures(self) -> list[str]:
+        """What fails the check, one line each (empty when everything passes)."""
+        lines = [f"{name}: FEA failed: {message}" for name, message in self.errors.items()]
+        for name, c in self.comparisons.items():
+            if (c.fea.reaction_ratio > REACTION_LIMIT).any():
+                lines.append(
+                    f"{name}: FEA support reactions reach {c.fea.reaction_ratio.max():.3g} of the applied "
+                    "load: the kinetic loads on this link are not in equilibrium"
+                )
+            if (c.resultant_error > RESULTANT_LIMIT).any():
+                lines.append(
+                    f"{name}: section resultants differ by {100 * c.resultant_error.max():.3g} % between beam "
+                    f"and FEA (limit {100 * RESULTANT_LIMIT:g} %)"
+                )
+        return lines
+
+
+def compared_positions(feasible: NDArray[np.bool_], limit: int) -> NDArray[np.intp]:
+    """Up to ``limit`` feasible positions, evenly spread, first and last included."""
+    ok = np.flatnonzero(feasible)
+    if len(ok) <= limit:
+        return ok
+    return np.unique(ok[np.linspace(0, len(ok) - 1, limit).round().astype(int)])
+
+
+def validate_scene(
+    scene: Scene,
+    plan: Plan,
+    positions: int = MAX_POSITIONS,
+    levels: int = 3,
+    mesh_size: float | None = None,
+) -> ValidationResult:
+    """Analyse ``scene`` and compare every link of ``plan.validate`` with its FEA at up to
+    ``positions`` feasible positions; ``levels`` >= 3 makes each a mesh refinement study."""
+    analysis = run_analysis(scene, plan)
+    chosen = compared_positions(analysis.feasible, positions)
+    comparisons, errors, seconds = {}, {}, {}
+    size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
+    for name in plan.validate:
+        if not len(chosen):
+            errors[name] = "no feasible position to compare"
+            continue
+        link = scene.links[name].profile
+        loads = analysis.forces.link_loads[name]
+        start = time.perf_counter()
+        try:
+            stations = comparison_stations(link, loads.frame_joints)
+            mesh = default_mesh(link, loads.frame_joints, stations, size)
+            comparisons[name] = compare_link(name, link, loads, chosen, mesh, levels, stations)
+        except FEAError as error:
+            errors[name] = str(error)
+        seconds[name] = time.perf_counter() - start
+    return ValidationResult(analysis, chosen, comparisons, errors, seconds)
