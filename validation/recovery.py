@@ -23,8 +23,10 @@ from skfem import BilinearForm, ElementTriP2, InteriorFacetBasis, asm
 from linkstress.validation.errors import FEAError
 from linkstress.validation.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix
 
-OUTSIDE_TOLERANCE = 1e-3
-"""Points this far outside an element (in its reference coordinates) still count as on it."""
+OUTSIDE_TOLERANCE = 0.05
+"""How far outside an element (in its reference coordinates) a point may be and still be evaluated
+on its edge: a fibre on the drawing's flattened boundary can sit a flattening tolerance outside the
+mesh, whose curved edges follow the exact arcs and splines."""
 CANDIDATES = 12
 NEWTON_STEPS = 12
 

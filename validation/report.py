@@ -127,9 +127,31 @@ def shortfall(c: LinkComparison) -> str:
             f"nominal stresses within {100 * c.nominal_error.max():.3g} % (largest at x = "
             f"{c.stations[c.away][s]:.4g} m)"
         )
+    bend = curvature_note(c)
+    if bend:
+        parts.append(bend)
     if c.study is not None and not c.study.converged:
         parts.append("the FEA did not converge to 0.5 % over the refinement study")
     return "; ".join(parts)
+
+
+CURVED = 0.1
+"""A link whose neutral axis wanders more than this fraction of its depth off the member axis."""
+
+
+def curvature_note(c: LinkComparison) -> str:
+    """Why straight-beam sections fall short on a curved link, or "" for a straight one."""
+    table = c.beam.sections
+    depth = float((table.top - table.bottom).min())
+    wander = float(np.ptp(table.neutral_axis))
+    if wander <= CURVED * depth:
+        return ""
+    return (
+        f"the link is curved (its neutral axis wanders {wander:.3g} m across the member axis, "
+        f"{wander / depth:.2g} section depths): straight-beam sections cut the curved bar at an angle and "
+        "sigma = N/A + M y/I misses the curvature's shift of the neutral axis (Winkler-Bach), so the FEA is "
+        "the value to trust there"
+    )
 
 
 def fea_contour_figure(c: LinkComparison, k: int) -> Figure:

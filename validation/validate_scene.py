@@ -21,8 +21,11 @@ from linkstress.scene import Scene
 from linkstress.validation.compare import LinkComparison, compare_link, comparison_stations, default_mesh
 from linkstress.validation.errors import FEAError
 
-REACTION_LIMIT = 1e-6
-"""Largest support reaction, relative to the applied load, for loads in equilibrium."""
+REACTION_LIMIT = 1e-4
+"""Largest support reaction, relative to the applied load, for loads in equilibrium. Not zero: the
+mesh follows exact arcs and splines where the kinetics used the drawing's flattened outline, so the
+body forces differ by the relative area between the two (about 1e-5 on curved links); a wrong load
+in the kinetics leaves a reaction of order 1."""
 RESULTANT_LIMIT = 0.01
 """Largest section-resultant difference between beam and FEA (relative) before the check fails."""
 MAX_POSITIONS = 36
