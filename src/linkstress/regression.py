@@ -1,0 +1,205 @@
+"""Regression cases: each folder holds a scene, its sketches and a stored reference with tolerances.
+
+``reference.json``::
+
+    {"tolerances": {"kinematics": 1e-9, "forces": 1e-7, "stresses": 1e-6, "fea": 0.02,
+                    "fea_error_pct": 0.25},
+     "limits": {"resultant_error_pct": 0.5, "nominal_error_pct": 3.0},
+     "validation_settings": {"positions": 4, "mesh_levels": 1},
+     "analysis": [... the analyze JSON's positions ...],
+     "validation": {"links": {NAME: {... the validate JSON's errors and maxima ...}}}}
+
+A value passes when it is within its group's relative tolerance of the stored one, the scale being
+the largest stored magnitude of that quantity over the positions (so a value near zero is judged
+against the size of the quantity, not against itself). Beam-against-FEA errors must not grow by
+more than ``fea_error_pct`` percentage points, and must stay under the case's ``limits``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from linkstress.analysis import plan_for, run_analysis
+from linkstress.errors import InputError
+from linkstress.report.records import position_records
+from linkstress.scene import load_scene
+
+SCENE_FILE = "scene.toml"
+REFERENCE_FILE = "reference.json"
+DEFAULT_TOLERANCES = {"kinematics": 1e-9, "forces": 1e-7, "stresses": 1e-6, "fea": 0.02, "fea_error_pct": 0.25}
+DEFAULT_VALIDATION = {"positions": 4, "mesh_levels": 1}
+GROUPS = {
+    "angle_deg": "kinematics", "omega_rad_s": "kinematics", "alpha_rad_s2": "kinematics", "acc_G_m_s2": "kinematics",
+    "forces_n": "forces", "driving_torque_nm": "forces", "driving_force_n": "forces",
+    "max_von_mises_pa": "stresses", "max_at_m": "stresses", "max_von_mises_away_from_holes_pa": "stresses",
+}
+ERRORS = ("resultant_error_pct", "nominal_error_pct", "peak_error_pct")
+FEA_VALUES = {"beam_max_von_mises_pa": "stresses", "fea_max_von_mises_pa": "fea"}
+EQUILIBRIUM_LIMIT = 1e-9
+
+
+@dataclass(frozen=True)
+class Check:
+    """One compared quantity: ``worst`` deviation against ``allowed`` (same units), and whether it passed."""
+
+    case: str
+    what: str
+    worst: float
+    allowed: float
+    detail: str = ""
+    room: float | None = None
+    """The width of the allowed band (the tolerance on a stored value); default ``allowed``."""
+
+    @property
+    def passed(self) -> bool:
+        return self.worst <= self.allowed
+
+    @property
+    def closeness(self) -> float:
+        """How far into its allowed band the value is: 0 at the stored value (or zero), 1 at the edge."""
+        room = self.allowed if self.room is None else self.room
+        if room <= 0:
+            return 0.0 if self.worst <= self.allowed else float("inf")
+        return (self.worst - (self.allowed - room)) / room
+
+
+@dataclass
+class CaseResult:
+    name: str
+    checks: list[Check] = field(default_factory=list)
+    error: str = ""
+
+    @property
+    def passed(self) -> bool:
+        return not self.error and all(c.passed for c in self.checks)
+
+
+def find_cases(folder: Path) -> list[Path]:
+    """Every sub-folder of ``folder`` (or ``folder`` itself) that holds a scene file."""
+    if not folder.is_dir():
+        raise InputError(f"cases folder {str(folder)!r} does not exist")
+    if (folder / SCENE_FILE).is_file():
+        return [folder]
+    cases = sorted(p.parent for p in folder.glob(f"*/{SCENE_FILE}"))
+    if not cases:
+        raise InputError(f"{str(folder)!r} holds no case: each case is a folder with a {SCENE_FILE}")
+    return cases
+
+
+def current_values(case: Path, settings: dict) -> dict:
+    """Analysis records and, where the scene has profiled links, the beam-against-FEA errors."""
+    scene = load_scene(case / SCENE_FILE)
+    plan = plan_for(scene)
+    values = {"analysis": position_records(run_analysis(scene, plan))}
+    if plan.validate:
+        from linkstress.validation.report import validation_json
+        from linkstress.validation.validate_scene import validate_scene
+
+        result = validate_scene(scene, plan, settings["positions"], settings["mesh_levels"])
+        links = validation_json(result)["links"]
+        keep = ERRORS + tuple(FEA_VALUES) + ("error",)
+        values["validation"] = {"links": {n: {k: v for k, v in r.items() if k in keep} for n, r in links.items()}}
+    return values
+
+
+def run_case(case: Path, update: bool = False) -> CaseResult:
+    """Re-run ``case`` and compare it with its reference (or, with ``update``, rewrite the reference)."""
+    result = CaseResult(case.name)
+    reference_path = case / REFERENCE_FILE
+    stored = json.loads(reference_path.read_text()) if reference_path.is_file() else {}
+    settings = {**DEFAULT_VALIDATION, **stored.get("validation_settings", {})}
+    try:
+        values = current_values(case, settings)
+    except InputError as error:
+        result.error = str(error)
+        return result
+    if update:
+        stored = {
+            "tolerances": {**DEFAULT_TOLERANCES, **stored.get("tolerances", {})},
+            "limits": stored.get("limits", {}),
+            "validation_settings": settings,
+            **values,
+        }
+        from linkstress.output import write_json
+
+        write_json(reference_path, stored)
+        return result
+    if not stored:
+        result.error = f"no {REFERENCE_FILE}: run linkstress regress --update to record one"
+        return result
+    tolerances = {**DEFAULT_TOLERANCES, **stored.get("tolerances", {})}
+    result.checks += compare_analysis(case.name, stored.get("analysis", []), values["analysis"], tolerances)
+    result.checks += compare_validation(
+        case.name, stored.get("validation", {}).get("links", {}), values.get("validation", {}).get("links", {}),
+        tolerances, stored.get("limits", {}),
+    )
+    return result
+
+
+def compare_analysis(case: str, stored: list, current: list, tolerances: dict) -> list[Check]:
+    if len(stored) != len(current):
+        return [Check(case, "positions", abs(len(current) - len(stored)), 0, "the sweep changed length")]
+    flips = sum(s["feasible"] != c["feasible"] for s, c in zip(stored, current))
+    checks = [Check(case, "feasibility", flips, 0, "positions whose feasibility changed")]
+    leaves: dict[tuple, list[tuple[float, float]]] = {}
+    for s, c in zip(stored, current):
+        if s["feasible"] and c["feasible"]:
+            _collect(("links",), s.get("links", {}), c.get("links", {}), leaves)
+            _collect(("mechanisms",), s.get("mechanisms", {}), c.get("mechanisms", {}), leaves)
+    worst: dict[str, tuple[float, str]] = {}
+    for path, pairs in leaves.items():
+        group = next((GROUPS[p] for p in path if p in GROUPS), None)
+        if path[-1] == "equilibrium_mismatch":
+            value = max(abs(c) for _, c in pairs)
+            checks.append(Check(case, f"equilibrium {'.'.join(map(str, path[1:-1]))}", value, EQUILIBRIUM_LIMIT))
+            continue
+        if group is None:
+            continue
+        scale = max(max(abs(s) for s, _ in pairs), 1e-300)
+        deviation = max(abs(c - s) for s, c in pairs) / scale
+        if deviation >= worst.get(group, (-1.0, ""))[0]:
+            worst[group] = (deviation, ".".join(map(str, path)))
+    for group, (deviation, where) in worst.items():
+        checks.append(Check(case, group, deviation, tolerances[group], f"relative, worst at {where}"))
+    return checks
+
+
+def _collect(path: tuple, stored, current, leaves: dict) -> None:
+    """Pair the numbers of ``stored`` and ``current`` by key path; a missing key is a deviation."""
+    if isinstance(stored, dict):
+        for key, value in stored.items():
+            _collect(path + (key,), value, current.get(key) if isinstance(current, dict) else None, leaves)
+    elif isinstance(stored, list):
+        current = current if isinstance(current, list) and len(current) == len(stored) else [None] * len(stored)
+        for k, (s, c) in enumerate(zip(stored, current)):
+            _collect(path + (k,), s, c, leaves)
+    elif isinstance(stored, (int, float)) and not isinstance(stored, bool):
+        value = current if isinstance(current, (int, float)) and not isinstance(current, bool) else np.inf
+        leaves.setdefault(path, []).append((float(stored), float(value)))
+
+
+def compare_validation(case: str, stored: dict, current: dict, tolerances: dict, limits: dict) -> list[Check]:
+    checks = []
+    for name, reference in stored.items():
+        now = current.get(name, {"error": "link not validated any more"})
+        if "error" in now or "error" in reference:
+            same = now.get("error") == reference.get("error")
+            checks.append(Check(case, f"{name} FEA", 0 if same else 1, 0, now.get("error", "") or "now runs"))
+            continue
+        for key in ERRORS:
+            if reference.get(key) is None:
+                continue
+            value = now.get(key)
+            value = np.inf if value is None else value
+            checks.append(Check(case, f"{name} {key}", value, reference[key] + tolerances["fea_error_pct"],
+                                "percent: stored value + tolerance", tolerances["fea_error_pct"]))
+            if key in limits:
+                checks.append(Check(case, f"{name} {key} limit", value, limits[key], "percent: the case's limit"))
+        for key, group in FEA_VALUES.items():
+            deviation = abs(now[key] - reference[key]) / max(abs(reference[key]), 1e-300)
+            checks.append(Check(case, f"{name} {key}", deviation, tolerances[group], "relative"))
+    return checks

@@ -1,0 +1,65 @@
+"""linkstress regress: the shipped cases pass; a tightened tolerance or a changed result fails."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from linkstress.cli import main
+
+CASES = Path(__file__).resolve().parents[1] / "validation" / "cases"
+
+
+@pytest.fixture
+def seed_copy(tmp_path):
+    folder = tmp_path / "cases" / "seed"
+    shutil.copytree(CASES / "seed_ansys_fourbar", folder)
+    return folder
+
+
+def edit_reference(folder: Path, change) -> None:
+    path = folder / "reference.json"
+    data = json.loads(path.read_text())
+    change(data)
+    path.write_text(json.dumps(data))
+
+
+def test_the_shipped_cases_pass(capsys):
+    assert main(["regress"]) == 0
+    out = capsys.readouterr().out
+    assert "5 of 5 cases passed" in out
+
+
+def test_a_tolerance_tightened_below_the_current_error_fails(seed_copy, capsys):
+    # The seed's coupler nominal error is about 0.65 % against converged FEA; a 0.1 % limit must fail.
+    edit_reference(seed_copy, lambda d: d["limits"].update(nominal_error_pct=0.1))
+    assert main(["regress", str(seed_copy.parent)]) == 1
+    out = capsys.readouterr().out
+    assert "REGRESSION" in out and "coupler nominal_error_pct limit" in out and "regressions in seed" in out
+
+
+def test_a_changed_stored_force_fails_the_forces_check(seed_copy, capsys):
+    def nudge(data):
+        f12 = data["analysis"][0]["mechanisms"]["main"]["forces_n"]["F12"]
+        f12[0] *= 1.001
+    edit_reference(seed_copy, nudge)
+    assert main(["regress", str(seed_copy)]) == 1
+    assert "forces" in capsys.readouterr().out
+
+
+def test_update_rewrites_the_reference_and_a_missing_one_is_an_error(seed_copy, capsys):
+    (seed_copy / "reference.json").unlink()
+    assert main(["regress", str(seed_copy)]) == 1
+    assert "no reference.json: run linkstress regress --update" in capsys.readouterr().out
+    assert main(["regress", str(seed_copy), "--update"]) == 0
+    stored = json.loads((seed_copy / "reference.json").read_text())
+    assert stored["tolerances"]["forces"] == 1e-7 and stored["analysis"][0]["feasible"] is True
+    assert main(["regress", str(seed_copy)]) == 0
+
+
+def test_a_folder_without_cases_exits_2(tmp_path, capsys):
+    assert main(["regress", str(tmp_path)]) == 2
+    assert "holds no case" in capsys.readouterr().err
