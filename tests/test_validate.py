@@ -156,3 +156,20 @@ def test_bad_options_exit_2_before_any_work(tmp_path, capsys):
     assert main(["validate", scene, "--json", str(tmp_path / "missing" / "v.json")]) == 2
     err = capsys.readouterr().err
     assert "--mesh-levels" in err and "--json: folder" in err
+
+
+def test_parallel_links_give_the_serial_results(tmp_path):
+    scene = str(CASES / "seed_ansys_fourbar" / "scene.toml")
+    serial, parallel = tmp_path / "serial.json", tmp_path / "parallel.json"
+    assert main(["validate", scene, "--mesh-levels", "1", "--json", str(serial)]) == 0
+    assert main(["validate", scene, "--mesh-levels", "1", "--jobs", "2", "--json", str(parallel)]) == 0
+    a, b = json.loads(serial.read_text())["links"], json.loads(parallel.read_text())["links"]
+    for name in a:
+        for key in ("resultant_error_pct", "nominal_error_pct", "fea_max_von_mises_pa", "dofs"):
+            assert a[name][key] == b[name][key]
+
+
+def test_explain_prints_the_plan_without_solving(capsys):
+    assert main(["validate", str(CASES / "seed_ansys_fourbar" / "scene.toml"), "--explain"]) == 0
+    out = capsys.readouterr().out
+    assert "FEA check: crank, coupler, output" in out and "beam sections against FEA" not in out

@@ -10,11 +10,14 @@ beam theory, and the report says where it falls short.
 
 from __future__ import annotations
 
+import sys
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
+from tqdm import tqdm
 
 from linkstress.analysis import AnalysisResult, Plan, run_analysis
 from linkstress.scene import Scene
@@ -74,25 +77,43 @@ def validate_scene(
     positions: int = MAX_POSITIONS,
     levels: int = 3,
     mesh_size: float | None = None,
+    jobs: int = 1,
 ) -> ValidationResult:
     """Analyse ``scene`` and compare every link of ``plan.validate`` with its FEA at up to
-    ``positions`` feasible positions; ``levels`` >= 3 makes each a mesh refinement study."""
+    ``positions`` feasible positions; ``levels`` >= 3 makes each a mesh refinement study; ``jobs``
+    > 1 runs the links in that many processes. A progress bar shows on a terminal."""
     analysis = run_analysis(scene, plan)
     chosen = compared_positions(analysis.feasible, positions)
-    comparisons, errors, seconds = {}, {}, {}
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
-    for name in plan.validate:
-        if not len(chosen):
-            errors[name] = "no feasible position to compare"
-            continue
-        link = scene.links[name].profile
-        loads = analysis.forces.link_loads[name]
-        start = time.perf_counter()
-        try:
-            stations = comparison_stations(link, loads.frame_joints)
-            mesh = default_mesh(link, loads.frame_joints, stations, size)
-            comparisons[name] = compare_link(name, link, loads, chosen, mesh, levels, stations)
-        except FEAError as error:
-            errors[name] = str(error)
-        seconds[name] = time.perf_counter() - start
+    tasks = [
+        (name, scene.links[name].profile, analysis.forces.link_loads[name], chosen, levels, size)
+        for name in plan.validate
+    ]
+    if jobs > 1 and len(tasks) > 1:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            outcomes = list(_progress(pool.map(_compare, tasks), len(tasks)))
+    else:
+        outcomes = [_compare(task) for task in _progress(tasks, len(tasks))]
+    comparisons = {name: result for name, result, _, _ in outcomes if result is not None}
+    errors = {name: error for name, _, error, _ in outcomes if error}
+    seconds = {name: elapsed for name, _, _, elapsed in outcomes}
     return ValidationResult(analysis, chosen, comparisons, errors, seconds)
+
+
+def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
+    """One link's comparison, or the reason it could not run (top level: runs in a worker process)."""
+    name, link, loads, chosen, levels, size = task
+    start = time.perf_counter()
+    if not len(chosen):
+        return name, None, "no feasible position to compare", 0.0
+    try:
+        stations = comparison_stations(link, loads.frame_joints)
+        mesh = default_mesh(link, loads.frame_joints, stations, size)
+        return name, compare_link(name, link, loads, chosen, mesh, levels, stations), "", time.perf_counter() - start
+    except FEAError as error:
+        return name, None, str(error), time.perf_counter() - start
+
+
+def _progress(items, total: int):
+    """A progress bar over the links on a terminal (tqdm); silent otherwise."""
+    return tqdm(items, total=total, desc="FEA", unit="link", disable=not sys.stderr.isatty())

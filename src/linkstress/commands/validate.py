@@ -37,6 +37,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="mesh refinement levels per link: 3 or more for a convergence study, 1 for one mesh")
     parser.add_argument("--mesh-size", type=float, default=None, metavar="M",
                         help="element size away from holes and cuts [m] (default: from the link's depth)")
+    parser.add_argument("--jobs", type=int, default=1, metavar="N", help="solve N links at once in parallel processes")
+    parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
 
@@ -51,18 +53,23 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--positions: must be at least 1")
     if args.mesh_size is not None and not args.mesh_size > 0:
         raise InputError("--mesh-size: must be > 0 m")
+    if args.jobs < 1:
+        raise InputError("--jobs: must be at least 1")
     # The FEA stack (gmsh, scikit-fem) loads only when a validation runs.
     from linkstress.validation.report import validation_html, validation_json, validation_text
     from linkstress.validation.validate_scene import MAX_POSITIONS, validate_scene
 
     scene = load_scene(args.scene)
     plan = plan_for(scene)
+    if args.explain:
+        print(plan.describe())
+        return 0
     if not plan.validate:
         raise InputError(
             f"{args.scene.name}: no link to validate: the FEA needs links drawn in a sketch with a thickness and "
             "a material (density, youngs_modulus, poisson_ratio), and joint forces (mass data for every moving link)"
         )
-    result = validate_scene(scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size)
+    result = validate_scene(scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, args.jobs)
     print(validation_text(result))
     # Every output is made before any is written, so a failure leaves none half-done.
     document = validation_html(result) if args.html is not None else None
