@@ -63,6 +63,14 @@ def test_seed_peak_is_at_the_pins_far_above_the_nominal_stress(seed):
     assert abs(x) < 0.02 and abs(y - 3.0) < 0.02  # at O2: the ground is drawn with O2 at (0, 3) m
 
 
+def test_kt_estimates_at_the_pins_match_the_fea_peaks_of_coupler_and_output(seed):
+    # Their peaks are pin bearing (no couple through their pins): Kt x nominal within 5 %.
+    _, data, _ = seed
+    for name in ("coupler", "output"):
+        record = data["links"][name]
+        assert record["pin_estimate_max_pa"] == pytest.approx(record["fea_max_von_mises_pa"], rel=0.05)
+
+
 def test_seed_report_states_the_ansys_loads_caveat_and_writes_vtu(seed):
     _, _, out = seed
     text = (out / "v.html").read_text()

@@ -50,6 +50,7 @@ def link_record(result: ValidationResult, name: str) -> dict:
         "converged": None if c.study is None else bool(c.study.converged),
         "discretisation_error_pct": None if c.study is None else float(100 * c.discretisation_error.max()),
         "reaction_ratio": float(c.fea.reaction_ratio.max()),
+        "pin_estimate_max_pa": pin_estimate(c),
         "stations_m": c.stations.tolist(),
         "nominal_stations_m": c.stations[c.away].tolist(),
         "positions": {
@@ -63,6 +64,12 @@ def link_record(result: ValidationResult, name: str) -> dict:
         },
     }
     return record
+
+
+def pin_estimate(c: LinkComparison) -> float | None:
+    """The largest Kt x nominal estimate at the link's pin holes over the compared positions."""
+    values = [h.estimate.max() for h in c.beam.pin_holes if h.estimate is not None]
+    return float(max(values)) if values else None
 
 
 def _ground(result: ValidationResult, name: str, local: np.ndarray) -> np.ndarray:
@@ -126,6 +133,13 @@ def shortfall(c: LinkComparison) -> str:
         parts.append(
             f"nominal stresses within {100 * c.nominal_error.max():.3g} % (largest at x = "
             f"{c.stations[c.away][s]:.4g} m)"
+        )
+    estimate = pin_estimate(c)
+    if estimate is not None:
+        parts.append(
+            f"the Kt x nominal estimate at its pins is {estimate:.4g} Pa "
+            f"({100 * (estimate / c.fea_peak.max() - 1):+.3g} % of the FEA peak; it leaves out any couple "
+            "carried through a pin)"
         )
     bend = curvature_note(c)
     if bend:

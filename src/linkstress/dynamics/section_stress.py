@@ -37,6 +37,7 @@ from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
 from linkstress.dynamics.internal_forces import InternalForces, internal_forces
+from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.region_moments import region_moments
@@ -50,7 +51,8 @@ class SectionStresses:
 
     ``forces``: N, V, M. ``von_mises`` (P, S) [Pa]: the largest von Mises over the section's fibres,
     reached at ``fibre_y`` (P, S) [m]; ``sigma``/``tau`` (P, S) [Pa] at that fibre. ``near_hole`` (S,):
-    station within one section depth of a hole's centre (nominal values only). ``max_von_mises`` (P,) and
+    station within one section depth of a hole's centre (nominal values only); ``pin_holes``: the
+    Kt x nominal estimate at each pin hole (``pin_holes.py``), labelled as an estimate. ``max_von_mises`` (P,) and
     ``max_at`` (P, 2) [m]: the largest over all stations; ``max_away_from_holes`` likewise over
     stations not near a hole (None where every station is near one).
     """
@@ -62,6 +64,7 @@ class SectionStresses:
     sigma: NDArray[np.float64]
     tau: NDArray[np.float64]
     near_hole: NDArray[np.bool_]
+    pin_holes: tuple[PinHoleEstimate, ...] = ()
 
     @property
     def x(self) -> NDArray[np.float64]:
@@ -234,6 +237,7 @@ def section_stresses(
     von_mises = np.sqrt(sigma * sigma + 3 * tau * tau)
     return SectionStresses(
         table, forces, von_mises, yna + best_u, sigma, tau, near_holes(link, frame_joints, table),
+        pin_hole_estimates(link, loads),
     )
 
 

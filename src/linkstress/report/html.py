@@ -145,6 +145,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
             if len(ok):
                 k = int(ok[np.argmax(stress.max_von_mises[ok])])
                 sections.append(figure_tag(stress_along_figure(result, name, k), f"stresses along {name}"))
+        sections.append(_pin_holes_table(result))
     if result.seconds:
         rows = [(stage, 1e3 * seconds) for stage, seconds in result.seconds.items()]
         sections += ["<h2>Timings</h2>", table_html(("stage", "time [ms]"), rows)]
@@ -173,6 +174,27 @@ def _accelerations_table(result: AnalysisResult) -> str:
             rows.append((angle, name, float(c.angle_deg[k]), float(c.omega[k]), float(c.alpha[k]), *acc))
     return table_html(
         ("input [deg]", "link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]", "a_Gx [m/s^2]", "a_Gy [m/s^2]"), rows,
+    )
+
+
+def _pin_holes_table(result: AnalysisResult) -> str:
+    """Kt x nominal at every pin hole, largest over the feasible positions: an estimate, said so."""
+    ok = result.feasible
+    rows = []
+    for name, stress in result.stresses.items():
+        for hole in stress.pin_holes:
+            if not ok.any():
+                continue
+            estimate = "beyond the Kt table" if hole.estimate is None else float(hole.estimate[ok].max())
+            rows.append((name, hole.joint, hole.diameter, hole.depth, "-" if hole.kt is None else hole.kt,
+                         float(hole.nominal[ok].max()), estimate))
+    if not rows:
+        return ""
+    source = result.stresses[next(iter(result.stresses))].pin_holes[0].source if rows else ""
+    return (
+        "<h3>Pin holes: peak stress ESTIMATES</h3>"
+        + table_html(("link", "joint", "hole d [m]", "depth H [m]", "Kt", "net-section stress [Pa]", "Kt x nominal [Pa]"), rows)
+        + f'<p class="note">{html.escape(source)}</p>'
     )
 
 

@@ -3,8 +3,9 @@
 Per position: ``input_angle_deg``, ``feasible``, ``reason``; per link ``angle_deg``,
 ``omega_rad_s``, ``alpha_rad_s2``, ``acc_G_m_s2`` (where the centre of mass is known),
 ``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
-some station is at least a section depth from every pin hole) and ``equilibrium_mismatch`` where
-stresses were computed, and with ``stations`` the arrays along the
+some station is at least a section depth from every pin hole), ``equilibrium_mismatch`` and
+``pin_holes`` (per pin hole: Kt, the net-section stress of its pin force and the Kt x nominal
+estimate, labelled as such) where stresses were computed, and with ``stations`` the arrays along the
 link; per mechanism ``forces_n`` (Norton names) and ``driving_torque_nm`` (or ``driving_force_n``
 for an actuated slider) where forces were computed. Infeasible positions carry no link or
 mechanism data. Angles in degrees in [0, 360); SI units.
@@ -65,6 +66,8 @@ def position_records(result: AnalysisResult, stations: bool = False) -> list[dic
         if stress.max_away_from_holes is not None:
             values["max_von_mises_away_from_holes_pa"] = stress.max_away_from_holes.tolist()
         values["equilibrium_mismatch"] = stress.forces.mismatch.tolist()
+        if stress.pin_holes:
+            values["pin_holes"] = [_pin_hole_lists(h) for h in stress.pin_holes]
         if stations:
             values["stations"] = _station_lists(stress)
     mechanism_values = _mechanism_lists(result)
@@ -93,6 +96,15 @@ def _station_lists(stress) -> dict[str, object]:
     }
 
 
+def _pin_hole_lists(hole) -> dict[str, object]:
+    return {
+        "joint": hole.joint, "hole_diameter_m": hole.diameter, "depth_m": hole.depth, "kt": hole.kt,
+        "nominal_pa": hole.nominal.tolist(),
+        "estimate_pa": None if hole.estimate is None else hole.estimate.tolist(),
+        "basis": hole.source,
+    }
+
+
 def _mechanism_lists(result: AnalysisResult) -> dict[str, dict[str, object]]:
     if result.forces is None:
         return {}
@@ -115,6 +127,8 @@ def _at(values: dict, k: int) -> dict:
     for key, column in values.items():
         if isinstance(column, dict):
             out[key] = _at(column, k)
+        elif isinstance(column, list) and column and isinstance(column[0], dict):
+            out[key] = [_at(item, k) for item in column]
         elif isinstance(column, list) and key not in SHARED:
             out[key] = column[k]
         else:
@@ -122,4 +136,4 @@ def _at(values: dict, k: int) -> dict:
     return out
 
 
-SHARED = ("x_m", "near_hole")
+SHARED = ("x_m", "near_hole", "joint", "hole_diameter_m", "depth_m", "kt", "basis")

@@ -142,12 +142,17 @@ def stress_table(result: AnalysisResult) -> str:
         k = int(peak.argmax())
         where = result.max_location(name)[k]
         away = "-" if stress.max_away_from_holes is None else float(np.where(ok, stress.max_away_from_holes, -1.0).max())
+        estimates = [h.estimate[ok].max() for h in stress.pin_holes if h.estimate is not None]
+        pin = float(max(estimates)) if estimates else "-"
         rows.append((
             name, float(stress.max_von_mises[k]), float(angles[k]), f"({where[0]:.4g}, {where[1]:.4g})",
-            away, float(stress.forces.mismatch[ok].max()),
+            away, pin, float(stress.forces.mismatch[ok].max()),
         ))
-    headers = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m]", "away from holes [Pa]", "equilibrium check")
+    headers = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m]", "away from holes [Pa]",
+               "pin hole estimate [Pa]", "equilibrium check")
     return "\n".join([
         "section stresses (beam theory; within one section depth of a pin hole the value is nominal)",
         format_table(headers, rows),
+        "pin hole estimate: Kt x the net-section stress of the pin force, an ESTIMATE for a close-fitting pin "
+        "(Kt from linkstress FEA of pin-loaded lugs, see dynamics/pin_holes.py); linkstress validate gives the FEA peak",
     ])
