@@ -24,3 +24,44 @@ def test_ci_runs_the_readme_test_command():
     test_command = readme_commands()[1]
     assert "pytest" in test_command
     assert test_command in (REPO / ".ci" / "run").read_text().splitlines()
+
+
+def test_readme_main_job_runs_as_written_and_its_report_renders_in_chromium(tmp_path, monkeypatch):
+    import shlex
+
+    from linkstress.cli import main
+    from test_report_html import CHROMIUM_FLAGS, embedded_images, find_chromium
+
+    command = readme_commands()[0].split("&&")[-1]
+    words = shlex.split(command)
+    assert words[0] == ".venv/bin/linkstress"
+    args = words[1:]
+    report = tmp_path / args[args.index("--html") + 1]
+    args[args.index("--html") + 1] = str(report)
+    monkeypatch.chdir(REPO)
+    assert main(args) == 0
+    text = report.read_text()
+    images = embedded_images(text)
+    assert len(images) >= 10  # mechanism, 3 stress plots, 3 contours, 3 beam-and-FEA plots
+    assert all(image[..., :3].std() > 0.05 for image in images)
+    browser = find_chromium()
+    if browser is None:
+        import os
+
+        if os.environ.get("LINKSTRESS_REQUIRE_BROWSER"):
+            raise AssertionError("chromium is required here (LINKSTRESS_REQUIRE_BROWSER is set) but not installed")
+        return
+    import subprocess
+
+    import matplotlib.image as mpimg
+
+    shot = tmp_path / "shot.png"
+    subprocess.run(
+        [browser, *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}", "--window-size=1100,12000",
+         f"--screenshot={shot}", report.as_uri()],
+        check=True, capture_output=True, timeout=180,
+    )
+    picture = mpimg.imread(shot)[..., :3]
+    coloured = (picture.max(axis=2) - picture.min(axis=2)) > 0.2
+    # every figure drawn: coloured rows spread over most of the long page
+    assert coloured.any(axis=1).mean() > 0.25
