@@ -7,7 +7,7 @@ import pytest
 
 from linkstress.builders import straight_bar
 from linkstress.dynamics.newton_euler import (
-    GROUND, Actuator, AppliedCouple, AppliedForce, Assembly, Body, Pin, Slide, solve_forces,
+    GROUND, Actuator, AppliedCouple, Assembly, Body, Pin, Slide, solve_forces,
 )
 from linkstress.kinematics.fourbar import FourBar, solve_fourbar
 from linkstress.kinematics.slider_crank import SliderCrank, solve_slider_crank

@@ -9,7 +9,6 @@ strips plus one solve); ``bench_profile --full`` measures its strip sums here.
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -20,17 +19,10 @@ from linkstress.kinematics.motion import angle_motion
 from linkstress.profile import LinkProfile
 from linkstress.scene import load_scene
 from linkstress.tables import format_table
+from linkstress.validation.timing import best_time
 
 SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"
 
-
-def best_time(work, repeat: int = 7) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        work()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def fresh_mass_properties(scene) -> None:

@@ -32,6 +32,7 @@ from linkstress.tables import format_table
 from linkstress.validation.convergence import convergence_study
 from linkstress.validation.link_fea import solve_link
 from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.timing import best_run
 
 STATIONS = (0.25, 0.5, 0.75)
 HOLE_SIZE = 0.004
@@ -80,20 +81,11 @@ def nominal_points() -> np.ndarray:
     return np.array([[x, y] for x in STATIONS for y in (-0.25, 0.25)])
 
 
-def best_time(work, repeat: int) -> tuple[float, object]:
-    """Best wall time [s] of ``repeat`` runs of ``work()``, and the last run's value."""
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        value = work()
-        times.append(time.perf_counter() - start)
-    return min(times), value
-
 
 def one_position(size: float, repeat: int) -> tuple[list[tuple], MeshSettings]:
     link, loads = seed_crank(), seed_position()
     settings = MeshSettings(size, HOLE_SIZE, STATIONS)
-    study_seconds, study = best_time(
+    study_seconds, study = best_run(
         lambda: convergence_study(link, loads, settings, nominal_points(), ratio=1.5), repeat
     )
     finest = study.settings[-1]
@@ -103,7 +95,7 @@ def one_position(size: float, repeat: int) -> tuple[list[tuple], MeshSettings]:
         result.stress_at(nominal_points())
         return result
 
-    single, result = best_time(single_position, repeat)
+    single, result = best_run(single_position, repeat)
     print(
         f"convergence study: dofs {study.dofs.tolist()}, change between the finest two "
         f"{study.change[0]:.3%} ({'converged' if study.converged else 'NOT converged'}), "
@@ -125,7 +117,7 @@ def sweep(settings: MeshSettings, n: int, repeat: int) -> tuple:
         result.stress_at(nominal_points())
         return result
 
-    elapsed, result = best_time(whole_sweep, repeat)
+    elapsed, result = best_run(whole_sweep, repeat)
     print(
         f"sweep of {n}: mesh {result.mesh_seconds:.2f} s, solve and recovery {result.solve_seconds:.2f} s, "
         f"largest reaction ratio {result.reaction_ratio.max():.2e}"

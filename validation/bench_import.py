@@ -13,8 +13,6 @@ import argparse
 import math
 import random
 import tempfile
-import time
-from collections.abc import Callable
 from pathlib import Path
 
 import ezdxf
@@ -27,16 +25,8 @@ from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.primitives import CurveSet
 from linkstress.mass_properties import area_properties
 from linkstress.tables import format_table
+from linkstress.validation.timing import best_time
 
-
-def best_time(work: Callable[[], object], repeat: int) -> float:
-    """Best wall time [s] of ``repeat`` runs."""
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        work()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def draw_link(msp, k: int, n_side: int, n_slots: int) -> None:

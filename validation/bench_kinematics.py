@@ -10,23 +10,13 @@ from __future__ import annotations
 
 import argparse
 import math
-import time
-from collections.abc import Callable
 
 import numpy as np
 
 from linkstress.kinematics import Drive, FourBar, Loop, Machine, Role, angle_motion, solve_fourbar, solve_machine
 from linkstress.tables import format_table
+from linkstress.validation.timing import best_time
 
-
-def best_time(work: Callable[[], object], repeat: int) -> float:
-    """Best wall time [s] of ``repeat`` runs."""
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        work()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def four_loop_machine() -> Machine:

@@ -10,7 +10,6 @@ from __future__ import annotations
 import argparse
 import math
 import time
-from collections.abc import Callable
 
 import numpy as np
 from shapely.geometry import Polygon
@@ -19,18 +18,10 @@ from linkstress.builders import straight_bar
 from linkstress.mass_properties import area_properties
 from linkstress.tables import format_table
 from linkstress.validation.strip_sum import strip_sum_properties
+from linkstress.validation.timing import best_time
 
 SEED_BARS = {"crank": 1.0, "coupler": 1.5, "output": 1.5, "ground": 2.0}  # joint spacing [m]
 
-
-def best_time(work: Callable[[], object], repeat: int = 7) -> float:
-    """Best wall time [s] of ``repeat`` runs."""
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        work()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def wavy_link(n_vertices: int) -> Polygon:
