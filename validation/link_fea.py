@@ -1,6 +1,6 @@
 """Plane-stress FEA of one link under its load case, for every position of a sweep at once.
 
-    result = solve_link(link, loads, MeshSettings(size=..., hole_size=..., stations=...))
+    result = solve_link(link, loads, MeshSettings(size=..., hole_size=..., stations=..., order=2))
 
 One mesh (member frame of ``loads.frame_joints``), one stiffness factorisation and one stress
 projection serve all P positions; only the load vectors change. Rigid modes are removed by a
@@ -61,8 +61,8 @@ class LinkFEAResult:
     """The FEA of one link over P positions; member frame of ``frame_joints``, SI units.
 
     ``displacement`` (dofs, P) [m]; ``nodal_stress`` (P, nodes, 3) [Pa]: the recovered sigma_xx,
-    sigma_yy, tau_xy at the P2 nodes; ``reactions`` (P, 3): support force x, y [N] and moment about
-    the frame origin [N m]; ``reaction_ratio`` (P,): the larger of |force| and |moment| / length of
+    sigma_yy, tau_xy at the nodes (P2 or P1 elements: ``plane.order``); ``reactions`` (P, 3): support
+    force x, y [N] and moment about the frame origin [N m]; ``reaction_ratio`` (P,): the larger of |force| and |moment| / length of
     the reactions over the gross applied load (sum of |nodal force|) -- ~0 for loads in equilibrium.
     """
 
@@ -92,7 +92,7 @@ class LinkFEAResult:
 
     @property
     def nodes(self) -> NDArray[np.float64]:
-        """Positions (nodes, 2) [m] of the P2 nodes, member frame."""
+        """Positions (nodes, 2) [m] of the nodes (vertices, then P2 mid-edge nodes), member frame."""
         return self.model.scalar.doflocs.T
 
     @cached_property

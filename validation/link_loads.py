@@ -11,7 +11,7 @@ Member frame of the load case; P positions; every function returns forces (dofs,
   so that the nodal moment about c is C exactly. The discrete tangents integrate to zero round a
   closed hole, so the couple adds no net force.
 - d'Alembert body force rho (g - a(r)) of the rigid-body motion: affine in r, so it is three
-  integrals of the P2 functions (of 1, x and y), combined per position.
+  integrals of the shape functions (of 1, x and y), combined per position.
 - Point force F at p: a load density over the elements within a patch radius of p, affine and
   with zero first moment about p, so that its nodal resultant is F and its moment about the
   origin is p x F, exactly.
@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 import scipy.sparse as sp
-from skfem import Basis, ElementTriP2
+from skfem import Basis
 
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
@@ -37,22 +37,27 @@ degrees from F as the mesh is refined."""
 def edge_quadrature(
     model: PlaneStressModel, facets: NDArray[np.intp], centre: NDArray[np.float64]
 ) -> tuple[sp.csr_matrix, NDArray[np.float64], NDArray[np.float64]]:
-    """Weights W (scalar dofs, Nq), points (2, Nq) [m] and unit tangents (2, Nq) along the curved P2
-    edges ``facets``, the tangents turning counter-clockwise about ``centre``.
+    """Weights W (scalar dofs, Nq), points (2, Nq) [m] and unit tangents (2, Nq) along the edges
+    ``facets``, the tangents turning counter-clockwise about ``centre``.
 
-    Each edge is the quadratic curve through its two vertices and its mid-edge node, parameterised
-    by s in [0, 1] exactly as the isoparametric elements are, so the trace of the P2 functions on it
-    is the 1D quadratic Lagrange basis. This avoids skfem's FacetBasis, whose inverse isoparametric
-    mapping does not always converge on curved P2 meshes (scikit-fem issue #965).
+    On a P2 mesh each edge is the quadratic curve through its two vertices and its mid-edge node,
+    parameterised by s in [0, 1] exactly as the isoparametric elements are, so the trace of the P2
+    functions on it is the 1D quadratic Lagrange basis (P1: the straight edge and the linear basis).
+    This avoids skfem's FacetBasis, whose inverse isoparametric mapping does not always converge on
+    curved P2 meshes (scikit-fem issue #965).
     """
     s, w = np.polynomial.legendre.leggauss(FACET_POINTS)
     s, w = (s + 1) / 2, w / 2
-    shape = np.array([(1 - s) * (1 - 2 * s), s * (2 * s - 1), 4 * s * (1 - s)])  # vertex, vertex, middle
-    slope = np.array([4 * s - 3, 4 * s - 1, 4 - 8 * s])
     scalar = model.scalar
     vertices = scalar.nodal_dofs[0][model.plane.mesh.facets[:, facets]]
-    dofs = np.vstack([vertices, scalar.facet_dofs[0][facets]])  # (3, F)
-    xy = scalar.doflocs[:, dofs]  # (2, 3, F)
+    if model.order == 2:
+        shape = np.array([(1 - s) * (1 - 2 * s), s * (2 * s - 1), 4 * s * (1 - s)])  # vertex, vertex, middle
+        slope = np.array([4 * s - 3, 4 * s - 1, 4 - 8 * s])
+        dofs = np.vstack([vertices, scalar.facet_dofs[0][facets]])  # (3, F)
+    else:
+        shape, slope = np.array([1 - s, s]), np.array([-np.ones_like(s), np.ones_like(s)])
+        dofs = vertices  # (2, F)
+    xy = scalar.doflocs[:, dofs]  # (2, nodes per edge, F)
     points = np.einsum("cnf,nq->cfq", xy, shape)
     derivative = np.einsum("cnf,nq->cfq", xy, slope)
     length = np.hypot(*derivative)
@@ -60,7 +65,7 @@ def edge_quadrature(
     arm = points - np.asarray(centre, float)[:, None, None]
     turn = np.sign(arm[0] * tangent[1] - arm[1] * tangent[0])
     tangent = tangent * np.where(turn == 0, 1.0, turn)
-    values = shape[:, None, :] * (w * length)[None, :, :]  # (3, F, Q)
+    values = shape[:, None, :] * (w * length)[None, :, :]  # (nodes per edge, F, Q)
     n_points = dofs.shape[1] * len(s)
     columns = np.broadcast_to(np.arange(n_points).reshape(dofs.shape[1], len(s)), values.shape)
     rows = np.broadcast_to(dofs[:, :, None], values.shape)
@@ -147,7 +152,7 @@ def patch_loads(
     patch = np.flatnonzero(np.hypot(*(centroids - at[:, None])) <= radius)
     if len(patch) < 2:
         patch = np.argsort(np.hypot(*(centroids - at[:, None])))[:3]
-    basis = Basis(mesh, ElementTriP2(), elements=patch, intorder=4)
+    basis = Basis(mesh, model.scalar.elem, elements=patch, intorder=4)
     weights, points = quadrature_weights(basis)
     d = points - at[:, None]
     da = np.asarray(weights.sum(axis=0)).ravel()

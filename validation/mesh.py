@@ -1,4 +1,5 @@
-"""Quadratic triangle meshes of a plate region through the gmsh Python API.
+"""Triangle meshes of a plate region through the gmsh Python API: quadratic (P2, curved edges on the
+exact curves, the default) or linear (P1, straight edges between vertices on the exact curves).
 
 The region is a shapely Polygon with holes (a link's outline in its member frame). Its rings are
 read back into circles, arcs, splines and lines first (:mod:`linkstress.validation.ring_curves`),
@@ -24,14 +25,16 @@ import gmsh
 import numpy as np
 from numpy.typing import NDArray
 from shapely.geometry import LinearRing, Point, Polygon
-from skfem import MeshTri2
+from skfem import MeshTri1, MeshTri2
 
 from linkstress.validation.errors import FEAError
 from linkstress.validation.mesh_checks import check_meshable
 from linkstress.validation.ring_curves import Arc, Circle, Line, Spline, ring_curves
 
-TRIANGLE6 = 9
-LINE3 = 8
+TRIANGLE3, TRIANGLE6 = 2, 9
+LINE2, LINE3 = 1, 8
+ORDERS = (1, 2)
+"""Element orders: 1 linear triangles (3 nodes), 2 quadratic isoparametric triangles (6 nodes)."""
 
 
 @dataclass(frozen=True)
@@ -39,7 +42,8 @@ class MeshSettings:
     """Element sizes [m] and the comparison stations x [m] (member frame) to mesh as cuts.
 
     ``hole_size`` defaults to size / 4 and ``station_size`` to size / 2; ``grading`` [-] is how fast
-    the size grows with the distance from a hole, cut or refinement point.
+    the size grows with the distance from a hole, cut or refinement point. ``order``: 2 quadratic
+    triangles (default), 1 linear triangles.
     """
 
     size: float
@@ -47,6 +51,7 @@ class MeshSettings:
     stations: tuple[float, ...] = ()
     station_size: float | None = None
     grading: float = 0.3
+    order: int = 2
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stations", tuple(float(s) for s in np.atleast_1d(self.stations)))
@@ -58,6 +63,8 @@ class MeshSettings:
             value = getattr(self, key)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise FEAError(f"mesh settings: {key} must be a finite number > 0, got {value!r}")
+        if self.order not in ORDERS:
+            raise FEAError(f"mesh settings: order must be 1 (linear) or 2 (quadratic triangles), got {self.order!r}")
         if not np.isfinite(self.stations).all():
             raise FEAError(f"mesh settings: stations must be finite, got {self.stations!r}")
 
@@ -77,13 +84,14 @@ class MeshSettings:
 
 @dataclass(frozen=True)
 class PlaneMesh:
-    """A quadratic (isoparametric) triangle mesh and the facets of its boundary parts and cuts.
+    """A triangle mesh (quadratic isoparametric or linear, ``settings.order``) and the facets of its
+    boundary parts and cuts.
 
     ``holes[k]``: boundary facets of the region's k-th hole (shapely interior order); ``outline``:
     facets of the outer boundary; ``cuts[s]``: interior facets on the cut x = ``stations[s]``.
     """
 
-    mesh: MeshTri2
+    mesh: MeshTri1 | MeshTri2
     outline: NDArray[np.intp]
     holes: tuple[NDArray[np.intp], ...]
     cuts: tuple[NDArray[np.intp], ...]
@@ -95,6 +103,10 @@ class PlaneMesh:
     def n_elements(self) -> int:
         return int(self.mesh.t.shape[1])
 
+    @property
+    def order(self) -> int:
+        return self.settings.order
+
 
 def mesh_region(
     region: Polygon,
@@ -102,7 +114,7 @@ def mesh_region(
     points: Sequence[Sequence[float]] = (),
     name: str = "region",
 ) -> PlaneMesh:
-    """Mesh ``region`` [m] with quadratic triangles; refine to ``station_size`` at ``points`` (Q, 2) too.
+    """Mesh ``region`` [m] with triangles of ``settings.order``; refine to ``station_size`` at ``points`` (Q, 2) too.
 
     Raises FEAError naming ``name`` when a part is too thin for the sizes, a station does not cut
     the region's interior, or gmsh fails.
@@ -124,8 +136,9 @@ def mesh_region(
         try:
             groups = _build_geometry(region, stations, settings, np.asarray(points, float).reshape(-1, 2))
             gmsh.model.mesh.generate(2)
-            gmsh.model.mesh.setOrder(2)
-            mesh, facet_of = _read_mesh()
+            if settings.order == 2:
+                gmsh.model.mesh.setOrder(2)
+            mesh, facet_of = _read_mesh(settings.order)
             facets = {key: facet_of(_group_edges(tags)) for key, tags in groups.items()}
         except FEAError:
             raise
@@ -285,36 +298,39 @@ def _group_edges(curve_tags: list[int]) -> NDArray[np.int64]:
     for tag in curve_tags:
         types, _, nodes = gmsh.model.mesh.getElements(1, tag)
         for etype, enodes in zip(types, nodes):
-            if etype == LINE3:
-                edges.append(np.asarray(enodes, dtype=np.int64).reshape(-1, 3)[:, :2])
+            if etype in (LINE2, LINE3):
+                width = 2 if etype == LINE2 else 3
+                edges.append(np.asarray(enodes, dtype=np.int64).reshape(-1, width)[:, :2])
     return np.concatenate(edges)
 
 
-def _read_mesh():
-    """The MeshTri2 of the generated mesh and a map from gmsh vertex-tag pairs to its facet indices."""
+def _read_mesh(order: int):
+    """The MeshTri2 (order 2) or MeshTri1 (order 1) of the generated mesh and a map from gmsh
+    vertex-tag pairs to its facet indices."""
     tags, coords, _ = gmsh.model.mesh.getNodes()
     xy = np.asarray(coords).reshape(-1, 3)[:, :2]
     where = np.empty(int(np.max(tags)) + 1, dtype=np.int64)
     where[np.asarray(tags, dtype=np.int64)] = np.arange(len(tags))
+    expected, width = (TRIANGLE6, 6) if order == 2 else (TRIANGLE3, 3)
     triangles = []
     for _, tag in gmsh.model.getEntities(2):
         types, _, nodes = gmsh.model.mesh.getElements(2, tag)
         for etype, enodes in zip(types, nodes):
-            if etype != TRIANGLE6:
-                raise FEAError(f"gmsh made elements of type {etype}, expected quadratic triangles")
-            triangles.append(np.asarray(enodes, dtype=np.int64).reshape(-1, 6))
+            if etype != expected:
+                raise FEAError(f"gmsh made elements of type {etype}, expected {width}-node triangles")
+            triangles.append(np.asarray(enodes, dtype=np.int64).reshape(-1, width))
     t = np.concatenate(triangles)
     vertex_tags = np.unique(t[:, :3])
     middle_tags = np.setdiff1d(np.unique(t[:, 3:]), vertex_tags)
-    order = np.concatenate([vertex_tags, middle_tags])
+    listed = np.concatenate([vertex_tags, middle_tags])
     number = np.empty(int(np.max(tags)) + 1, dtype=np.int64)
-    number[order] = np.arange(len(order))
+    number[listed] = np.arange(len(listed))
     t = number[t]
-    doflocs = xy[where[order]]
+    doflocs = xy[where[listed]]
     a, b, c = (doflocs[t[:, k]] for k in range(3))
     clockwise = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]) < 0
-    t[clockwise] = t[clockwise][:, [0, 2, 1, 5, 4, 3]]
-    mesh = MeshTri2(doflocs.T.copy(), t.T.copy())
+    t[clockwise] = t[clockwise][:, [0, 2, 1, 5, 4, 3][:width]]
+    mesh = (MeshTri2 if order == 2 else MeshTri1)(doflocs.T.copy(), t.T.copy())
     n_vertices = len(vertex_tags)
     keys = np.sort(mesh.facets, axis=0)
     key = keys[0].astype(np.int64) * n_vertices + keys[1]

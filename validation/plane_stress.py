@@ -1,4 +1,5 @@
-"""Plane-stress linear elasticity on quadratic triangles with scikit-fem, and its factorised solve.
+"""Plane-stress linear elasticity on quadratic (P2, default) or linear (P1) triangles with scikit-fem,
+and its factorised solve.
 
 Constitutive law (plane stress, e.g. Timoshenko & Goodier, Theory of Elasticity, 3rd ed., eq. 55):
 
@@ -22,7 +23,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.sparse.linalg import splu
-from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, asm
+from skfem import Basis, BilinearForm, Element, ElementTriP1, ElementTriP2, ElementVector, asm
 from skfem.helpers import sym_grad
 from skfem.models.elasticity import linear_elasticity, linear_stress, plane_stress
 
@@ -31,6 +32,13 @@ from linkstress.validation.mesh import PlaneMesh
 
 INTORDER = 4
 """Quadrature degree on cells: exact for the P2 stiffness and for P2 x linear loads on straight cells."""
+ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
+"""The scalar Lagrange element of each mesh order (the displacement is its vector version)."""
+
+
+def scalar_element(order: int) -> Element:
+    """The scalar Lagrange triangle of ``order`` (1 or 2) that fields and test functions use."""
+    return ELEMENTS[order]()
 SOLVE_TOLERANCE = 1e-8
 """Largest residual |K u - f| of the free dofs, relative to |f| + |K u|, of a successful solve."""
 
@@ -43,7 +51,8 @@ def plane_stress_matrix(youngs_modulus: float, poisson_ratio: float) -> NDArray[
 
 @dataclass(frozen=True)
 class PlaneStressModel:
-    """A plate on a mesh: vector P2 ``basis`` for displacements [m], scalar P2 ``scalar`` for fields.
+    """A plate on a mesh: vector ``basis`` for displacements [m], scalar ``scalar`` for fields, both
+    Lagrange of the mesh's order (P2 on a quadratic mesh, P1 on a linear one).
 
     ``components[c, i]`` is the displacement dof of component c (0 = x, 1 = y) at scalar dof i, so a
     nodal field computed on ``scalar`` scatters into the displacement vector. ``stiffness`` [N/m]
@@ -63,8 +72,12 @@ class PlaneStressModel:
     def n_dofs(self) -> int:
         return int(self.basis.N)
 
+    @property
+    def order(self) -> int:
+        return self.plane.order
+
     def stress_forms(self) -> tuple[BilinearForm, BilinearForm, BilinearForm]:
-        """Forms (u, v) -> int sigma_c(u) v dA for c = xx, yy, xy: u displacement, v scalar P2."""
+        """Forms (u, v) -> int sigma_c(u) v dA for c = xx, yy, xy: u displacement, v scalar."""
         stress = linear_stress(*plane_stress(self.youngs_modulus, self.poisson_ratio))
 
         def component(i: int, j: int) -> BilinearForm:
@@ -77,11 +90,12 @@ def plane_stress_model(
     plane: PlaneMesh, youngs_modulus: float, poisson_ratio: float, thickness: float
 ) -> PlaneStressModel:
     """Assemble the plane-stress stiffness of ``plane`` for E [Pa], nu [-] and thickness t [m]."""
-    basis = Basis(plane.mesh, ElementVector(ElementTriP2()), intorder=INTORDER)
-    scalar = basis.with_element(ElementTriP2())
+    basis = Basis(plane.mesh, ElementVector(scalar_element(plane.order)), intorder=INTORDER)
+    scalar = basis.with_element(scalar_element(plane.order))
     components = np.empty((2, scalar.N), dtype=np.intp)
     components[:, scalar.nodal_dofs[0]] = basis.nodal_dofs
-    components[:, scalar.facet_dofs[0]] = basis.facet_dofs
+    if scalar.facet_dofs.size:  # the mid-edge nodes of P2
+        components[:, scalar.facet_dofs[0]] = basis.facet_dofs
     stiffness = thickness * asm(linear_elasticity(*plane_stress(youngs_modulus, poisson_ratio)), basis)
     return PlaneStressModel(
         plane,
@@ -98,7 +112,7 @@ def plane_stress_model(
 def quadrature_weights(basis: Basis) -> tuple[sp.csr_matrix, NDArray[np.float64]]:
     """W (scalar dofs, Nq) with W[i, q] = phi_i(q) dA_q, and the points (2, Nq) [m] of basis' quadrature.
 
-    ``basis`` is a scalar P2 cell or facet basis; a field f sampled at the points integrates
+    ``basis`` is a scalar cell or facet basis; a field f sampled at the points integrates
     against every test function at once: W @ f = int phi_i f.
     """
     n_el, n_qp = basis.dx.shape

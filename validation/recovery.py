@@ -1,9 +1,10 @@
 """Stresses from displacements: recovered nodal field, values at points, von Mises and cut resultants.
 
-The P2 displacement gives a stress that is linear in each element and jumps between elements.
-The recovered field is its L2 projection onto continuous P2 (the "nodal averaged" stress of
-commercial codes, done variationally: M s = int phi sigma_h dA, M the scalar P2 mass matrix), one
-solve per component for all load cases at once. Peak von Mises is taken over its nodes.
+The P2 displacement gives a stress that is linear in each element and jumps between elements (P1:
+constant in each element). The recovered field is its L2 projection onto the continuous scalar
+space of the mesh's order (the "nodal averaged" stress of commercial codes, done variationally:
+M s = int phi sigma_h dA, M the scalar mass matrix), one solve per component for all load cases at
+once. Peak von Mises is taken over its nodes.
 
 Section resultants are integrated over a cut meshed as element edges (see ``MeshSettings.stations``)
 from the raw element stresses, averaging the two sides of each edge; linear stresses on straight
@@ -18,7 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
-from skfem import BilinearForm, ElementTriP2, InteriorFacetBasis, asm
+from skfem import BilinearForm, InteriorFacetBasis, asm
 
 from linkstress.validation.errors import FEAError
 from linkstress.validation.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix
@@ -39,35 +40,35 @@ def von_mises(stress: NDArray[np.float64]) -> NDArray[np.float64]:
 
 @dataclass(frozen=True)
 class StressRecovery:
-    """Operators from displacements to the recovered (L2-projected, continuous P2) stress field."""
+    """Operators from displacements to the recovered (L2-projected, continuous) stress field."""
 
     model: PlaneStressModel
     projections: tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]
     mass: object
 
     def nodal_stress(self, displacement: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Recovered stress (P, scalar dofs, 3) [Pa] at the P2 nodes for displacements (dofs, P) [m]."""
+        """Recovered stress (P, scalar dofs, 3) [Pa] at the nodes for displacements (dofs, P) [m]."""
         u = np.asarray(displacement, float).reshape(self.model.n_dofs, -1)
         return np.stack([self.mass.solve(b @ u) for b in self.projections], axis=-1).transpose(1, 0, 2)
 
 
 def stress_recovery(model: PlaneStressModel) -> StressRecovery:
-    """Assemble and factorise the projection of ``model``'s stresses onto continuous P2."""
+    """Assemble and factorise the projection of ``model``'s stresses onto its continuous scalar space."""
     mass = asm(BilinearForm(lambda u, v, w: u * v), model.scalar).tocsc()
     projections = tuple(asm(form, model.basis, model.scalar).tocsr() for form in model.stress_forms())
     return StressRecovery(model, projections, factorise_spd(mass))
 
 
 def interpolation_matrix(model: PlaneStressModel, points: NDArray[np.float64]) -> sp.csr_matrix:
-    """Matrix (Q, scalar dofs) that evaluates a P2 nodal field at ``points`` (Q, 2) [m] of the mesh.
+    """Matrix (Q, scalar dofs) that evaluates a nodal field of ``model.scalar`` at ``points`` (Q, 2) [m].
 
     Each point is found in its (curved) element by inverting the isoparametric map; a point more
     than ``OUTSIDE_TOLERANCE`` outside every element is an error that names it.
     """
     points = np.asarray(points, float).reshape(-1, 2)
     scalar = model.scalar
-    cells, local = _locate(scalar.doflocs, scalar.element_dofs, points)
-    element = ElementTriP2()
+    element = scalar.elem
+    cells, local = _locate(element, scalar.doflocs, scalar.element_dofs, points)
     values = np.stack([element.lbasis(local, k)[0] for k in range(scalar.Nbfun)])
     rows = np.broadcast_to(np.arange(len(points)), values.shape)
     return sp.csr_matrix(
@@ -75,8 +76,9 @@ def interpolation_matrix(model: PlaneStressModel, points: NDArray[np.float64]) -
     )
 
 
-def _locate(nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
-    """Element (Q,) and reference coordinates (2, Q) of each point, by Newton on the P2 map.
+def _locate(element, nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
+    """Element (Q,) and reference coordinates (2, Q) of each point, by Newton on the isoparametric
+    map of the Lagrange ``element`` (one step is exact on P1's affine map).
 
     Candidates are the elements with the nearest centroids; points not found among them (a small
     element's centroid can be nearer than the large element holding the point) are searched again
@@ -90,7 +92,7 @@ def _locate(nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.f
     for k in (CANDIDATES, 8 * CANDIDATES, 64 * CANDIDATES, n_el):
         k = min(k, n_el)
         candidates = tree.query(points[todo], k)[1].reshape(len(todo), k)
-        found_cell, found_local, outside = _best_candidate(nodes, element_dofs, points[todo], candidates)
+        found_cell, found_local, outside = _best_candidate(element, nodes, element_dofs, points[todo], candidates)
         found = outside <= OUTSIDE_TOLERANCE
         cells[todo[found]], local[:, todo[found]] = found_cell[found], found_local[:, found]
         todo = todo[~found]
@@ -103,13 +105,12 @@ def _locate(nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDArray[np.f
     return cells, chosen - np.maximum(chosen.sum(axis=0) - 1, 0.0) / 2
 
 
-def _best_candidate(nodes, element_dofs, points, candidates):
+def _best_candidate(element, nodes, element_dofs, points, candidates):
     """For each point, the candidate element it is least outside of: cell, reference coords, outsideness."""
     n_points, k = candidates.shape
     cell = candidates.ravel()
     target = np.repeat(points, k, axis=0).T
     local = np.full((2, len(cell)), 1 / 3)
-    element = ElementTriP2()
     with np.errstate(all="ignore"):
         for _ in range(NEWTON_STEPS):
             x = np.zeros_like(target)
@@ -131,7 +132,7 @@ def _best_candidate(nodes, element_dofs, points, candidates):
 
 
 def strain_operators(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-    """Matrices (Nq, dofs) giving e_xx, e_yy and gamma_xy at ``basis``' quadrature points (vector P2)."""
+    """Matrices (Nq, dofs) giving e_xx, e_yy and gamma_xy at ``basis``' quadrature points (vector Lagrange)."""
     n_el, n_qp = basis.dx.shape
     rows = np.tile(np.arange(n_el * n_qp).reshape(n_el, n_qp), (basis.Nbfun, 1))
     cols = np.repeat(basis.element_dofs, n_qp, axis=1)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -80,13 +80,15 @@ def validate_scene(
     jobs: int = 1,
 ) -> ValidationResult:
     """Analyse ``scene`` and compare every link of ``plan.validate`` with its FEA at up to
-    ``positions`` feasible positions; ``levels`` >= 3 makes each a mesh refinement study; ``jobs``
+    ``positions`` feasible positions, with the elements of the scene's ``[analysis] element_order``
+    (default 2); ``levels`` >= 3 makes each a mesh refinement study; ``jobs``
     > 1 runs the links in that many processes. A progress bar shows on a terminal."""
     analysis = run_analysis(scene, plan)
     chosen = compared_positions(analysis.feasible, positions)
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
+    order = scene.analysis.element_order if scene.analysis is not None else 2
     tasks = [
-        (name, scene.links[name].profile, analysis.forces.link_loads[name], chosen, levels, size)
+        (name, scene.links[name].profile, analysis.forces.link_loads[name], chosen, levels, size, order)
         for name in plan.validate
     ]
     if jobs > 1 and len(tasks) > 1:
@@ -102,13 +104,13 @@ def validate_scene(
 
 def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
     """One link's comparison, or the reason it could not run (top level: runs in a worker process)."""
-    name, link, loads, chosen, levels, size = task
+    name, link, loads, chosen, levels, size, order = task
     start = time.perf_counter()
     if not len(chosen):
         return name, None, "no feasible position to compare", 0.0
     try:
         stations = comparison_stations(link, loads.frame_joints)
-        mesh = default_mesh(link, loads.frame_joints, stations, size)
+        mesh = replace(default_mesh(link, loads.frame_joints, stations, size), order=order)
         return name, compare_link(name, link, loads, chosen, mesh, levels, stations), "", time.perf_counter() - start
     except FEAError as error:
         return name, None, str(error), time.perf_counter() - start

@@ -1,7 +1,8 @@
 """ParaView output: one VTU per position of a sweep and a PVD that plays them as a time series.
 
 Quadratic triangles (VTK_QUADRATIC_TRIANGLE: three vertices, then the mid-edge nodes of edges
-0-1, 1-2, 2-0, which is scikit-fem's P2 dof order) at the P2 nodes, member frame, metres. Point
+0-1, 1-2, 2-0, which is scikit-fem's P2 dof order) at the P2 nodes, or linear triangles on a P1
+mesh, member frame, metres. Point
 data: displacement [m] (z = 0), sigma_xx, sigma_yy, tau_xy and von_mises [Pa]. Each file is
 written to a temporary name in the same folder and then moved into place, so that a failure never
 leaves a half-written file.
@@ -33,7 +34,7 @@ def write_sweep(
     folder.mkdir(parents=True, exist_ok=True)
     scalar = model.scalar
     points = np.column_stack([scalar.doflocs.T, np.zeros(scalar.N)])
-    cells = [("triangle6", scalar.element_dofs.T.copy())]
+    cells = [("triangle6" if model.order == 2 else "triangle", scalar.element_dofs.T.copy())]
     stem = _safe(name)
     paths = []
     for p in range(displacement.shape[1]):
