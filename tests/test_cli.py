@@ -27,13 +27,13 @@ def test_help_lists_the_commands():
     assert "sections" in result.stdout
 
 
-def test_console_script_is_installed():
-    import shutil
+def test_console_script_is_installed_beside_the_interpreter():
+    from pathlib import Path
 
-    script = shutil.which("linkstress")
-    if script is None:
-        pytest.skip("console script not on PATH in this environment")
-    assert subprocess.run([script, "--version"], capture_output=True, text=True).returncode == 0
+    script = Path(sys.executable).parent / "linkstress"
+    assert script.is_file(), f"no console script at {script}: is linkstress installed in this environment?"
+    result = subprocess.run([str(script), "--version"], capture_output=True, text=True)
+    assert result.returncode == 0 and result.stdout.strip() == f"linkstress {__version__}"
 
 
 def test_sections_prints_the_seed_crank_bar(capsys):
