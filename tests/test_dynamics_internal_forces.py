@@ -172,7 +172,11 @@ def test_section_maximum_is_exact_against_dense_fibres(pin, alpha, omega, ax):
         q = table.first_moment(np.broadcast_to(ys, (len(x), len(ys))))[s]
         tau = f.shear[0, s] * q / (table.second_moment[s] * table.thickness)
         dense = np.sqrt(sigma**2 + 3 * tau**2).max()
-        assert result.von_mises[0, s] >= dense * (1 - 1e-12)
+        # Exact for the linear stress. With the body-load term (|delta_sigma| <= 0.4 |b_y| c in a solid
+        # section) von Mises, 1-Lipschitz in sigma, can move by that much at the true and at the
+        # found maximum: the found value is within twice the term of the true one.
+        slack = 0.8 * abs(b_y[s]) * (table.top[s] - table.bottom[s]) / 2 if table.n_chords[s] == 1 else 0.0
+        assert result.von_mises[0, s] >= dense * (1 - 1e-12) - slack
         assert result.von_mises[0, s] <= dense * (1 + 1e-6) + 1e-9
         # and the reported fibre carries that von Mises
         vm_at = np.sqrt(result.sigma[0, s] ** 2 + 3 * result.tau[0, s] ** 2)
