@@ -119,15 +119,7 @@ def _quartic(u, n, m, w, c):
     return sigma * sigma + 3 * w * w * shape * shape
 
 
-def _with_body_load(u, n, m, w, c, beta, half):
-    """sigma_vM^2 with the body-load term beta (u^3 - 0.6 c^2 u) in sigma (u from the neutral axis,
-    which is mid-depth on the single-chord sections where beta is not zero)."""
-    sigma = n + m * u + beta * u * (u * u - 0.6 * half * half)
-    shape = c - u * u
-    return sigma * sigma + 3 * w * w * shape * shape
-
-
-def _polish(u, n, m, w, c, beta, half, steps: int = 4):
+def _polish(u, n, m, w, c, beta, half, steps: int = 2):
     """Newton steps on d(sigma_vM^2)/du with the body-load term, from the interior maximum of the
     linear stress (the term is a correction of a few per cent, so a few steps converge)."""
     for _ in range(steps):
@@ -180,9 +172,10 @@ def section_stresses(
     u_top, u_bottom = table.top - yna, table.bottom - yna
     half = (table.top - table.bottom) / 2
     single = solid & (table.n_chords == 1) & (half > 0)
-    b_y = transverse_body_load(loads, table.x, link.density)
-    beta = b_y * np.where(single, 1.0 / np.where(single, half, 1.0) ** 2, 0.0)
-    outer = 0.4 * beta * half**3  # delta_sigma at the top fibre; minus it at the bottom
+    free = loads.gravity[:, 1] - loads.origin_acceleration[:, 1]
+    # delta_sigma at the top fibre, 0.4 b_y c (minus it at the bottom), with b_y = rho (free - alpha x)
+    lever = np.where(single, 0.4 * link.density * half, 0.0)
+    outer = free[:, None] * lever - loads.alpha[:, None] * (table.x * lever)
     s_top = m * u_top
     s_top += n
     s_top += outer
@@ -190,10 +183,18 @@ def section_stresses(
     s_bottom += n
     s_bottom -= outer
     top_wins = np.abs(s_top) >= np.abs(s_bottom)
-    best_u = np.where(top_wins, u_top, u_bottom)
-    best = np.where(top_wins, s_top, s_bottom)
-    best *= best
-    shape = np.zeros_like(best)  # C - u^2 at the chosen fibre: zero at the outer (free) fibres
+    fibre = _Fibres(
+        best=np.where(top_wins, s_top * s_top, s_bottom * s_bottom),
+        u=np.where(top_wins, u_top, u_bottom),
+        sigma=np.where(top_wins, s_top, s_bottom),
+        tau=np.zeros(n.shape),  # the outer fibres are free edges
+    )
+
+    def beta_at(rows, at):
+        """b_y / c^2 (the body-load term's coefficient) at positions ``rows``, stations ``at``."""
+        b_y = link.density * (free[rows] - loads.alpha[rows] * table.x[at])
+        return np.where(single[at], b_y / np.where(single[at], half[at], 1.0) ** 2, 0.0)
+
     for k in range(table.lower.shape[1]):
         cols = np.flatnonzero((table.n_chords > k) & solid)
         ua = table.lower[cols, k] - yna[cols]
@@ -202,30 +203,67 @@ def section_stresses(
         inner_top = table.n_chords[cols] > k + 1
         for end, inner in ((ua, np.full(len(cols), k > 0)), (ub, inner_top)):
             if inner.any():
-                where = (slice(None), cols[inner])
-                f = _quartic(end[inner], n[where], m[where], w[where], c[inner])
-                _keep_larger(best, best_u, shape, where, f, end[inner], c[inner] - end[inner] ** 2)
+                # a chord end at a hole: every position, these few stations
+                rows, j = np.indices((n.shape[0], int(inner.sum()))).reshape(2, -1)
+                at, u, c_ = cols[inner][j], end[inner][j], c[inner][j]
+                n_, m_, w_ = n[rows, at], m[rows, at], w[rows, at]
+                fibre.keep_larger(rows, at, _quartic(u, n_, m_, w_, c_), u, n_ + m_ * u, w_ * (c_ - u * u))
         every = len(cols) == len(table.x)
         m_k, w_k = (m, w) if every else (m[:, cols], w[:, cols])
         rows, sub = np.nonzero(np.abs(m_k) < np.abs(w_k) * np.sqrt(6 * c))
         if len(rows):
             at = cols[sub]
-            n_, m_, w_, c_ = n[rows, at], m[rows, at], w[rows, at], c[sub]
-            u, exists = interior_maximum(n_, m_, w_, c_)
-            beta_ = beta[rows, at]
+            u, exists = interior_maximum(n[rows, at], m[rows, at], w[rows, at], c[sub])
+            rows, sub, at, u = rows[exists], sub[exists], at[exists], u[exists]
+            n_, m_, w_, c_, beta_ = n[rows, at], m[rows, at], w[rows, at], c[sub], beta_at(rows, at)
             u = np.clip(_polish(u, n_, m_, w_, c_, beta_, half[at]), ua[sub], ub[sub])
-            f = np.where(exists, _with_body_load(u, n_, m_, w_, c_, beta_, half[at]), -1.0)
-            _keep_larger(best, best_u, shape, (rows, at), f, u, c_ - u * u)
-    v = best_u + (yna - (table.top + table.bottom) / 2)
-    sigma = m * best_u
-    sigma += n
-    sigma += beta * v * (v * v - 0.6 * half**2)
-    tau = w * shape
-    von_mises = np.sqrt(sigma * sigma + 3 * tau * tau)
+            sigma = n_ + m_ * u + beta_ * u * (u * u - 0.6 * half[at] ** 2)
+            tau = w_ * (c_ - u * u)
+            fibre.keep_larger(rows, at, sigma * sigma + 3 * tau * tau, u, sigma, tau)
     return SectionStresses(
-        table, forces, von_mises, yna + best_u, sigma, tau, near_holes(link, frame_joints, table),
-        pin_hole_estimates(link, loads),
+        table, forces, np.sqrt(fibre.best), yna + fibre.u, fibre.sigma, fibre.tau,
+        near_holes(link, frame_joints, table), pin_hole_estimates(link, loads),
     )
+
+
+@dataclass
+class _Fibres:
+    """The critical fibre of every (position, station) so far: sigma_vM^2, offset u from the neutral
+    axis, sigma and tau there."""
+
+    best: NDArray[np.float64]
+    u: NDArray[np.float64]
+    sigma: NDArray[np.float64]
+    tau: NDArray[np.float64]
+
+    def keep_larger(self, rows, at, f, u, sigma, tau) -> None:
+        """Where candidate ``f`` beats the fibre so far at (rows, at), take it."""
+        wins = f > self.best[rows, at]
+        rows, at = rows[wins], at[wins]
+        self.best[rows, at] = f[wins]
+        self.u[rows, at] = u[wins]
+        self.sigma[rows, at] = sigma[wins]
+        self.tau[rows, at] = tau[wins]
+
+
+@dataclass
+class _Fibres:
+    """The critical fibre of every (position, station) so far: sigma_vM^2, offset u from the neutral
+    axis, sigma and tau there."""
+
+    best: NDArray[np.float64]
+    u: NDArray[np.float64]
+    sigma: NDArray[np.float64]
+    tau: NDArray[np.float64]
+
+    def keep_larger(self, rows, at, f, u, sigma, tau) -> None:
+        """Where candidate ``f`` beats the fibre so far at (rows, at), take it."""
+        wins = f > self.best[rows, at]
+        rows, at = rows[wins], at[wins]
+        self.best[rows, at] = f[wins]
+        self.u[rows, at] = u[wins]
+        self.sigma[rows, at] = sigma[wins]
+        self.tau[rows, at] = tau[wins]
 
 
 def transverse_body_load(loads: LinkLoadCase, x: NDArray[np.float64], density: float) -> NDArray[np.float64]:
@@ -233,12 +271,3 @@ def transverse_body_load(loads: LinkLoadCase, x: NDArray[np.float64], density: f
     at stations ``x`` (P, S) [N/m^3]: rho (g_y - a_Oy - alpha x), member axes."""
     free = loads.gravity[:, 1] - loads.origin_acceleration[:, 1]
     return density * (free[:, None] - loads.alpha[:, None] * x[None, :])
-
-
-def _keep_larger(best, best_u, shape, where, f, u, u_shape) -> None:
-    """Where ``f`` beats ``best[where]``, take f, its fibre offset u and its C - u^2."""
-    wins = f > best[where]
-    if wins.any():
-        best[where] = np.where(wins, f, best[where])
-        best_u[where] = np.where(wins, u, best_u[where])
-        shape[where] = np.where(wins, u_shape, shape[where])
