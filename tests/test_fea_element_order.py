@@ -3,6 +3,7 @@
 Same mesher, same loads, same recovery; a P1 mesh is gmsh's linear mesh before it is raised to
 order 2, so both orders share their vertices. The seed's ANSYS crank (1.0 m between 20 mm pin
 holes, 1.2 x 0.5 x 0.1 m steel) at 60 degrees with its published joint forces is the test link.
+Cut resultants of both orders are integrated at points placed from the mesh's topology.
 """
 
 from __future__ import annotations
@@ -14,14 +15,17 @@ from pathlib import Path
 import meshio
 import numpy as np
 import pytest
+from shapely.geometry import box
 from skfem import MeshTri1, MeshTri2
 
 from linkstress.cli import main
 from linkstress.validation.bench_fea import STATIONS, seed_crank, seed_position
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_fea import solve_link
-from linkstress.validation.link_loads import bearing_loads, nodal_resultant
+from linkstress.validation.link_loads import bearing_loads, edge_quadrature, nodal_resultant
 from linkstress.validation.mesh import MeshSettings, mesh_region
+from linkstress.validation.plane_stress import factorise, minimal_support, plane_stress_model, vector_loads
+from linkstress.validation.recovery import cut_integrator
 
 SEED = Path(__file__).resolve().parents[1] / "validation" / "cases" / "seed_ansys_fourbar"
 
@@ -108,3 +112,27 @@ def test_validate_uses_the_scene_element_order(tmp_path):
     # The same mesh: P2 adds a node on every edge, about three times the nodes of P1.
     assert dofs[1][1] == dofs[2][1]
     assert 3.5 < dofs[2][0] / dofs[1][0] < 4.5
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_cut_resultants_of_uniform_tension_are_exact_far_from_the_origin(order):
+    # A 100 x 10 mm strip, 6 mm thick, 1 km from the origin, pulled by 50 MPa at both ends: the cut
+    # at mid-length carries N = 50e6 * 0.01 * 0.006 = 3000 N, no shear, no moment. (skfem's
+    # FacetBasis, which inverts the element map by Newton with an absolute stopping test, fails
+    # here on P2; it also failed on a 50:1 slender crank's finest validate mesh.)
+    x0, length, depth, t, sigma = 1000.0, 0.1, 0.01, 0.006, 50e6
+    plane = mesh_region(
+        box(x0, -depth / 2, x0 + length, depth / 2), MeshSettings(0.002, stations=(x0 + length / 2,), order=order)
+    )
+    model = plane_stress_model(plane, 200e9, 0.3, t)
+    middle = plane.mesh.p[:, plane.mesh.facets[:, plane.outline]].mean(axis=1)
+    loads = np.zeros((model.n_dofs, 1))
+    for end, sign in ((x0, -1.0), (x0 + length, 1.0)):
+        weights, points, _ = edge_quadrature(model, plane.outline[np.abs(middle[0] - end) < 1e-9], np.array([end, 0.0]))
+        traction = np.zeros((1, 2, points.shape[1]))
+        traction[0, 0] = sign * sigma
+        loads += vector_loads(model, weights, traction)
+    u, _ = factorise(model, minimal_support(model)[0]).solve(loads)
+    n, v, m = cut_integrator(model, plane.cuts).resultants(u, np.array([0]), np.array([0.0]))
+    assert n[0, 0] == pytest.approx(3000.0, rel=1e-9)
+    assert abs(v[0, 0]) < 1e-8 * 3000.0 and abs(m[0, 0]) < 1e-8 * 3000.0 * depth

@@ -8,7 +8,8 @@ once. Peak von Mises is taken over its nodes.
 
 Section resultants are integrated over a cut meshed as element edges (see ``MeshSettings.stations``)
 from the raw element stresses, averaging the two sides of each edge; linear stresses on straight
-edges make a two-point Gauss rule per edge exact (isoparametric edges: to the quadrature order).
+edges make a three-point Gauss rule per edge exact, moments included (isoparametric edges: to the
+quadrature order). The edge's points come from the mesh's topology, not from inverting the map.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
-from skfem import BilinearForm, InteriorFacetBasis, asm
+from skfem import BilinearForm, asm
 
 from linkstress.validation.errors import FEAError
 from linkstress.validation.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix
@@ -30,6 +31,8 @@ on its edge: a fibre on the drawing's flattened boundary can sit a flattening to
 mesh, whose curved edges follow the exact arcs and splines."""
 CANDIDATES = 12
 NEWTON_STEPS = 12
+CUT_POINTS = 3
+"""Gauss points per cut edge: exact for the linear P2 stresses on a straight edge (degree 5)."""
 
 
 def von_mises(stress: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -131,18 +134,23 @@ def _best_candidate(element, nodes, element_dofs, points, candidates):
     return cell[pick], local[:, pick], outside[np.arange(n_points), best]
 
 
-def strain_operators(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-    """Matrices (Nq, dofs) giving e_xx, e_yy and gamma_xy at ``basis``' quadrature points (vector Lagrange)."""
-    n_el, n_qp = basis.dx.shape
-    rows = np.tile(np.arange(n_el * n_qp).reshape(n_el, n_qp), (basis.Nbfun, 1))
-    cols = np.repeat(basis.element_dofs, n_qp, axis=1)
-    grads = [basis.basis[k][0].grad for k in range(basis.Nbfun)]
+def strain_operators(
+    element_dofs: NDArray[np.intp], grads: list[NDArray[np.float64]], n_dofs: int
+) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """Matrices (E * Q, dofs) giving e_xx, e_yy and gamma_xy at Q points in each of E elements.
+
+    ``element_dofs`` (Nbfun, E): the vector basis' dofs of each element; ``grads[k]`` (2, 2, E, Q):
+    the gradient of its k-th vector basis function at the points.
+    """
+    n_el, n_qp = grads[0].shape[2:]
+    rows = np.tile(np.arange(n_el * n_qp).reshape(n_el, n_qp), (len(grads), 1))
+    cols = np.repeat(element_dofs, n_qp, axis=1)
     parts = {
         "xx": [g[0, 0] for g in grads],
         "yy": [g[1, 1] for g in grads],
         "xy": [g[0, 1] + g[1, 0] for g in grads],
     }
-    shape = (n_el * n_qp, basis.N)
+    shape = (n_el * n_qp, n_dofs)
     return tuple(
         sp.csr_matrix((np.concatenate(v).ravel(), (rows.ravel(), cols.ravel())), shape=shape)
         for v in parts.values()
@@ -184,19 +192,39 @@ def cut_integrator(model: PlaneStressModel, cuts: tuple[NDArray[np.intp], ...]) 
     if len(facets) == 0:
         empty = sp.csr_matrix((0, model.n_dofs))
         return CutIntegrator(sp.csr_matrix((len(cuts), 0)), np.zeros(0), (empty, empty, empty))
-    sides = [
-        InteriorFacetBasis(model.plane.mesh, model.basis.elem, facets=facets, side=s, intorder=4)
-        for s in (0, 1)
-    ]
-    strains = [strain_operators(b) for b in sides]
+    s, w = np.polynomial.legendre.leggauss(CUT_POINTS)
+    s, w = (s + 1) / 2, w / 2
+    sides = [_cut_side(model, facets, side, s) for side in (0, 1)]
+    strains = [strain_operators(model.basis.element_dofs[:, cells], grads, model.n_dofs) for cells, grads, _, _ in sides]
     stress = tuple(
         (0.5 * sum(d[c, 0] * e[0] + d[c, 1] * e[1] + d[c, 2] * e[2] for e in strains)).tocsr()
         for c in range(3)
     )
-    n_qp = sides[0].dx.shape[1]
+    _, _, length, xy = sides[0]
     weights = sp.csr_matrix(
-        (model.thickness * sides[0].dx.ravel(), (np.repeat(owner, n_qp), np.arange(len(facets) * n_qp))),
-        shape=(len(cuts), len(facets) * n_qp),
+        (model.thickness * (length * w).ravel(), (np.repeat(owner, len(s)), np.arange(len(facets) * len(s)))),
+        shape=(len(cuts), len(facets) * len(s)),
     )
-    y = np.asarray(sides[0].global_coordinates())[1].ravel()
-    return CutIntegrator(weights, y, stress)
+    return CutIntegrator(weights, xy[1].ravel(), stress)
+
+
+def _cut_side(model: PlaneStressModel, facets: NDArray[np.intp], side: int, s: NDArray[np.float64]):
+    """The elements on ``side`` of each facet, the vector basis' gradients (2, 2, F, Q) at the
+    points s (Q,) along it, |dx/ds| (F, Q) and the points (2, F, Q) [m].
+
+    The points are placed from the mesh's topology: the facet is the edge between two of the
+    element's vertices, so its reference points lie on the straight reference edge between them. No
+    inverse isoparametric mapping is needed (skfem's FacetBasis inverts the map by Newton, which
+    stalls on small elements far from the origin: its stopping test is absolute).
+    """
+    mesh = model.plane.mesh
+    cells = mesh.f2t[side, facets]
+    ends = [np.argmax(mesh.t[:, cells] == mesh.facets[k, facets], axis=0) for k in (0, 1)]
+    corners = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])  # the reference triangle's vertices
+    a, b = corners[:, ends[0]], corners[:, ends[1]]
+    ref = a[:, :, None] * (1 - s) + b[:, :, None] * s  # (2, F, Q): both sides meet at the same points
+    mapping = model.basis.mapping
+    jacobian = np.broadcast_to(mapping.DF(ref, tind=cells), (2, 2, *ref.shape[1:]))
+    along = np.einsum("ijfq,jf->ifq", jacobian, b - a)
+    grads = [model.basis.elem.gbasis(mapping, ref, k, tind=cells)[0].grad for k in range(model.basis.Nbfun)]
+    return cells, grads, np.hypot(*along), mapping.F(ref, tind=cells)
