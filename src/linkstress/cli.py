@@ -15,7 +15,7 @@ import sys
 from linkstress import __version__
 from linkstress.errors import InputError
 
-COMMAND_MODULES = ("sections", "analyze", "import_", "validate", "regress")
+COMMAND_MODULES = ("sections", "analyze", "import_", "validate", "regress", "bench")
 
 
 def build_parser() -> argparse.ArgumentParser:

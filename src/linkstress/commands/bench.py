@@ -1,0 +1,51 @@
+"""``linkstress bench [--json OUT] [--html OUT] [--quick]``: speed against error of every stress
+method, throughput, FEA memory and the hard cases, in one run (``linkstress.validation.bench_suite``).
+
+Exit 0 when every error stays under its bound, 1 when one does not; times are reported, never
+checked. ``--quick`` measures fewer settings (seconds, for CI); the full run takes minutes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from linkstress.output import check_folder, write_json, write_text
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "bench",
+        help="speed against error of the beam engine, the original strip sums and P1/P2 FEA",
+        description=(
+            "Time the beam engine at several station counts, the original program's strip sums at dx = 1e-2, "
+            "1e-3, 1e-4 m and plane-stress FEA (P1 and P2) at several mesh sizes on the seed's ANSYS four-bar "
+            "and a curved-link four-bar; compare each with the Richardson-extrapolated finest FEA; mark the "
+            "Pareto front. Also: positions per second of kinematics, joint forces and section stresses over "
+            "sweeps, the FEA's peak memory, and the beam against FEA on hard cases (near toggle, change point, "
+            "slender, stubby, hole close to the edge). Checks errors against their bounds, never times."
+        ),
+    )
+    parser.add_argument("--json", type=Path, metavar="OUT", help="write the figures as JSON to OUT")
+    parser.add_argument("--html", type=Path, metavar="OUT", help="write a self-contained HTML report to OUT")
+    parser.add_argument("--quick", action="store_true", help="fewer settings, for CI (well under a minute)")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    check_folder(args.json, "--json")
+    check_folder(args.html, "--html")
+    # The FEA stack (gmsh, scikit-fem) loads only when the bench runs.
+    from linkstress.validation.bench_report import bench_html, bench_json, bench_text
+    from linkstress.validation.bench_suite import FULL, QUICK, run_bench
+
+    result = run_bench(QUICK if args.quick else FULL, progress=lambda message: print(f"bench: {message}", file=sys.stderr))
+    print(bench_text(result))
+    # Every output is made before any is written, so a failure leaves none half-done.
+    document = bench_html(result) if args.html is not None else None
+    if args.json is not None:
+        write_json(args.json, bench_json(result))
+    if document is not None:
+        write_text(args.html, document)
+    return 1 if result.failures() else 0

@@ -1,0 +1,170 @@
+"""linkstress bench: speed against error of every stress method, measured in one run.
+
+CI runs ``bench --quick`` once (the module fixture) and checks what it measured: errors under their
+bounds, never a time under a bound. The strip-sum baseline and the Pareto front are checked against
+hand-computed values.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from linkstress.builders import stadium, straight_bar
+from linkstress.cli import main
+from linkstress.loads import LinkLoadCase
+from linkstress.materials import STRUCTURAL_STEEL
+from linkstress.validation.speed_error import CaseStudy, MethodResult
+from linkstress.validation.strip_sections import piecewise_bounds, strip_sections, strip_stresses
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    out = tmp_path_factory.mktemp("bench")
+    code = main(["bench", "--quick", "--json", str(out / "bench.json"), "--html", str(out / "bench.html")])
+    return code, json.loads((out / "bench.json").read_text()), (out / "bench.html").read_text()
+
+
+def test_the_quick_bench_passes_every_error_check(quick):
+    code, data, _ = quick
+    assert code == 0 and data["failures"] == []
+    assert all(check["passed"] for check in data["checks"])
+    assert len(data["checks"]) >= 15
+
+
+def test_on_the_seed_case_the_beam_engine_is_within_2_percent_of_converged_fea(quick):
+    must = quick[1]["must_show"]
+    assert must["beam_stations"] == 101
+    assert must["beam_nominal_error_pct"] < 2.0
+    assert must["fea_nominal_error_pct"] < 0.5  # validate's converged mesh against the Richardson reference
+    # Times are reported, never bounded here: only that they were measured.
+    assert must["beam_seconds"] > 0 and must["fea_study_seconds"] > must["fea_seconds"] > 0
+    assert math.isclose(must["speedup"], must["fea_seconds"] / must["beam_seconds"])
+
+
+def test_every_method_is_measured_with_a_time_and_an_error_on_both_cases(quick):
+    cases = quick[1]["cases"]
+    assert set(cases) == {"seed_ansys_fourbar", "banana_coupler"}
+    for case in cases.values():
+        settings_of = {(m["method"], m["setting"]) for m in case["methods"]}
+        assert {("strip sums", "dx = 0.01 m"), ("strip sums", "dx = 0.001 m"), ("beam", "101 stations")} <= settings_of
+        assert {m["method"] for m in case["methods"]} == {"beam", "strip sums", "FEA P1", "FEA P2"}
+        for m in case["methods"]:
+            assert m["seconds"] > 0 and math.isfinite(m["nominal_error_pct"]), m
+            assert set(m["links"]) == set(case["links"])
+
+
+def test_the_curved_coupler_is_flagged_and_its_straight_links_agree_with_fea(quick):
+    banana = quick[1]["cases"]["banana_coupler"]
+    assert banana["curved_links"] == ["coupler"]
+    beam = next(m for m in banana["methods"] if m["setting"] == "101 stations")
+    assert beam["links"]["crank"]["nominal_error_pct"] < 2 and beam["links"]["output"]["nominal_error_pct"] < 2
+    assert beam["links"]["coupler"]["nominal_error_pct"] > 5  # straight-beam sections on a curved bar
+
+
+def test_the_marked_pareto_front_is_exactly_the_undominated_methods(quick):
+    for case in quick[1]["cases"].values():
+        points = [(m["seconds"], m["nominal_error_pct"], m["pareto"]) for m in case["methods"]]
+        for t, e, on_front in points:
+            dominated = any(t2 <= t and e2 < e or t2 < t and e2 <= e for t2, e2, _ in points)
+            assert on_front == (not dominated), (t, e)
+
+
+def test_the_strip_sums_miss_exactly_the_area_of_the_pin_holes(quick):
+    # The seed crank: 1.2 x 0.5 m with two 20 mm holes. Strips between U(x) and L(x) see the full
+    # rectangle, so the area error is the holes' area over the exact area, whatever dx.
+    holes = 2 * math.pi * 0.01**2
+    expected = holes / (0.6 - holes)
+    seed = quick[1]["cases"]["seed_ansys_fourbar"]
+    for m in seed["methods"]:
+        if m["method"] == "strip sums":
+            assert m["mass_errors_pct"]["crank"]["area"] == pytest.approx(100 * expected, rel=1e-6)
+
+
+def test_the_hard_cases_raise_their_flags_and_stay_bounded_where_they_raise_none(quick):
+    stability = {case["case"]: case for case in quick[1]["stability"]}
+    assert set(stability) == {"near toggle", "change point", "slender link", "stubby link", "hole close to the edge"}
+    toggle = [row for row in stability["near toggle"]["rows"] if row["link"] == "coupler"]
+    assert not toggle[-1]["feasible"] and toggle[-1]["reason"].startswith("unreachable")  # 0.01 deg past it
+    assert all(row["feasible"] for row in toggle[:-1])
+    assert toggle[-2]["transmission_angle_deg"] < 1.0  # 0.001 deg before it
+    change = stability["change point"]["rows"]
+    assert [row["reason"].startswith("change point") for row in change if row["link"] == "coupler"] == [False] * 4 + [True]
+    assert any("no station is a section depth" in flag for flag in stability["stubby link"]["flags"])
+    for case in stability.values():
+        for row in case["rows"]:
+            if row["trusted"]:
+                assert row["nominal_error_pct"] < 5.0, (case["case"], row)
+    assert max(row["nominal_error_pct"] for row in stability["slender link"]["rows"]) < 0.1
+
+
+def test_the_report_has_a_log_log_figure_per_case_throughput_memory_and_versions(quick):
+    _, data, page = quick
+    assert page.count("data:image/png;base64,") == 2
+    for heading in ("What must show", "Throughput", "FEA memory", "Hard cases", "Checks", "Versions"):
+        assert heading in page
+    stages = {(r["case"], r["stage"]) for r in data["throughput"]}
+    assert ("seed_ansys_fourbar", "section stresses") in stages and ("seed_ansys_fourbar", "FEA (one link)") in stages
+    memory = data["memory"][0]
+    assert memory["peak_mb"] >= memory["baseline_mb"] > 0 and memory["dofs"] > 1000
+
+
+def test_bench_refuses_an_output_folder_that_does_not_exist_before_measuring(tmp_path, capsys):
+    assert main(["bench", "--quick", "--json", str(tmp_path / "missing" / "bench.json")]) == 2
+    assert "--json" in capsys.readouterr().err
+
+
+def test_strip_sections_of_a_rectangle_are_the_solid_rectangle_at_each_strip_centre():
+    bar = straight_bar(1.0, 0.5, 0.1, 0.1)  # x from -0.1 to 1.1 m, 0.5 m deep, 0.1 m thick
+    table = strip_sections(bar, (0, 1), 0.1)
+    np.testing.assert_allclose(table.x, -0.05 + 0.1 * np.arange(12))
+    np.testing.assert_allclose(table.area, 0.1 * 0.5)
+    np.testing.assert_allclose(table.inertia, 0.1 * 0.5**3 / 12)
+    np.testing.assert_allclose(table.y_na, 0.0, atol=1e-15)
+    np.testing.assert_allclose(table.half_depth, 0.25)
+
+
+def test_the_original_stress_model_translates_the_joint_forces_left_of_the_station():
+    # 100 N up at joint 0 (x = 0) and 100 N down at joint 1 (x = 1 m); at x = 0.45 m only joint 0
+    # is to the left: V = -100 N, M = (0 - 0.45) * 100 = -45 N m; the original takes sigma =
+    # |M| c / I = 45 * 0.25 / (0.1 * 0.5^3 / 12) = 10,800 Pa and the average shear 100 / 0.05 =
+    # 2,000 Pa, so von Mises sqrt(10800^2 + 3 * 2000^2).
+    bar = straight_bar(1.0, 0.5, 0.1, 0.1)
+    pins = np.array([[[0.0, 100.0], [0.0, -100.0]]])
+    loads = LinkLoadCase((0, 1), pins, np.zeros((1, 2)), np.zeros(1), np.zeros(1), np.zeros((1, 2)), np.zeros((1, 2)))
+    result = strip_stresses(bar, loads, strip_sections(bar, (0, 1), 0.1))
+    k = 5
+    assert result.sections.x[k] == pytest.approx(0.45)
+    assert result.shear[0, k] == pytest.approx(-100.0) and result.moment[0, k] == pytest.approx(-45.0)
+    assert result.von_mises[0, k] == pytest.approx(math.sqrt(10800.0**2 + 3 * 2000.0**2))
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.floats(0.0, 1.0))
+def test_the_piecewise_bounds_are_the_exact_bounding_functions(fraction):
+    link = stadium(0.3, 0.05, 0.01, STRUCTURAL_STEEL, hole_diameter=0.01)
+    upper, lower = piecewise_bounds(link, (0, 1))
+    lo, hi = link.x_extent()
+    x = lo + fraction * (hi - lo)
+    exact_upper, exact_lower = link.bounds()([x])
+    assert upper(x) == pytest.approx(exact_upper[0], abs=1e-12)
+    assert lower(x) == pytest.approx(exact_lower[0], abs=1e-12)
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.tuples(st.floats(1e-4, 10.0), st.floats(0.0, 100.0)), min_size=1, max_size=12))
+def test_a_pareto_front_point_is_beaten_by_none_and_every_other_point_by_one_on_the_front(points):
+    methods = tuple(MethodResult("m", str(k), 1, t, e / 100, None, None, {}) for k, (t, e) in enumerate(points))
+    case = CaseStudy("c", "c", (), 1, methods, {}, {}, 0.0, (), ())
+    front = set(case.pareto())
+    for k, (t, e) in enumerate(points):
+        beaten = [j for j, (t2, e2) in enumerate(points) if j != k and (t2 <= t and e2 < e or t2 < t and e2 <= e)]
+        if k in front:
+            assert not beaten
+        else:
+            assert any(j in front for j in beaten) or any(points[j] == (t, e) for j in front)

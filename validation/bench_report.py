@@ -1,0 +1,264 @@
+"""Reports of ``linkstress bench``: terminal text, JSON and a self-contained HTML page.
+
+Errors are percentages and times milliseconds in the text; the JSON keeps seconds and fractions
+under names that say so.
+"""
+
+from __future__ import annotations
+
+import html
+
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+
+from linkstress.analysis import DEFAULT_STATIONS  # noqa: E402
+from linkstress.report.html import figure_tag, page, table_html, versions_html  # noqa: E402
+from linkstress.tables import format_table  # noqa: E402
+from linkstress.validation.bench_suite import NOMINAL_BOUND, SPEEDUP, BenchResult, converged_setting  # noqa: E402
+from linkstress.validation.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy  # noqa: E402
+
+PLOT_FLOOR = 1e-4
+"""Smallest error [%] drawn on the log axis (a method that matches the reference to rounding)."""
+STYLES = {"beam": ("o", "tab:blue"), "strip sums": ("s", "tab:gray"), "FEA P1": ("^", "tab:orange"), "FEA P2": ("D", "tab:green")}
+
+
+def _pct(value) -> object:
+    return "-" if value is None else 100 * value
+
+
+def label(case: CaseStudy, method) -> str:
+    """The setting in words: FEA levels say their refinement and role."""
+    if not method.method.startswith("FEA"):
+        return method.setting
+    k = int(method.setting.split("=")[1])
+    size = f"element size x {RATIO**-k:.3g}"
+    return size + (" (validate's converged mesh)" if method.method == "FEA P2" and k == VALIDATE_LEVELS[-1] else "")
+
+
+def case_rows(case: CaseStudy) -> list[tuple]:
+    front = set(case.pareto())
+    return [
+        (m.method, label(case, m), m.size, 1e3 * m.seconds, 100 * m.nominal_error, _pct(m.peak_error),
+         _pct(m.resultant_error), "yes" if k in front else "")
+        for k, m in enumerate(case.methods)
+    ]
+
+
+CASE_HEADERS = ("method", "setting", "stations / strips / dofs", "time [ms]", "nominal error [%]", "peak error [%]",
+                "resultant error [%]", "Pareto")
+
+
+def stations_needed(case: CaseStudy, tolerance: float = 5e-4) -> int | None:
+    """The fewest beam stations whose nominal error is within ``tolerance`` of the most stations' error."""
+    beams = [(int(m.setting.split()[0]), m.nominal_error) for m in case.methods if m.method == "beam"]
+    best = min(beams, key=lambda b: -b[0])[1]
+    within = [count for count, error in beams if error <= best + tolerance]
+    return min(within) if within else None
+
+
+def coarsest_converged(case: CaseStudy, bound: float = 0.005):
+    """The fastest P2 level within ``bound`` of the reference."""
+    levels = [m for m in case.methods if m.method == "FEA P2" and m.nominal_error < bound]
+    return min(levels, key=lambda m: m.seconds) if levels else None
+
+
+def defaults_lines(result: BenchResult) -> list[str]:
+    lines = []
+    for case in result.cases:
+        default = case.find("beam", f"{DEFAULT_STATIONS} stations")
+        needed = stations_needed(case)
+        coarse = coarsest_converged(case)
+        fea = case.find("FEA P2", converged_setting())
+        lines.append(
+            f"{case.name}: beam stations: {needed} reach the error of the most stations measured (within 0.05 "
+            f"points); the default {DEFAULT_STATIONS} give {100 * default.nominal_error:.3g} % in {1e3 * default.seconds:.3g} ms. "
+            f"FEA: validate's converged mesh {100 * fea.nominal_error:.3g} % ({fea.size} dofs, {fea.seconds:.3g} s); "
+            + (f"the fastest P2 mesh under 0.5 % is {label(case, coarse)} ({coarse.size} dofs, {coarse.seconds:.3g} s)"
+               if coarse else "no P2 mesh measured is under 0.5 %")
+        )
+    return lines
+
+
+def must_show_lines(result: BenchResult) -> list[str]:
+    m = result.must_show
+    verdict = "met" if m.met else "NOT met"
+    return [
+        f"seed case: beam engine ({DEFAULT_STATIONS} stations) nominal error {100 * m.beam_error:.3g} % "
+        f"(bound {100 * NOMINAL_BOUND:g} %) in {1e3 * m.beam_seconds:.3g} ms for its three links; validate's converged "
+        f"FEA {100 * m.fea_error:.3g} % in {m.fea_seconds:.3g} s (one solve on its finest mesh), {m.study_seconds:.3g} s "
+        "for the three-level study that shows it converged",
+        f"speed-up: {m.speedup:,.0f} x over the one solve, {m.study_speedup:,.0f} x over the study "
+        f"(must show >= {SPEEDUP:,.0f} x over the converged FEA: {verdict})",
+    ]
+
+
+def bench_text(result: BenchResult) -> str:
+    lines = [f"linkstress bench ({result.settings.name}), {result.seconds:.0f} s; machine: "
+             + ", ".join(f"{k} {v}" for k, v in result.machine.items())]
+    for case in result.cases:
+        lines += ["", f"{case.title} ({case.name}): {', '.join(case.links)} at {case.positions} position(s); "
+                  f"reference: Richardson on the three finest P2 meshes ({', '.join(f'{k} {v} dofs' for k, v in case.reference_dofs.items())}), "
+                  f"its own error estimate {100 * max(case.reference_error.values()):.2g} %; joint forces {1e3 * case.kinetics_seconds:.2g} ms",
+                  format_table(CASE_HEADERS, case_rows(case))]
+        if case.curved:
+            lines.append(f"curved (flagged by validate): {', '.join(case.curved)}; straight-beam sections fall short there")
+    lines += ["", *must_show_lines(result), "", "defaults:", *(f"  {line}" for line in defaults_lines(result))]
+    lines += ["", "strip sums' mass properties against the exact (Green) values (worst link)", format_table(*strip_mass_table(result))]
+    lines += ["", "throughput", format_table(*rates_table(result)), "", "FEA peak memory (fresh process)", format_table(*memory_table(result))]
+    lines += ["", "hard cases (errors of the beam against FEA; flags are what the engine says)", format_table(*stability_table(result))]
+    for case in result.stability:
+        lines += [f"  {case.name}: {flag}" for flag in case.flags]
+    failures = result.failures()
+    lines += ["", "checks (errors only): " + ("passed" if not failures else "FAILED\n  " + "\n  ".join(failures))]
+    return "\n".join(lines)
+
+
+def strip_mass_table(result: BenchResult):
+    rows = []
+    for case in result.cases:
+        for m in case.methods:
+            if m.mass_errors:
+                worst = np.max(np.array(list(m.mass_errors.values())), axis=0)
+                rows.append((case.name, m.setting, 1e3 * m.seconds, *(100 * worst)))
+    return ("case", "strip width", "time incl. stresses [ms]", "area [%]", "centroid / length [%]", "polar moment [%]"), rows
+
+
+def rates_table(result: BenchResult):
+    rows = [(r.case, r.stage, r.positions, 1e3 * r.seconds, round(r.per_second), r.detail) for r in result.rates]
+    return ("case", "stage", "positions", "time [ms]", "positions per second", "what"), rows
+
+
+def memory_table(result: BenchResult):
+    rows = [(m.case, m.link, f"P{m.order}", m.dofs, m.seconds, m.baseline_mb, m.peak_mb, m.peak_mb - m.baseline_mb)
+            for m in result.memory]
+    return ("case", "link", "elements", "dofs", "time [s]", "before [MB]", "peak [MB]", "FEA's share [MB]"), rows
+
+
+def stability_table(result: BenchResult):
+    rows = []
+    for case in result.stability:
+        for r in case.rows:
+            rows.append((
+                case.name, r.link, round(r.input_angle_deg, 4), "yes" if r.feasible else "no: " + r.reason.split(":")[0],
+                "-" if r.transmission_deg is None else r.transmission_deg, _pct(r.nominal), _pct(r.near_hole),
+                _pct(r.resultants), "; ".join(r.flags) if r.flags else ("-" if r.feasible else "infeasible"),
+            ))
+    return ("case", "link", "input [deg]", "feasible", "transmission [deg]", "nominal [%]", "near holes [%]",
+            "resultants [%]", "position flags"), rows
+
+
+def bench_json(result: BenchResult) -> dict:
+    def method(case, k, m):
+        return {
+            "method": m.method, "setting": m.setting, "label": label(case, m), "size": m.size, "seconds": m.seconds,
+            "nominal_error_pct": 100 * m.nominal_error, "peak_error_pct": _none_pct(m.peak_error),
+            "resultant_error_pct": _none_pct(m.resultant_error), "pareto": k in case.pareto(),
+            "links": {n: dict(zip(("nominal_error_pct", "peak_error_pct", "resultant_error_pct"), map(_none_pct, e)))
+                      for n, e in m.link_errors.items()},
+            "mass_errors_pct": None if m.mass_errors is None else {
+                n: dict(zip(("area", "centroid_over_length", "polar_moment"), (100 * v for v in e))) for n, e in m.mass_errors.items()
+            },
+        }
+
+    ms = result.must_show
+    return {
+        "mode": result.settings.name, "seconds": result.seconds, "machine": result.machine,
+        "cases": {c.name: {
+            "title": c.title, "links": list(c.links), "positions": c.positions, "curved_links": list(c.curved),
+            "kinetics_seconds": c.kinetics_seconds, "reference_dofs": c.reference_dofs,
+            "reference_error_pct": {n: 100 * e for n, e in c.reference_error.items()},
+            "methods": [method(c, k, m) for k, m in enumerate(c.methods)],
+        } for c in result.cases},
+        "must_show": {
+            "beam_stations": DEFAULT_STATIONS, "beam_nominal_error_pct": 100 * ms.beam_error, "beam_seconds": ms.beam_seconds,
+            "fea_nominal_error_pct": 100 * ms.fea_error, "fea_seconds": ms.fea_seconds, "fea_study_seconds": ms.study_seconds,
+            "speedup": ms.speedup, "study_speedup": ms.study_speedup, "met": ms.met,
+        },
+        "defaults": defaults_lines(result),
+        "throughput": [{"case": r.case, "stage": r.stage, "positions": r.positions, "seconds": r.seconds,
+                        "positions_per_second": r.per_second, "detail": r.detail} for r in result.rates],
+        "memory": [m.__dict__ for m in result.memory],
+        "stability": [{"case": c.name, "description": c.description, "flags": list(c.flags),
+                       "rows": [_stability_row(r) for r in c.rows]} for c in result.stability],
+        "checks": [c.__dict__ for c in result.checks],
+        "failures": result.failures(),
+    }
+
+
+def _stability_row(r) -> dict:
+    return {
+        "link": r.link, "input_angle_deg": r.input_angle_deg, "feasible": r.feasible, "reason": r.reason,
+        "transmission_angle_deg": r.transmission_deg, "nominal_error_pct": _none_pct(r.nominal),
+        "near_hole_error_pct": _none_pct(r.near_hole), "resultant_error_pct": _none_pct(r.resultants),
+        "fea_peak_over_beam_max": r.peak_ratio, "equilibrium_mismatch": r.equilibrium, "reaction_ratio": r.reaction,
+        "flags": list(r.flags), "trusted": r.trusted,
+    }
+
+
+def _none_pct(value):
+    return None if value is None else 100 * value
+
+
+def speed_error_figure(case: CaseStudy):
+    """Log-log time against nominal error, one marker per method and setting, the Pareto front joined."""
+    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    for family, (marker, colour) in STYLES.items():
+        points = [(m.seconds, max(100 * m.nominal_error, PLOT_FLOOR)) for m in case.methods if m.method == family]
+        if points:
+            ax.plot(*zip(*points), marker=marker, color=colour, ls=":", lw=0.8, label=family)
+    front = [case.methods[k] for k in case.pareto()]
+    xs = [m.seconds for m in front]
+    ys = [max(100 * m.nominal_error, PLOT_FLOOR) for m in front]
+    ax.step(xs, ys, where="post", color="black", lw=1.2, label="Pareto front")
+    ax.plot(xs, ys, "o", mfc="none", mec="black", ms=12)
+    default = case.find("beam", f"{DEFAULT_STATIONS} stations")
+    converged = case.find("FEA P2", converged_setting())
+    for m, text, side in ((default, f"beam, {DEFAULT_STATIONS} stations (default)", 1), (converged, "validate's converged FEA", -1)):
+        if m is not None:
+            ax.annotate(text, (m.seconds, max(100 * m.nominal_error, PLOT_FLOOR)), textcoords="offset points",
+                        xytext=(6 * side, 6), ha="left" if side > 0 else "right", fontsize=8)
+    ax.axhline(100 * NOMINAL_BOUND, color="tab:red", lw=0.8, ls="--", label=f"{100 * NOMINAL_BOUND:g} %")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time [s] (all compared links, best of several runs)")
+    ax.set_ylabel("nominal von Mises error against the reference [%]")
+    ax.set_title(f"{case.title}: speed against error")
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def bench_html(result: BenchResult) -> str:
+    sections = [
+        "<p>Every stress method of linkstress timed the same way (wall time after imports, from the link profiles and "
+        "their joint loads to the stresses; best of several runs where a run is cheap) and compared with one reference: "
+        "the Richardson extrapolation of the three finest P2 meshes. The quantity is the nominal von Mises stress at "
+        "validate's comparison stations, at the beam's critical fibre.</p>",
+        "<h2>Machine</h2>", table_html(("", ""), list(result.machine.items())),
+        "<h2>What must show</h2>", *(f"<p>{html.escape(line)}</p>" for line in must_show_lines(result)),
+    ]
+    for case in result.cases:
+        sections += [
+            f"<h2>{html.escape(case.title)}</h2>",
+            f"<p>{html.escape(', '.join(case.links))} at {case.positions} position(s); reference error estimate "
+            f"{100 * max(case.reference_error.values()):.2g} %.</p>",
+            figure_tag(speed_error_figure(case), f"time against error, {case.name}"),
+            table_html(CASE_HEADERS, case_rows(case)),
+        ]
+    sections += ["<h2>Defaults</h2>", *(f"<p>{html.escape(line)}</p>" for line in defaults_lines(result))]
+    sections += ["<h2>Strip sums: mass properties</h2>", table_html(*strip_mass_table(result))]
+    sections += ["<h2>Throughput</h2>", table_html(*rates_table(result)), "<h2>FEA memory</h2>", table_html(*memory_table(result))]
+    sections += ["<h2>Hard cases</h2>", table_html(*stability_table(result))]
+    for case in result.stability:
+        sections.append(f"<p><b>{html.escape(case.name)}</b>: {html.escape(case.description)}</p>")
+        sections += [f'<p class="note">{html.escape(flag)}</p>' for flag in case.flags]
+    rows = [(c.name, "passed" if c.passed else "FAILED", "-" if c.value is None else 100 * c.value,
+             "-" if c.bound is None else 100 * c.bound) for c in result.checks]
+    sections += ["<h2>Checks (errors only, never times)</h2>", table_html(("check", "result", "value [%]", "bound [%]"), rows)]
+    sections += ["<h2>Versions</h2>", versions_html()]
+    return page(f"linkstress bench ({result.settings.name}): speed against error", sections)

@@ -1,0 +1,210 @@
+"""``linkstress bench``: every measurement of speed against error in one run, and the checks on it.
+
+The run measures (``speed_error``) the beam engine, the original program's strip sums and P1/P2
+FEA on the seed's ANSYS four-bar and on the banana-coupler four-bar (the curved-link case), the
+throughput of each analysis stage and the FEA's peak memory (``throughput``), and the hard cases
+(``stability``). The checks are on errors only, never on times (machines are shared and noisy):
+
+- the beam engine at the default station count within NOMINAL_BOUND of the reference on the
+  seed's links and on the straight links of the curved case, and the curved link flagged;
+- validate's default FEA (the finest mesh of its three-level study) within CONVERGED_BOUND, and the
+  reference's own Richardson estimate within it too;
+- on the hard cases, the beam within STABILITY_BOUND wherever the engine raises no flag, and the
+  flags each case must raise.
+
+The must-show figure, the beam's speed-up over the converged FEA at nominal error under
+NOMINAL_BOUND, is a ratio of times: reported, not checked.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from linkstress.analysis import DEFAULT_STATIONS
+from linkstress.validation.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy, StudySettings, case_study
+from linkstress.validation.stability import HardCaseResult, hard_cases
+from linkstress.validation.throughput import MemoryUse, StageRate, fea_sweep_rate, memory_use, sweep_rates
+
+CASES = Path(__file__).resolve().parent / "cases"
+SEED = CASES / "seed_ansys_fourbar" / "scene.toml"
+CURVED_CASE = CASES / "banana_coupler" / "scene.toml"
+NOMINAL_BOUND = 0.02
+"""Nominal error the beam engine must stay under against converged FEA (issue 8's must-show)."""
+CONVERGED_BOUND = 0.005
+"""validate's convergence criterion: a converged FEA is within 0.5 % of the reference."""
+STABILITY_BOUND = 0.05
+"""On the hard cases, where the engine raises no flag, its nominal error stays under this."""
+SPEEDUP = 1000.0
+"""The must-show speed-up of the beam engine over the converged FEA."""
+
+
+@dataclass(frozen=True)
+class BenchSettings:
+    """What one run measures: the speed/error ``study``, sweeps of ``sweep_positions`` (best of
+    ``sweep_repeat``), an FEA sweep of ``fea_sweep_positions``, the FEA memory at the refinement
+    levels ``memory_levels`` (k, order) and the hard cases at level ``stability_level``."""
+
+    name: str
+    study: StudySettings
+    sweep_positions: int
+    sweep_repeat: int
+    fea_sweep_positions: int
+    memory_levels: tuple[tuple[int, int], ...]
+    stability_level: int
+
+
+FULL = BenchSettings(
+    "full",
+    StudySettings(
+        positions=12, station_counts=(3, 5, 11, 21, 51, 101, 201, 501, 1001), strip_steps=(1e-2, 1e-3, 1e-4),
+        p2_levels=(-2, -1, 0, 1, 2, 3, 4), p1_levels=(-1, 0, 1, 2, 3, 4, 5), repeat=5,
+    ),
+    sweep_positions=3600, sweep_repeat=5, fea_sweep_positions=360,
+    memory_levels=((2, 2), (4, 2), (5, 1)), stability_level=2,
+)
+QUICK = BenchSettings(
+    "quick",
+    StudySettings(
+        positions=2, station_counts=(5, 21, DEFAULT_STATIONS), strip_steps=(1e-2, 1e-3),
+        p2_levels=VALIDATE_LEVELS, p1_levels=(0, 1), repeat=3, cheap=0.2,
+    ),
+    sweep_positions=360, sweep_repeat=3, fea_sweep_positions=12,
+    memory_levels=((0, 2),), stability_level=1,
+)
+
+
+@dataclass(frozen=True)
+class Check:
+    """One bound on an error: ``value`` [-] against ``bound`` [-] (None: a flag that must be raised)."""
+
+    name: str
+    passed: bool
+    value: float | None = None
+    bound: float | None = None
+
+
+@dataclass(frozen=True)
+class MustShow:
+    """The beam engine at the default stations against validate's converged FEA on the seed case."""
+
+    beam_error: float
+    beam_seconds: float
+    fea_error: float
+    fea_seconds: float
+    study_seconds: float
+
+    @property
+    def speedup(self) -> float:
+        """Over the one solve on the converged mesh."""
+        return self.fea_seconds / self.beam_seconds
+
+    @property
+    def study_speedup(self) -> float:
+        """Over validate's three-level study, which is what establishes convergence."""
+        return self.study_seconds / self.beam_seconds
+
+    @property
+    def met(self) -> bool:
+        return self.beam_error < NOMINAL_BOUND and self.speedup >= SPEEDUP
+
+
+@dataclass(frozen=True)
+class BenchResult:
+    settings: BenchSettings
+    machine: dict[str, str]
+    cases: tuple[CaseStudy, ...]
+    rates: tuple[StageRate, ...]
+    memory: tuple[MemoryUse, ...]
+    stability: tuple[HardCaseResult, ...]
+    must_show: MustShow
+    checks: tuple[Check, ...]
+    seconds: float
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    def failures(self) -> list[str]:
+        return [c.name for c in self.checks if not c.passed]
+
+
+def machine() -> dict[str, str]:
+    """What the figures were measured on."""
+    cpu = platform.processor() or platform.machine()
+    cpuinfo = Path("/proc/cpuinfo")
+    if cpuinfo.is_file():
+        names = [line.split(":", 1)[1].strip() for line in cpuinfo.read_text().splitlines() if line.startswith("model name")]
+        cpu = names[0] if names else cpu
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    return {
+        "cpu": cpu,
+        "cores": str(os.cpu_count()),
+        "system": f"{platform.system()} {platform.release()}",
+        "python": platform.python_version(),
+        "load average at start (1 min)": f"{load:.2f}",
+    }
+
+
+def run_bench(settings: BenchSettings, progress=lambda message: None) -> BenchResult:
+    """Measure everything ``settings`` asks for; ``progress(message)`` hears of each part."""
+    start = time.perf_counter()
+    info = machine()
+    cases = []
+    for path in (SEED, CURVED_CASE):
+        progress(f"speed against error: {path.parent.name}")
+        cases.append(case_study(path, settings.study))
+    progress("throughput and memory")
+    rates = [r for path in (SEED, CURVED_CASE) for r in sweep_rates(path, settings.sweep_positions, settings.sweep_repeat)]
+    rates.append(fea_sweep_rate(SEED, "crank", settings.fea_sweep_positions, RATIO ** VALIDATE_LEVELS[-1]))
+    memory = [memory_use(SEED, "crank", RATIO**k, order) for k, order in settings.memory_levels]
+    progress("hard cases")
+    stability = hard_cases(settings.stability_level)
+    must_show = _must_show(cases[0])
+    return BenchResult(
+        settings, info, tuple(cases), tuple(rates), tuple(memory), tuple(stability), must_show,
+        tuple(_checks(cases, stability, must_show)), time.perf_counter() - start,
+    )
+
+
+def converged_setting() -> str:
+    return f"k = {VALIDATE_LEVELS[-1]}"
+
+
+def _must_show(seed: CaseStudy) -> MustShow:
+    beam = seed.find("beam", f"{DEFAULT_STATIONS} stations")
+    fea = seed.find("FEA P2", converged_setting())
+    study = sum(seed.find("FEA P2", f"k = {k}").seconds for k in VALIDATE_LEVELS)
+    return MustShow(beam.nominal_error, beam.seconds, fea.nominal_error, fea.seconds, study)
+
+
+def _checks(cases: list[CaseStudy], stability: list[HardCaseResult], must_show: MustShow) -> list[Check]:
+    checks = [Check("seed: beam engine at the default stations within 2 % of converged FEA",
+                    must_show.beam_error < NOMINAL_BOUND, must_show.beam_error, NOMINAL_BOUND)]
+    for case in cases:
+        beam = case.find("beam", f"{DEFAULT_STATIONS} stations")
+        for link, (nominal, _, _) in beam.link_errors.items():
+            if link not in case.curved:  # a curved link's error is reported, and flagged by validate
+                checks.append(Check(f"{case.name}: beam nominal error of {link}", nominal < NOMINAL_BOUND, nominal, NOMINAL_BOUND))
+        fea = case.find("FEA P2", converged_setting())
+        checks.append(Check(f"{case.name}: validate's converged FEA against the reference", fea.nominal_error < CONVERGED_BOUND,
+                            fea.nominal_error, CONVERGED_BOUND))
+        worst = max(case.reference_error.values())
+        checks.append(Check(f"{case.name}: Richardson estimate of the reference's own error", worst < CONVERGED_BOUND,
+                            worst, CONVERGED_BOUND))
+        checks += [Check(f"{case.name}: {failure}", False) for failure in case.failures]
+    checks.append(Check("banana_coupler: the curved coupler is flagged", "coupler" in cases[1].curved))
+    for result in stability:
+        trusted = [row.nominal for row in result.rows if row.trusted]
+        worst = max(trusted, default=0.0)
+        checks.append(Check(f"{result.name}: beam nominal error where nothing is flagged", worst < STABILITY_BOUND,
+                            worst, STABILITY_BOUND))
+    expected = {
+        "near toggle": "infeasible", "change point": "change point", "stubby link": "no station is a section depth",
+        "hole close to the edge": "within a section depth of a hole",
+    }
+    for result in stability:
+        if result.name in expected:
+            raised = any(expected[result.name] in flag for flag in result.flags)
+            checks.append(Check(f"{result.name}: the engine says so ({expected[result.name]})", raised))
+    return checks
