@@ -8,18 +8,14 @@ from __future__ import annotations
 
 import html
 
-import matplotlib
+import matplotlib.pyplot as plt
 import numpy as np
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-
-from linkstress.analysis import DEFAULT_STATIONS  # noqa: E402
-from linkstress.report.html import figure_tag, page, table_html, versions_html  # noqa: E402
-from linkstress.tables import format_table  # noqa: E402
-from linkstress.validation.bench_suite import NOMINAL_BOUND, SPEEDUP, BenchResult, converged_setting  # noqa: E402
-from linkstress.validation.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy  # noqa: E402
+from linkstress.analysis import DEFAULT_STATIONS
+from linkstress.report.html import figure_tag, page, table_html, versions_html  # its figures module selects Agg
+from linkstress.tables import format_table
+from linkstress.validation.bench_suite import NOMINAL_BOUND, SPEEDUP, BenchResult, converged_setting
+from linkstress.validation.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy
 
 PLOT_FLOOR = 1e-4
 """Smallest error [%] drawn on the log axis (a method that matches the reference to rounding)."""

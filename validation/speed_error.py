@@ -15,8 +15,8 @@ depth or more from every hole), at the beam's critical fibre of each; a method w
 is interpolated linearly along the link, as a reader of its station table would. Error: the
 largest difference over those points relative to the largest reference value, per position, worst
 over positions and links. The reference is the Richardson extrapolation (``convergence.richardson``)
-of the three finest P2 meshes; their own estimate of the extrapolation's error is reported beside
-it. The peak von Mises (anywhere, pins included) is compared the same way, and the beam's section
+of the three finest P2 meshes (the finest where the observed order is below MIN_ORDER); its own
+error estimate is reported beside it. The peak von Mises (anywhere, pins included) is compared the same way, and the beam's section
 resultants against the finest FEA's cut resultants.
 """
 
@@ -49,6 +49,11 @@ RATIO = 1.5
 """Refinement ratio between FEA levels, as validate's refinement study."""
 VALIDATE_LEVELS = (0, 1, 2)
 """The levels validate's default three-level study solves; the last is the mesh it compares with."""
+MIN_ORDER = 0.5
+"""Richardson extrapolates only where the observed order is at least this. P2 stresses converge at
+order about 2; an order near 0 means values creeping rather than converging (as at a fibre on a
+concave curved edge, which the drawing's flattening puts just outside the exact arc), and the
+extrapolation would land far past every mesh."""
 
 
 @dataclass(frozen=True)
@@ -247,12 +252,7 @@ def case_study(scene_path, settings: StudySettings) -> CaseStudy:
             except FEAError as error:
                 failures.append(f"FEA P{order} at k = {k}: {error}")
     finest = [answers[("FEA P2", f"k = {k}")] for k in settings.p2_levels[-3:]]
-    reference = {}
-    for s in setups:
-        spacing = [math.sqrt(s.link.area / a[s.name].elements) for a in finest]
-        nominal = richardson(np.array([a[s.name].nominal for a in finest]), spacing)
-        peak = richardson(np.array([a[s.name].peak for a in finest]), spacing)
-        reference[s.name] = (nominal, peak.extrapolated, finest[-1][s.name].resultants)
+    reference = {s.name: _reference(s, [a[s.name] for a in finest]) for s in setups}
     for count in settings.station_counts:
         answers[("beam", f"{count} stations")] = {s.name: beam_answer(s, count, settings) for s in setups}
     mass = {}
@@ -260,13 +260,40 @@ def case_study(scene_path, settings: StudySettings) -> CaseStudy:
         key = ("strip sums", f"dx = {dx:g} m")
         answers[key], mass[key] = _strip_answers(scene, analysis, chosen, setups, dx, settings)
     methods = [_method(key, by_link, setups, reference, mass.get(key)) for key, by_link in answers.items()]
-    reference_error = {s.name: _error(r[0].extrapolated + r[0].error, r[0].extrapolated, s.away) for s, r in zip(setups, reference.values())}
+    reference_error = {s.name: _error(r.nominal + r.nominal_error, r.nominal, s.away) for s, r in zip(setups, reference.values())}
     title = scene.title if scene.title != scene_path.stem else scene_path.parent.name.replace("_", " ")
     return CaseStudy(
         scene_path.parent.name, title, tuple(s.name for s in setups), len(chosen), tuple(methods),
         reference_error, {s.name: finest[-1][s.name].size for s in setups}, kinetics_seconds,
         tuple(s.name for s in setups if is_curved(s)), tuple(failures),
     )
+
+
+@dataclass(frozen=True)
+class Reference:
+    """One link's reference: ``nominal`` (P, S) [Pa] with its estimated ``nominal_error`` (P, S) [Pa],
+    ``peak`` (P,) [Pa], and the finest mesh's cut ``resultants`` (3, P, S)."""
+
+    nominal: NDArray[np.float64]
+    nominal_error: NDArray[np.float64]
+    peak: NDArray[np.float64]
+    resultants: NDArray[np.float64]
+
+
+def extrapolate(values: NDArray[np.float64], spacing: list[float]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Richardson's value and error estimate from three meshes (coarsest first), where the observed
+    order is at least MIN_ORDER; elsewhere the finest value, its error the last change."""
+    estimate = richardson(values, spacing)
+    trusted = estimate.determined & (estimate.order >= MIN_ORDER)
+    change = np.abs(values[-1] - values[-2])
+    return np.where(trusted, estimate.extrapolated, values[-1]), np.where(trusted, estimate.error, change)
+
+
+def _reference(setup: LinkSetup, finest: list[Answer]) -> Reference:
+    spacing = [math.sqrt(setup.link.area / a.elements) for a in finest]
+    nominal, error = extrapolate(np.array([a.nominal for a in finest]), spacing)
+    peak, _ = extrapolate(np.array([a.peak for a in finest]), spacing)
+    return Reference(nominal, error, peak, finest[-1].resultants)
 
 
 def _strip_answers(scene, analysis, chosen, setups, dx, settings) -> tuple[dict[str, Answer], dict]:
@@ -287,10 +314,10 @@ def _method(key, by_link: dict[str, Answer], setups, reference, mass_errors=None
     errors = {}
     for s in setups:
         answer = by_link[s.name]
-        nominal_ref, peak_ref, resultants_ref = reference[s.name]
-        peak = None if answer.peak is None else float(np.max(np.abs(answer.peak - peak_ref) / peak_ref))
-        resultants = None if method.startswith("FEA") else _resultant_error(answer.resultants, resultants_ref)
-        errors[s.name] = (_error(answer.nominal, nominal_ref.extrapolated, s.away), peak, resultants)
+        ref = reference[s.name]
+        peak = None if answer.peak is None else float(np.max(np.abs(answer.peak - ref.peak) / ref.peak))
+        resultants = None if method.startswith("FEA") else _resultant_error(answer.resultants, ref.resultants)
+        errors[s.name] = (_error(answer.nominal, ref.nominal, s.away), peak, resultants)
     worst = [max((e[i] for e in errors.values() if e[i] is not None), default=None) for i in range(3)]
     seconds = sum(a.seconds for a in by_link.values())
     size = sum(a.size for a in by_link.values())

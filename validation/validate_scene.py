@@ -31,6 +31,11 @@ body forces differ by the relative area between the two (about 1e-5 on curved li
 in the kinetics leaves a reaction of order 1."""
 RESULTANT_LIMIT = 0.01
 """Largest section-resultant difference between beam and FEA (relative) before the check fails."""
+LINEAR_REFINEMENT = 2.25
+"""Linear (P1) elements get meshes this much finer than the default sizes (two of the study's
+refinement steps) unless the scene gives a mesh size. Measured by ``linkstress bench`` (README,
+"Speed against error"): on the default meshes P1's nominal error is several times P2's and its cut
+resultants miss the RESULTANT_LIMIT check on the seed case."""
 MAX_POSITIONS = 36
 """Positions of a sweep compared by default (evenly spread over the feasible ones)."""
 
@@ -111,6 +116,8 @@ def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
     try:
         stations = comparison_stations(link, loads.frame_joints)
         mesh = replace(default_mesh(link, loads.frame_joints, stations, size), order=order)
+        if order == 1 and size is None:
+            mesh = mesh.refined(LINEAR_REFINEMENT)
         return name, compare_link(name, link, loads, chosen, mesh, levels, stations), "", time.perf_counter() - start
     except FEAError as error:
         return name, None, str(error), time.perf_counter() - start
