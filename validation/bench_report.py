@@ -89,6 +89,21 @@ def must_show_lines(result: BenchResult) -> list[str]:
         "for the three-level study that shows it converged",
         f"speed-up: {m.speedup:,.0f} x over the one solve, {m.study_speedup:,.0f} x over the study "
         f"(must show >= {SPEEDUP:,.0f} x over the converged FEA: {verdict})",
+        *sweep_speedup_lines(result),
+    ]
+
+
+def sweep_speedup_lines(result: BenchResult) -> list[str]:
+    """Per link and position over a sweep: the seed's section stresses against one link's FEA sweep."""
+    rates = {(r.case, r.stage): r for r in result.rates}
+    beam, fea = rates.get(("seed_ansys_fourbar", "section stresses")), rates.get(("seed_ansys_fourbar", "FEA (one link)"))
+    if beam is None or fea is None:
+        return []
+    links = len(result.cases[0].links)
+    beam_each, fea_each = beam.seconds / (beam.positions * links), fea.seconds / fea.positions
+    return [
+        f"over a sweep (throughput below): {1e6 * beam_each:.3g} us per link and position for the beam, "
+        f"{1e3 * fea_each:.3g} ms for the FEA on validate's converged mesh: {fea_each / beam_each:,.0f} x"
     ]
 
 
