@@ -28,12 +28,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.analysis import plan_for, run_analysis
+from linkstress.analysis import AnalysisResult, plan_for, run_analysis
 from linkstress.dynamics.section_stress import default_stations, section_stresses
 from linkstress.loads import LinkLoadCase
 from linkstress.mass_properties import area_properties
 from linkstress.profile import LinkProfile
-from linkstress.scene import load_scene
+from linkstress.scene import Scene, load_scene
 from linkstress.validation.compare import comparison_stations, default_mesh
 from linkstress.validation.convergence import richardson
 from linkstress.validation.errors import FEAError
@@ -153,7 +153,8 @@ class CaseStudy:
         return next((m for m in self.methods if m.method == method and m.setting == setting), None)
 
 
-def setup_links(scene, analysis, chosen) -> list[LinkSetup]:
+def setup_links(scene: Scene, analysis: AnalysisResult, chosen: NDArray[np.intp]) -> list[LinkSetup]:
+    """validate's comparison of every link it checks, at the sweep positions ``chosen``."""
     setups = []
     for name in analysis.plan.validate:
         link = scene.links[name].profile

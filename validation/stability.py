@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -30,7 +31,7 @@ import numpy as np
 from linkstress.analysis import plan_for, run_analysis
 from linkstress.kinematics.linkage_class import feasible_input_ranges
 from linkstress.kinematics.motion import angle_motion
-from linkstress.scene import load_scene
+from linkstress.scene import Scene, load_scene
 from linkstress.validation.compare import comparison_stations, compare_link, default_mesh
 from linkstress.validation.errors import FEAError
 from linkstress.validation.report import curvature_note
@@ -89,8 +90,8 @@ class HardCase:
 
     name: str
     description: str
-    scene: object
-    angles: object
+    scene: Callable[[Path], Path]
+    angles: Callable[[Scene], list[float]]
     links: tuple[str, ...]
     extra_stations: tuple[float, ...] = ()
 
