@@ -218,11 +218,15 @@ def _timed(work, settings: StudySettings):
     return seconds, value
 
 
+def _relative(difference, scale):
+    """difference / scale, 0 where nothing is loaded (scale 0)."""
+    return np.divide(difference, scale, out=np.zeros_like(difference), where=scale > 0)
+
+
 def _error(values, reference, away) -> float:
     """Largest |values - reference| over the away points relative to the largest reference, worst position."""
     diff = np.abs(values[:, away] - reference[:, away]).max(axis=1)
-    scale = np.abs(reference[:, away]).max(axis=1)
-    return float(np.max(np.divide(diff, scale, out=np.zeros_like(diff), where=scale > 0)))
+    return float(np.max(_relative(diff, np.abs(reference[:, away]).max(axis=1))))
 
 
 def _resultant_error(values, reference) -> float:
@@ -231,8 +235,7 @@ def _resultant_error(values, reference) -> float:
     moment_scale = np.abs(reference[2]).max(axis=1)
     d_force = np.abs(values[:2] - reference[:2]).max(axis=(0, 2))
     d_moment = np.abs(values[2] - reference[2]).max(axis=1)
-    ratio = np.maximum(d_force / np.where(force_scale > 0, force_scale, 1.0), d_moment / np.where(moment_scale > 0, moment_scale, 1.0))
-    return float(ratio.max())
+    return float(np.maximum(_relative(d_force, force_scale), _relative(d_moment, moment_scale)).max())
 
 
 def case_study(scene_path, settings: StudySettings) -> CaseStudy:
@@ -316,7 +319,7 @@ def _method(key, by_link: dict[str, Answer], setups, reference, mass_errors=None
     for s in setups:
         answer = by_link[s.name]
         ref = reference[s.name]
-        peak = None if answer.peak is None else float(np.max(np.abs(answer.peak - ref.peak) / ref.peak))
+        peak = None if answer.peak is None else float(np.max(_relative(np.abs(answer.peak - ref.peak), ref.peak)))
         resultants = None if method.startswith("FEA") else _resultant_error(answer.resultants, ref.resultants)
         errors[s.name] = (_error(answer.nominal, ref.nominal, s.away), peak, resultants)
     worst = [max((e[i] for e in errors.values() if e[i] is not None), default=None) for i in range(3)]

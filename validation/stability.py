@@ -163,7 +163,7 @@ def _compared(row: HardCaseRow, c, p: int) -> HardCaseRow:
         flags.append(f"validate fails: resultants differ by {100 * resultants:.3g} %")
     return replace(
         row, nominal=error(c.away), near_hole=error(~c.away), resultants=resultants,
-        peak_ratio=float(c.fea_peak[p] / c.beam_max[p]), equilibrium=equilibrium, reaction=reaction, flags=tuple(flags),
+        peak_ratio=float(c.fea_peak[p] / c.beam_max[p]) if c.beam_max[p] > 0 else None, equilibrium=equilibrium, reaction=reaction, flags=tuple(flags),
     )
 
 
