@@ -62,10 +62,11 @@ def region_moments(outline: Polygon | Boundary, stations: ArrayLike) -> RegionMo
     nodes = np.unique(np.concatenate([starts[:, 0], x]))
     left, right = nodes[:-1], nodes[1:]
     width = right - left
-    at_left = _cut_moments(starts, ends, left, left_limit=False)
-    at_mid = _cut_moments(starts, ends, (left + right) / 2, left_limit=False)
-    at_right = _cut_moments(starts, ends, right, left_limit=True)
     mid = (left + right) / 2
+    # Left ends and midpoints interleave in sorted order: one sweep of the edges cuts both.
+    both = _cut_moments(starts, ends, np.column_stack([left, mid]).ravel(), left_limit=False)
+    at_left, at_mid = both[0::2], both[1::2]
+    at_right = _cut_moments(starts, ends, right, left_limit=True)
 
     def simpson(f_left, f_mid, f_right):
         return width * (f_left + 4 * f_mid + f_right) / 6

@@ -67,16 +67,16 @@ class PinHoleEstimate:
 
 def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleEstimate, ...]:
     """The estimate at every joint of ``link`` that is the centre of a pin hole."""
-    frame = link.frame(*loads.frame_joints)
-    joints = frame.to_local(link.joints)
-    bounds = link.bounds(*loads.frame_joints)
+    holed = [(j, hole) for j, hole in enumerate(link.joint_holes) if hole is not None]
+    if not holed:
+        return ()
+    joints = link.frame(*loads.frame_joints).to_local(link.joints)
+    # The section through each pin's centre spans the lug's full depth H (its top and bottom fibres).
+    cut = link.sections(joints[[j for j, _ in holed], 0], *loads.frame_joints)
     estimates = []
-    for j, hole in enumerate(link.joint_holes):
-        if hole is None:
-            continue
+    for k, (j, hole) in enumerate(holed):
         diameter = 2 * float(np.sqrt(Polygon(link.outline.interiors[hole]).area / np.pi))
-        upper, lower = bounds(np.array([joints[j, 0]]))
-        depth = float(upper[0] - lower[0])
+        depth = float(cut.top[k] - cut.bottom[k])
         net = max(depth - diameter, 1e-300) * link.thickness
         nominal = np.hypot(*loads.pin_forces[:, j].T) / net
         kt = pin_hole_kt(diameter / depth) if depth > 0 else None
