@@ -28,6 +28,9 @@ from linkstress.validation.recovery import von_mises
 
 CONVERGED_CHANGE = 0.005
 MIN_ORDER, MAX_ORDER = 1e-3, 20.0
+TRUSTED_ORDER = 0.5
+"""Below this observed order the extrapolation overshoots (a concave edge creeping at order 0.02
+put it 1.1 % off on the banana coupler): the estimate falls back to the last change."""
 ORDER_ITERATIONS = 80
 
 
@@ -69,7 +72,7 @@ def richardson(values: ArrayLike, spacing: ArrayLike) -> RichardsonEstimate:
         ratio = e32 / e21
         determined = np.isfinite(ratio) & (ratio > 0)
         p = _observed_order(np.log(np.where(determined, ratio, 1.0)), r21, r32)
-        determined &= np.isfinite(p) & (p > 0)
+        determined &= np.isfinite(p) & (p >= TRUSTED_ORDER)
         p = np.where(determined, p, 0.0)
         gain = np.where(determined, r21**p - 1, 1.0)
         extrapolated = np.where(determined, phi1 + (phi1 - phi2) / gain, phi1)

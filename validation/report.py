@@ -156,8 +156,11 @@ CURVED = 0.1
 def curvature_note(c: LinkComparison) -> str:
     """Why straight-beam sections fall short on a curved link, or "" for a straight one."""
     table = c.beam.sections
-    depth = float((table.top - table.bottom).min())
-    wander = float(np.ptp(table.neutral_axis))
+    plain = (table.n_chords == 1) & ~c.beam.near_hole  # a hole moves the neutral axis of a straight bar too
+    if plain.sum() < 2:
+        return ""
+    depth = float((table.top - table.bottom)[plain].min())
+    wander = float(np.ptp(table.neutral_axis[plain]))
     if wander <= CURVED * depth:
         return ""
     return (

@@ -17,6 +17,7 @@ from linkstress import __version__
 from linkstress.analysis import AnalysisResult
 from linkstress.report.figures import mechanism_figure, png_bytes, stress_along_figure, sweep_figure
 from linkstress.report.records import link_columns
+from linkstress.report.text import transmission_warnings
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
 MAX_DRAWN_POSITIONS = 4
@@ -123,6 +124,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
         f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} positions, '
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
         *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
+        *(f"<p><b>{html.escape(line)}</b></p>" for line in transmission_warnings(result)),
         "<h2>Loads applied</h2>", loads_html(result),
         "<h2>Mechanism</h2>",
     ]

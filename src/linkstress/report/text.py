@@ -42,6 +42,7 @@ def report(result: AnalysisResult) -> str:
         parts.append(forces_table(result))
     if result.stresses:
         parts.append(stress_table(result))
+    parts += transmission_warnings(result)
     bad = [(a, r) for a, r, ok in zip(scene.motion.angle_deg.tolist(), result.reasons, feasible) if not ok]
     if bad:
         parts.append("infeasible positions:\n" + "\n".join(f"  {a:.6g} deg: {r}" for a, r in bad))
@@ -89,6 +90,28 @@ def _deg360(angle: float) -> float:
     """An angle [rad] in degrees in [0, 360)."""
     value = math.degrees(angle) % 360.0
     return 0.0 if value >= 360.0 else value + 0.0
+
+
+LOW_TRANSMISSION_DEG = 30.0
+"""Below this transmission angle (Norton recommends at least 40 deg) forces climb toward a toggle."""
+
+
+def transmission_warnings(result: AnalysisResult) -> list[str]:
+    """A warning per loop whose transmission angle falls below LOW_TRANSMISSION_DEG."""
+    ok = result.feasible
+    lines = []
+    for name, loop in result.kinematics.loops.items():
+        angle = np.degrees(loop.transmission_angle)
+        low = ok & (angle < LOW_TRANSMISSION_DEG)
+        if low.any():
+            k = int(np.flatnonzero(ok)[np.argmin(angle[ok])])
+            lines.append(
+                f"warning: mechanism {name}'s transmission angle falls to {angle[k]:.3g} deg at input "
+                f"{result.scene.motion.angle_deg[k]:.6g} deg (below {LOW_TRANSMISSION_DEG:g} deg at {int(low.sum())} "
+                "position(s)): joint forces and stresses climb steeply toward the toggle and beam theory "
+                "loses accuracy there; check those positions with linkstress validate"
+            )
+    return lines
 
 
 def shown_positions(result: AnalysisResult) -> tuple[np.ndarray, str]:
