@@ -79,3 +79,11 @@ def test_report_renders_in_headless_chromium_with_its_figures(seed_report, tmp_p
     assert coloured.mean() > 0.003
     rows_with_colour = coloured.any(axis=1)
     assert rows_with_colour.mean() > 0.2  # figures spread down the page, not one blob
+
+
+def test_a_sweep_report_draws_the_mechanism_over_the_sweep_and_plots_against_the_input(tmp_path):
+    out = tmp_path / "six.html"
+    assert main(["analyze", str(REPO / "validation" / "cases" / "six_bar" / "scene.toml"), "--html", str(out)]) == 0
+    text = out.read_text()
+    assert 'alt="mechanism over the sweep"' in text and 'alt="sweep plots"' in text
+    assert all(image[..., :3].std() > 0.05 for image in embedded_images(text))

@@ -76,6 +76,36 @@ def mechanism_figure(result: AnalysisResult, k: int) -> Figure:
     return fig
 
 
+def mechanism_sweep_figure(result: AnalysisResult, positions: list[int]) -> Figure:
+    """Every link's outline at each of ``positions`` (faint to dark in sweep order) and the paths
+    of all joints over the feasible sweep."""
+    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    names = list(result.scene.links)
+    shades = np.linspace(0.25, 1.0, len(positions))
+    for index, name in enumerate(names):
+        colour = LINK_COLOURS[index % len(LINK_COLOURS)]
+        rings = _link_rings(result, name)
+        for shade, k in zip(shades, positions):
+            xy = _to_ground(result, name, k, rings[0])
+            ax.plot(xy[:, 0], xy[:, 1], color=colour, lw=0.8, alpha=float(shade),
+                    label=name if k == positions[-1] else None)
+    ok = result.feasible
+    for loop in result.kinematics.loops.values():
+        for joint in loop.joints.values():
+            path = joint.position[ok]
+            if np.ptp(path, axis=0).max() > 0:
+                ax.plot(path[:, 0], path[:, 1], ":", color="0.4", lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    angles = result.scene.motion.angle_deg[positions]
+    ax.set_title(f"{len(positions)} positions, input {angles[0]:.4g} to {angles[-1]:.4g} deg (dotted: joint paths)")
+    ax.legend(fontsize=8, loc="best")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
 def _force_arrows(ax, result: AnalysisResult, k: int, size: float) -> None:
     """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing."""
     arrows = []

@@ -15,7 +15,13 @@ from matplotlib.figure import Figure
 
 from linkstress import __version__
 from linkstress.analysis import AnalysisResult
-from linkstress.report.figures import mechanism_figure, png_bytes, stress_along_figure, sweep_figure
+from linkstress.report.figures import (
+    mechanism_figure,
+    mechanism_sweep_figure,
+    png_bytes,
+    stress_along_figure,
+    sweep_figure,
+)
 from linkstress.report.records import link_columns
 from linkstress.report.text import transmission_warnings
 
@@ -130,6 +136,8 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
     ]
     for k in drawn_positions(result):
         sections.append(figure_tag(mechanism_figure(result, k), f"mechanism at position {k}"))
+    if int(feasible.sum()) > MAX_DRAWN_POSITIONS:
+        sections.append(figure_tag(mechanism_sweep_figure(result, _shown(result)[::2]), "mechanism over the sweep"))
     if len(feasible) > 1:
         sections += ["<h2>Over the sweep</h2>", figure_tag(sweep_figure(result), "sweep plots")]
     sections += ["<h2>Accelerations</h2>", _accelerations_table(result)]
