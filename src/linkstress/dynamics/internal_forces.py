@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.spatial import ConvexHull, QhullError
 
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
@@ -109,9 +110,11 @@ def internal_forces(
         (moments.area, moments.first_x, moments.first_y, moments.polar), cut, rho_t,
     )
     # BLAS runs several times faster with the long (positions) axis last; the copy back to
-    # row-major keeps every later elementwise operation on one memory layout (mixed ones are ~4x slower).
-    f_x, f_y, moment = (np.ascontiguousarray((b @ coefficients.T).T) for b in left)
-    normal, shear = -f_x, -f_y
+    # row-major keeps every later elementwise operation on one memory layout (mixed ones are ~4x
+    # slower). (N, V) = -F_L: the sign goes on the small basis, not on the (P, S) result.
+    normal, shear, moment = (
+        np.ascontiguousarray(((sign * b) @ coefficients.T).T) for sign, b in zip((-1.0, -1.0, 1.0), left)
+    )
     # The right free body carries every load not on the left, so its cut differs from the left's by
     # the resultant of all loads, taken about the cut point: that is the equilibrium check.
     whole = load_basis(
@@ -120,11 +123,28 @@ def internal_forces(
     )
     total_x, total_y, total_m = (coefficients @ b[0] for b in whole)
     d_force = np.maximum(np.abs(total_x), np.abs(total_y))
-    d_moment = np.abs(total_m[:, None] - x * total_y[:, None] + sections.neutral_axis * total_x[:, None]).max(axis=1)
-    force_scale = np.maximum(np.abs(normal), np.abs(shear)).max(axis=1)
-    moment_scale = np.abs(moment).max(axis=1)
+    # |M_total about (x, y_na)| is affine in the cut point: its largest value over the stations is
+    # at a vertex of their convex hull.
+    k = _hull(cut)
+    d_moment = np.abs(total_m[:, None] - x[k] * total_y[:, None] + sections.neutral_axis[k] * total_x[:, None]).max(axis=1)
+    force_scale = np.maximum(_largest(normal), _largest(shear))
+    moment_scale = _largest(moment)
     mismatch = np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, moment_scale))
     return InternalForces(x, normal, shear, moment, mismatch)
+
+
+def _largest(values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """max |values| over the stations, (P,), by two reductions instead of a temporary |values|."""
+    return np.maximum(values.max(axis=1), -values.min(axis=1))
+
+
+def _hull(points: NDArray[np.float64]) -> NDArray[np.intp]:
+    """Indices of the convex-hull vertices of ``points`` (S, 2); the extreme ones when collinear."""
+    try:
+        return ConvexHull(points).vertices
+    except QhullError:
+        along = points[:, 0] if np.ptp(points[:, 0]) > 0 else points[:, 1]
+        return np.unique([int(np.argmin(along)), int(np.argmax(along))])
 
 
 def _ratio(diff, scale):

@@ -163,67 +163,129 @@ def section_stresses(
     table = link.sections(stations, *frame_joints)
     moments = region_moments(link.boundary(*frame_joints), table.x)
     forces = internal_forces(link, loads, table, moments)
-    solid = (table.area > 0) & (table.second_moment > 0)
-    inv_inertia = np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0)
-    n = forces.normal * np.where(solid, 1.0 / np.where(solid, table.area, 1.0), 0.0)
-    m = forces.moment * inv_inertia
-    w = forces.shear * (inv_inertia / 2)
-    yna = table.neutral_axis
-    u_top, u_bottom = table.top - yna, table.bottom - yna
-    half = (table.top - table.bottom) / 2
-    single = solid & (table.n_chords == 1) & (half > 0)
+    shape = _SectionShape.of(table, link.density)
     free = loads.gravity[:, 1] - loads.origin_acceleration[:, 1]
-    # delta_sigma at the top fibre, 0.4 b_y c (minus it at the bottom), with b_y = rho (free - alpha x)
-    lever = np.where(single, 0.4 * link.density * half, 0.0)
-    outer = free[:, None] * lever - loads.alpha[:, None] * (table.x * lever)
-    s_top = m * u_top
-    s_top += n
-    s_top += outer
-    s_bottom = m * u_bottom
-    s_bottom += n
-    s_bottom -= outer
-    top_wins = np.abs(s_top) >= np.abs(s_bottom)
-    fibre = _Fibres(
-        best=np.where(top_wins, s_top * s_top, s_bottom * s_bottom),
-        u=np.where(top_wins, u_top, u_bottom),
-        sigma=np.where(top_wins, s_top, s_bottom),
-        tau=np.zeros(n.shape),  # the outer fibres are free edges
-    )
-
-    def beta_at(rows, at):
-        """b_y / c^2 (the body-load term's coefficient) at positions ``rows``, stations ``at``."""
-        b_y = link.density * (free[rows] - loads.alpha[rows] * table.x[at])
-        return np.where(single[at], b_y / np.where(single[at], half[at], 1.0) ** 2, 0.0)
-
-    for k in range(table.lower.shape[1]):
-        cols = np.flatnonzero((table.n_chords > k) & solid)
-        ua = table.lower[cols, k] - yna[cols]
-        ub = table.upper[cols, k] - yna[cols]
-        c = 2 * table.first_moment(table.upper[:, k])[cols] / table.thickness + ub * ub
-        inner_top = table.n_chords[cols] > k + 1
-        for end, inner in ((ua, np.full(len(cols), k > 0)), (ub, inner_top)):
-            if inner.any():
-                # a chord end at a hole: every position, these few stations
-                rows, j = np.indices((n.shape[0], int(inner.sum()))).reshape(2, -1)
-                at, u, c_ = cols[inner][j], end[inner][j], c[inner][j]
-                n_, m_, w_ = n[rows, at], m[rows, at], w[rows, at]
-                fibre.keep_larger(rows, at, _quartic(u, n_, m_, w_, c_), u, n_ + m_ * u, w_ * (c_ - u * u))
-        every = len(cols) == len(table.x)
-        m_k, w_k = (m, w) if every else (m[:, cols], w[:, cols])
-        rows, sub = np.nonzero(np.abs(m_k) < np.abs(w_k) * np.sqrt(6 * c))
-        if len(rows):
-            at = cols[sub]
-            u, exists = interior_maximum(n[rows, at], m[rows, at], w[rows, at], c[sub])
-            rows, sub, at, u = rows[exists], sub[exists], at[exists], u[exists]
-            n_, m_, w_, c_, beta_ = n[rows, at], m[rows, at], w[rows, at], c[sub], beta_at(rows, at)
-            u = np.clip(_polish(u, n_, m_, w_, c_, beta_, half[at]), ua[sub], ub[sub])
-            sigma = n_ + m_ * u + beta_ * u * (u * u - 0.6 * half[at] ** 2)
-            tau = w_ * (c_ - u * u)
-            fibre.keep_larger(rows, at, sigma * sigma + 3 * tau * tau, u, sigma, tau)
+    blocks = [slice(start, start + POSITION_BLOCK) for start in range(0, len(free), POSITION_BLOCK)]
+    parts = [
+        shape.critical_fibres(forces.normal[p], forces.shear[p], forces.moment[p], free[p], loads.alpha[p])
+        for p in blocks
+    ]
+    von_mises, u, sigma, tau = (np.concatenate(column) for column in zip(*parts))
     return SectionStresses(
-        table, forces, np.sqrt(fibre.best), yna + fibre.u, fibre.sigma, fibre.tau,
-        near_holes(link, frame_joints, table), pin_hole_estimates(link, loads),
+        table, forces, von_mises, table.neutral_axis + u, sigma, tau, near_holes(link, frame_joints, table),
+        pin_hole_estimates(link, loads),
     )
+
+
+POSITION_BLOCK = 256
+"""Positions evaluated together: (block x stations) arrays stay in cache, about twice as fast as
+whole-sweep arrays on a long sweep (this is blocking, not a loop over positions)."""
+
+
+@dataclass(frozen=True)
+class _Chord:
+    """Slot k's chords: stations ``cols`` that have one, their ends' offsets ``ua``, ``ub`` from the
+    neutral axis, C, which ends are at holes, and sqrt(6 C) / 2 (the interior-maximum test)."""
+
+    cols: NDArray[np.intp]
+    ua: NDArray[np.float64]
+    ub: NDArray[np.float64]
+    c: NDArray[np.float64]
+    inner_bottom: bool
+    inner_top: NDArray[np.bool_]
+    test: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class _SectionShape:
+    """What the fibre search needs of the sections, independent of the loads."""
+
+    x: NDArray[np.float64]
+    inv_area: NDArray[np.float64]
+    inv_inertia: NDArray[np.float64]
+    u_top: NDArray[np.float64]
+    u_bottom: NDArray[np.float64]
+    half: NDArray[np.float64]
+    single: NDArray[np.bool_]
+    lever: NDArray[np.float64]
+    density: float
+    chords: tuple[_Chord, ...]
+
+    @classmethod
+    def of(cls, table: SectionTable, density: float) -> "_SectionShape":
+        solid = (table.area > 0) & (table.second_moment > 0)
+        yna = table.neutral_axis
+        half = (table.top - table.bottom) / 2
+        single = solid & (table.n_chords == 1) & (half > 0)
+        chords = []
+        for k in range(table.lower.shape[1]):
+            cols = np.flatnonzero((table.n_chords > k) & solid)
+            ub = table.upper[cols, k] - yna[cols]
+            c = 2 * table.first_moment(table.upper[:, k])[cols] / table.thickness + ub * ub
+            test = np.zeros(len(table.x))
+            test[cols] = np.sqrt(6 * c) / 2
+            chords.append(_Chord(
+                cols, table.lower[cols, k] - yna[cols], ub, c, k > 0, table.n_chords[cols] > k + 1, test,
+            ))
+        return cls(
+            x=table.x,
+            inv_area=np.where(solid, 1.0 / np.where(solid, table.area, 1.0), 0.0),
+            inv_inertia=np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0),
+            u_top=table.top - yna,
+            u_bottom=table.bottom - yna,
+            half=half,
+            single=single,
+            # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
+            lever=np.where(single, 0.4 * density * half, 0.0),
+            density=density,
+            chords=tuple(chords),
+        )
+
+    def critical_fibres(self, normal, shear, moment, free, alpha):
+        """(von Mises, u, sigma, tau) at the critical fibre, each (P, S), for section forces (P, S)
+        and the body load's free - alpha x terms (P,) of these positions."""
+        n = normal * self.inv_area
+        m = moment * self.inv_inertia
+        w = shear * (self.inv_inertia / 2)
+        outer = free[:, None] * self.lever - alpha[:, None] * (self.x * self.lever)
+        s_top = m * self.u_top
+        s_top += n
+        s_top += outer
+        s_bottom = m * self.u_bottom
+        s_bottom += n
+        s_bottom -= outer
+        top_wins = np.abs(s_top) >= np.abs(s_bottom)
+        fibre = _Fibres(
+            best=np.where(top_wins, s_top * s_top, s_bottom * s_bottom),
+            u=np.where(top_wins, self.u_top, self.u_bottom),
+            sigma=np.where(top_wins, s_top, s_bottom),
+            tau=np.zeros(n.shape),  # the outer fibres are free edges
+        )
+        for chord in self.chords:
+            for end, inner in ((chord.ua, np.full(len(chord.cols), chord.inner_bottom)), (chord.ub, chord.inner_top)):
+                if inner.any():
+                    # a chord end at a hole: every position, these few stations
+                    rows, j = np.indices((n.shape[0], int(inner.sum()))).reshape(2, -1)
+                    at, u, c_ = chord.cols[inner][j], end[inner][j], chord.c[inner][j]
+                    n_, m_, w_ = n[rows, at], m[rows, at], w[rows, at]
+                    fibre.keep_larger(rows, at, _quartic(u, n_, m_, w_, c_), u, n_ + m_ * u, w_ * (c_ - u * u))
+            rows, at = np.nonzero(np.abs(moment) < np.abs(shear) * chord.test)
+            if len(rows):
+                sub = np.searchsorted(chord.cols, at)
+                u, exists = interior_maximum(n[rows, at], m[rows, at], w[rows, at], chord.c[sub])
+                rows, sub, at, u = rows[exists], sub[exists], at[exists], u[exists]
+                n_, m_, w_, c_ = n[rows, at], m[rows, at], w[rows, at], chord.c[sub]
+                beta_ = self.beta(free[rows] - alpha[rows] * self.x[at], at)
+                u = np.clip(_polish(u, n_, m_, w_, c_, beta_, self.half[at]), chord.ua[sub], chord.ub[sub])
+                sigma = n_ + m_ * u + beta_ * u * (u * u - 0.6 * self.half[at] ** 2)
+                tau = w_ * (c_ - u * u)
+                fibre.keep_larger(rows, at, sigma * sigma + 3 * tau * tau, u, sigma, tau)
+        return np.sqrt(fibre.best), fibre.u, fibre.sigma, fibre.tau
+
+    def beta(self, free_term, at):
+        """b_y / c^2, the body-load term's coefficient, for rho (free - alpha x) = density x ``free_term``."""
+        single = self.single[at]
+        return np.where(single, self.density * free_term / np.where(single, self.half[at], 1.0) ** 2, 0.0)
 
 
 @dataclass
