@@ -71,14 +71,10 @@ class LinkComparison:
     def resultant_error(self) -> NDArray[np.float64]:
         """(Pc,) [-]: largest N, V, M difference over the stations, relative to the link's largest."""
         b, f = self.beam.forces, self.fea_resultants
-        force_scale = np.maximum(np.abs(b.normal), np.abs(b.shear)).max(axis=1)
-        # A moment is small only next to what the forces do over the depth: N h / 6 stresses the
-        # outer fibre as much as N / A (near a change point M is 0.02 N m beside 8,100 N).
         depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
-        moment_scale = np.maximum(np.abs(b.moment).max(axis=1), force_scale * depth / 6)
-        d_force = np.maximum(np.abs(f.normal - b.normal), np.abs(f.shear - b.shear)).max(axis=1)
-        d_moment = np.abs(f.moment - b.moment).max(axis=1)
-        return np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, moment_scale))
+        return resultant_error(
+            np.stack([f.normal, f.shear, f.moment]), np.stack([b.normal, b.shear, b.moment]), depth,
+        )
 
     @property
     def nominal_error(self) -> NDArray[np.float64] | None:
@@ -87,7 +83,7 @@ class LinkComparison:
             return None
         beam = self.beam.von_mises[:, self.away]
         fea = self.fea_von_mises[:, self.away]
-        return _ratio(np.abs(fea - beam).max(axis=1), beam.max(axis=1))
+        return relative(np.abs(fea - beam).max(axis=1), beam.max(axis=1))
 
     @property
     def beam_max(self) -> NDArray[np.float64]:
@@ -100,7 +96,7 @@ class LinkComparison:
     @property
     def peak_error(self) -> NDArray[np.float64]:
         """(Pc,) [-]: (FEA peak - beam largest) / FEA peak: what the beam misses near holes."""
-        return _ratio(self.fea_peak - self.beam_max, self.fea_peak)
+        return relative(self.fea_peak - self.beam_max, self.fea_peak)
 
     @property
     def discretisation_error(self) -> NDArray[np.float64] | None:
@@ -108,8 +104,22 @@ class LinkComparison:
         return None if self.study is None else self.study.relative_error
 
 
-def _ratio(difference, scale):
+def relative(difference: NDArray[np.float64], scale: NDArray[np.float64]) -> NDArray[np.float64]:
+    """difference / scale, 0 where nothing is loaded (scale 0)."""
     return np.divide(difference, scale, out=np.zeros_like(difference), where=scale > 0)
+
+
+def resultant_error(values: NDArray[np.float64], reference: NDArray[np.float64], depth: float) -> NDArray[np.float64]:
+    """(P,) [-]: largest difference of N, V, M stacks (3, P, S) from the ``reference`` ones, N and V
+    relative to the reference's largest section force, M to the larger of its largest moment and
+    that force times a sixth of the ``depth`` [m]: a moment is small only next to what the forces do
+    over the depth (N h / 6 stresses the outer fibre as much as N / A; near a change point M is
+    0.02 N m beside 8,100 N)."""
+    force_scale = np.abs(reference[:2]).max(axis=(0, 2))
+    moment_scale = np.maximum(np.abs(reference[2]).max(axis=1), force_scale * depth / 6)
+    d_force = np.abs(values[:2] - reference[:2]).max(axis=(0, 2))
+    d_moment = np.abs(values[2] - reference[2]).max(axis=1)
+    return np.maximum(relative(d_force, force_scale), relative(d_moment, moment_scale))
 
 
 def comparison_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> NDArray[np.float64]:

@@ -29,18 +29,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult, plan_for, run_analysis
-from linkstress.dynamics.section_stress import default_stations, section_stresses
+from linkstress.dynamics.section_stress import default_stations, near_holes, section_stresses
 from linkstress.loads import LinkLoadCase
 from linkstress.mass_properties import area_properties
 from linkstress.profile import LinkProfile
 from linkstress.scene import Scene, load_scene
-from linkstress.validation.compare import comparison_stations, default_mesh
+from linkstress.validation.compare import comparison_stations, default_mesh, relative, resultant_error
 from linkstress.validation.convergence import richardson
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_fea import solve_link
 from linkstress.validation.mesh import MeshSettings
 from linkstress.validation.recovery import von_mises
-from linkstress.validation.report import CURVED
+from linkstress.validation.report import is_curved as curved_sections
 from linkstress.validation.strip_sections import strip_baseline
 from linkstress.validation.timing import best_run
 from linkstress.validation.validate_scene import compared_positions
@@ -84,6 +84,12 @@ class LinkSetup:
     away: NDArray[np.bool_]
     fibre: NDArray[np.float64]
     mesh: MeshSettings
+
+    @property
+    def depth(self) -> float:
+        """The deepest compared section [m] (scales the moment differences, as validate does)."""
+        table = self.link.sections(self.stations, *self.loads.frame_joints)
+        return float((table.top - table.bottom).max())
 
     @property
     def points(self) -> NDArray[np.float64]:
@@ -168,9 +174,9 @@ def setup_links(scene: Scene, analysis: AnalysisResult, chosen: NDArray[np.intp]
 
 
 def is_curved(setup: LinkSetup) -> bool:
-    """validate's curved-link note: the neutral axis wanders more than CURVED section depths."""
+    """validate's curved-link test on the compared stations."""
     table = setup.link.sections(setup.stations, *setup.loads.frame_joints)
-    return float(np.ptp(table.neutral_axis)) > CURVED * float((table.top - table.bottom).min())
+    return curved_sections(table, near_holes(setup.link, setup.loads.frame_joints, table))
 
 
 def fea_answer(setup: LinkSetup, mesh: MeshSettings, settings: StudySettings) -> Answer:
@@ -218,24 +224,10 @@ def _timed(work, settings: StudySettings):
     return seconds, value
 
 
-def _relative(difference, scale):
-    """difference / scale, 0 where nothing is loaded (scale 0)."""
-    return np.divide(difference, scale, out=np.zeros_like(difference), where=scale > 0)
-
-
 def _error(values, reference, away) -> float:
     """Largest |values - reference| over the away points relative to the largest reference, worst position."""
     diff = np.abs(values[:, away] - reference[:, away]).max(axis=1)
-    return float(np.max(_relative(diff, np.abs(reference[:, away]).max(axis=1))))
-
-
-def _resultant_error(values, reference) -> float:
-    """compare.LinkComparison.resultant_error: N, V and M differences over the largest of their kind."""
-    force_scale = np.abs(reference[:2]).max(axis=(0, 2))
-    moment_scale = np.abs(reference[2]).max(axis=1)
-    d_force = np.abs(values[:2] - reference[:2]).max(axis=(0, 2))
-    d_moment = np.abs(values[2] - reference[2]).max(axis=1)
-    return float(np.maximum(_relative(d_force, force_scale), _relative(d_moment, moment_scale)).max())
+    return float(np.max(relative(diff, np.abs(reference[:, away]).max(axis=1))))
 
 
 def case_study(scene_path, settings: StudySettings) -> CaseStudy:
@@ -319,8 +311,10 @@ def _method(key, by_link: dict[str, Answer], setups, reference, mass_errors=None
     for s in setups:
         answer = by_link[s.name]
         ref = reference[s.name]
-        peak = None if answer.peak is None else float(np.max(_relative(np.abs(answer.peak - ref.peak), ref.peak)))
-        resultants = None if method.startswith("FEA") else _resultant_error(answer.resultants, ref.resultants)
+        peak = None if answer.peak is None else float(np.max(relative(np.abs(answer.peak - ref.peak), ref.peak)))
+        resultants = None if method.startswith("FEA") else float(
+            resultant_error(answer.resultants, ref.resultants, s.depth).max()
+        )
         errors[s.name] = (_error(answer.nominal, ref.nominal, s.away), peak, resultants)
     worst = [max((e[i] for e in errors.values() if e[i] is not None), default=None) for i in range(3)]
     seconds = sum(a.seconds for a in by_link.values())

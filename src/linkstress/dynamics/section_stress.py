@@ -306,30 +306,3 @@ class _Fibres:
         self.u[rows, at] = u[wins]
         self.sigma[rows, at] = sigma[wins]
         self.tau[rows, at] = tau[wins]
-
-
-@dataclass
-class _Fibres:
-    """The critical fibre of every (position, station) so far: sigma_vM^2, offset u from the neutral
-    axis, sigma and tau there."""
-
-    best: NDArray[np.float64]
-    u: NDArray[np.float64]
-    sigma: NDArray[np.float64]
-    tau: NDArray[np.float64]
-
-    def keep_larger(self, rows, at, f, u, sigma, tau) -> None:
-        """Where candidate ``f`` beats the fibre so far at (rows, at), take it."""
-        wins = f > self.best[rows, at]
-        rows, at = rows[wins], at[wins]
-        self.best[rows, at] = f[wins]
-        self.u[rows, at] = u[wins]
-        self.sigma[rows, at] = sigma[wins]
-        self.tau[rows, at] = tau[wins]
-
-
-def transverse_body_load(loads: LinkLoadCase, x: NDArray[np.float64], density: float) -> NDArray[np.float64]:
-    """The part of the d'Alembert and gravity load uniform through the depth, across the member,
-    at stations ``x`` (P, S) [N/m^3]: rho (g_y - a_Oy - alpha x), member axes."""
-    free = loads.gravity[:, 1] - loads.origin_acceleration[:, 1]
-    return density * (free[:, None] - loads.alpha[:, None] * x[None, :])

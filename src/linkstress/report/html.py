@@ -15,6 +15,7 @@ from matplotlib.figure import Figure
 
 from linkstress import __version__
 from linkstress.analysis import AnalysisResult
+from linkstress.dynamics.pin_holes import SOURCE as PIN_HOLE_SOURCE
 from linkstress.report.figures import (
     mechanism_figure,
     mechanism_sweep_figure,
@@ -200,11 +201,10 @@ def _pin_holes_table(result: AnalysisResult) -> str:
                          float(hole.nominal[ok].max()), estimate))
     if not rows:
         return ""
-    source = result.stresses[next(iter(result.stresses))].pin_holes[0].source if rows else ""
     return (
         "<h3>Pin holes: peak stress ESTIMATES</h3>"
         + table_html(("link", "joint", "hole d [m]", "depth H [m]", "Kt", "net-section stress [Pa]", "Kt x nominal [Pa]"), rows)
-        + f'<p class="note">{html.escape(source)}</p>'
+        + f'<p class="note">{html.escape(PIN_HOLE_SOURCE)}</p>'
     )
 
 
