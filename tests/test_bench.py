@@ -161,7 +161,10 @@ def test_the_piecewise_bounds_are_the_exact_bounding_functions(fraction):
 @settings(max_examples=100, deadline=None)
 @given(st.lists(st.tuples(st.floats(1e-4, 10.0), st.floats(0.0, 100.0)), min_size=1, max_size=12))
 def test_a_pareto_front_point_is_beaten_by_none_and_every_other_point_by_one_on_the_front(points):
-    methods = tuple(MethodResult("m", str(k), 1, t, e / 100, None, None, {}) for k, (t, e) in enumerate(points))
+    # Judge the front on the errors the methods carry (a percentage / 100 can round two apart
+    # subnormal errors into one).
+    points = [(t, e / 100) for t, e in points]
+    methods = tuple(MethodResult("m", str(k), 1, t, e, None, None, {}) for k, (t, e) in enumerate(points))
     case = CaseStudy("c", "c", (), 1, methods, {}, {}, 0.0, (), ())
     front = set(case.pareto())
     for k, (t, e) in enumerate(points):
