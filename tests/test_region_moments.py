@@ -65,3 +65,17 @@ def test_whole_region_moments_equal_the_exact_area_properties():
         moments.total, [p.area, p.area * cx, p.area * cy, p.polar + p.area * (cx * cx + cy * cy)],
         rtol=1e-12, atol=1e-18,
     )
+
+
+def test_left_region_moments_through_pin_holes_equal_those_of_the_clipped_polygon():
+    # Cuts through both pin holes and between them, and at the ends: holes run clockwise, so
+    # their edges subtract exactly what the clip removes.
+    link = stadium(0.3, 0.08, 0.01, hole_diameter=0.02)
+    outline = link.local_outline()
+    minx, _, maxx, _ = outline.bounds
+    x = np.array([minx, -0.03, -0.005, 0.0, 0.007, 0.15, 0.295, 0.3, 0.31, maxx])
+    moments = region_moments(outline, x)
+    whole = np.abs(clipped_moments(outline, maxx + 1)).max()
+    for k, xk in enumerate(x):
+        got = [moments.area[k], moments.first_x[k], moments.first_y[k], moments.polar[k]]
+        np.testing.assert_allclose(got, clipped_moments(outline, xk), rtol=0, atol=1e-12 * whole)

@@ -8,6 +8,7 @@ snapped back to vertical (``rounding_slack``), or the section at that end would 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,6 +31,11 @@ class Boundary:
     def x_max(self) -> float:
         return float(self.starts[:, 0].max())
 
+    @cached_property
+    def moments(self) -> NDArray[np.float64]:
+        """(4, E): each edge's share of the region moments A, S_x, S_y, J_O (``segment_moments``)."""
+        return segment_moments(self.starts, self.ends)
+
     @classmethod
     def from_rings(cls, rings: list[NDArray[np.float64]], snap_x: float = 0.0) -> "Boundary":
         """Edges of closed rings given as vertices (n, 2) without the repeated first vertex. With
@@ -37,6 +43,22 @@ class Boundary:
         starts = [_snap_vertical(r, snap_x) if snap_x > 0 else r for r in rings]
         ends = [np.roll(r, -1, axis=0) for r in starts]
         return cls(np.concatenate(starts), np.concatenate(ends))
+
+
+def segment_moments(start: NDArray[np.float64], end: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(4, n): the four line integrals -int (y, x y, y^2 / 2, x^2 y + y^3 / 3) dx along straight
+    segments start -> end (n, 2) [m] (the integrals of x(s), y(s) linear in s, in closed form)."""
+    x0, y0 = start[:, 0], start[:, 1]
+    x1, y1 = end[:, 0], end[:, 1]
+    step = x0 - x1  # the minus sign of every integral
+    x01 = x0 * x1
+    return np.stack([
+        step * (y0 + y1) / 2,
+        step * (x0 * (2 * y0 + y1) + x1 * (y0 + 2 * y1)) / 6,
+        step * (y0 * y0 + y0 * y1 + y1 * y1) / 6,
+        step * (y0 * (3 * x0 * x0 + 2 * x01 + x1 * x1) + y1 * (x0 * x0 + 2 * x01 + 3 * x1 * x1)
+                + (y0 + y1) * (y0 * y0 + y1 * y1)) / 12,
+    ])
 
 
 def oriented_rings(polygon: Polygon) -> list[NDArray[np.float64]]:

@@ -2,13 +2,14 @@
 
 The free body of a beam section needs the d'Alembert load on everything left of the cut, which is
 linear in the region's area moments: A, S_x = int x dA, S_y = int y dA and J_O = int (x^2 + y^2) dA
-(member frame, about the frame origin). With chords [a_k, b_k] of the cut at abscissa xi, the
-integrands over xi are
+(member frame, about the frame origin). By Green's theorem each is a line integral of f dx round
+the region's boundary,
 
-    m0 = sum (b - a),  xi m0,  m1 = sum (b^2 - a^2) / 2,  xi^2 m0 + m2,  m2 = sum (b^3 - a^3) / 3,
+    A = -oint y dx,  S_x = -oint x y dx,  S_y = -oint y^2 / 2 dx,  J_O = -oint (x^2 y + y^3 / 3) dx,
 
-and a and b are linear in xi between consecutive vertex abscissae, so every integrand is a
-polynomial of degree <= 3 there and Simpson's rule on each piece is exact.
+and the cut itself is vertical (dx = 0), so it adds nothing: the region left of x takes every
+boundary edge that ends left of x whole, and of each edge the cut crosses the part left of x. On a
+straight edge every integrand is a cubic in the edge parameter, so Simpson's rule is exact.
 """
 
 from __future__ import annotations
@@ -19,8 +20,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
-from linkstress.boundary import Boundary, boundary_of
-from linkstress.sections import edge_crossings, within_extent
+from linkstress.boundary import Boundary, boundary_of, segment_moments
+from linkstress.sections import Crossings, edge_crossings, within_extent
 
 
 @dataclass(frozen=True)
@@ -39,52 +40,32 @@ class RegionMoments:
     total: tuple[float, float, float, float]
 
 
-def _cut_moments(starts, ends, xs, left_limit: bool) -> NDArray[np.float64]:
-    """(len(xs), 3): m0, m1, m2 of the cuts at sorted abscissae ``xs``."""
-    cut = edge_crossings(starts, ends, xs, left_limit=left_limit)
-    a, b = cut.y[0::2], cut.y[1::2]
-    station = cut.station[0::2]
-    out = np.zeros((len(xs), 3))
-    np.add.at(out[:, 0], station, b - a)
-    np.add.at(out[:, 1], station, (b * b - a * a) / 2)
-    np.add.at(out[:, 2], station, (b**3 - a**3) / 3)
-    return out
-
-
-def region_moments(outline: Polygon | Boundary, stations: ArrayLike) -> RegionMoments:
+def region_moments(
+    outline: Polygon | Boundary, stations: ArrayLike, crossings: Crossings | None = None
+) -> RegionMoments:
     """Moments of the part of ``outline`` (member frame, m; or its Boundary) left of each of
-    ``stations`` [m]."""
+    ``stations`` [m]. ``crossings``: the edges' crossings with the sorted stations by
+    ``edge_crossings`` (right-hand limit), if already made."""
     x = np.asarray(stations, float).ravel()
     edges = boundary_of(outline)
+    x = within_extent(x, edges.x_min, edges.x_max, "station")
+    order = np.argsort(x, kind="stable")
     starts, ends = edges.starts, edges.ends
-    lo, hi = edges.x_min, edges.x_max
-    x = within_extent(x, lo, hi, "station")
-    nodes = np.unique(np.concatenate([starts[:, 0], x]))
-    left, right = nodes[:-1], nodes[1:]
-    width = right - left
-    mid = (left + right) / 2
-    # Left ends and midpoints interleave in sorted order: one sweep of the edges cuts both.
-    both = _cut_moments(starts, ends, np.column_stack([left, mid]).ravel(), left_limit=False)
-    at_left, at_mid = both[0::2], both[1::2]
-    at_right = _cut_moments(starts, ends, right, left_limit=True)
-
-    def simpson(f_left, f_mid, f_right):
-        return width * (f_left + 4 * f_mid + f_right) / 6
-
-    pieces = np.column_stack([
-        simpson(at_left[:, 0], at_mid[:, 0], at_right[:, 0]),
-        simpson(left * at_left[:, 0], mid * at_mid[:, 0], right * at_right[:, 0]),
-        simpson(at_left[:, 1], at_mid[:, 1], at_right[:, 1]),
-        simpson(left**2 * at_left[:, 0] + at_left[:, 2], mid**2 * at_mid[:, 0] + at_mid[:, 2],
-                right**2 * at_right[:, 0] + at_right[:, 2]),
-    ])
-    cumulative = np.vstack([np.zeros(4), np.cumsum(pieces, axis=0)])
-    at_station = cumulative[np.searchsorted(nodes, x)]
-    return RegionMoments(
-        x=x,
-        area=at_station[:, 0],
-        first_x=at_station[:, 1],
-        first_y=at_station[:, 2],
-        polar=at_station[:, 3],
-        total=tuple(float(v) for v in cumulative[-1]),
+    whole = edges.moments
+    # Edges wholly left of a station (right end at or before it), by their right ends.
+    right = np.maximum(starts[:, 0], ends[:, 0])
+    by_right = np.argsort(right)
+    cumulative = np.zeros((4, len(right) + 1))
+    np.cumsum(whole[:, by_right], axis=1, out=cumulative[:, 1:])
+    left_of = cumulative[:, np.searchsorted(right[by_right], x, side="right")]
+    # Edges the cut crosses (left end <= x < right end): the part from the crossing to the left end.
+    cut = edge_crossings(starts, ends, x[order], sort=False) if crossings is None else crossings
+    e = cut.edge
+    point = np.column_stack([x[order][cut.station], cut.y])
+    rightward = starts[e, 0] < ends[e, 0]
+    part = segment_moments(
+        np.where(rightward[:, None], starts[e], point), np.where(rightward[:, None], point, ends[e])
     )
+    station = order[cut.station]
+    area, first_x, first_y, polar = (left_of[k] + np.bincount(station, part[k], len(x)) for k in range(4))
+    return RegionMoments(x, area, first_x, first_y, polar, tuple(float(v) for v in whole.sum(axis=1)))

@@ -54,12 +54,14 @@ def edge_crossings(
     ends: NDArray[np.float64],
     stations: NDArray[np.float64],
     left_limit: bool = False,
+    sort: bool = True,
 ) -> Crossings:
     """Crossings of edges (E, 2)-(E, 2) with the vertical lines x = stations (sorted ascending).
 
     An edge spanning [lo, hi] in x crosses station s when lo <= s < hi (the right-hand limit of the
     cut), or lo < s <= hi with ``left_limit``; vertical edges never cross. Either rule makes every
-    closed ring cross every line an even number of times. Crossings come sorted by station, then y.
+    closed ring cross every line an even number of times. Crossings come sorted by station, then y
+    unless ``sort`` is False.
     """
     x0, y0 = starts.T
     x1, y1 = ends.T
@@ -72,6 +74,8 @@ def edge_crossings(
     offset = np.cumsum(count) - count
     station = first[edge] + np.arange(len(edge)) - offset[edge]
     y = height_on_edge(starts[edge], ends[edge], stations[station])
+    if not sort:
+        return Crossings(station, edge, y)
     order = np.lexsort((y, station))
     return Crossings(station[order], edge[order], y[order])
 

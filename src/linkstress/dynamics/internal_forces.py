@@ -21,7 +21,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial import ConvexHull, QhullError
 
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
@@ -44,6 +43,10 @@ class InternalForces:
     mismatch: NDArray[np.float64]
 
 
+FREE_Y, ALPHA = -3, -2
+"""Columns of ``load_coefficients``: (g - a_O)_y [m/s^2] and alpha [rad/s^2]."""
+
+
 def load_coefficients(loads: LinkLoadCase) -> NDArray[np.float64]:
     """Per position, the load quantities every section force is linear in (P, Q).
 
@@ -59,7 +62,7 @@ def load_coefficients(loads: LinkLoadCase) -> NDArray[np.float64]:
 
 
 def load_basis(loads, joints, on_side, points_on_side, moments, cut, rho_t):
-    """Matrices (3, S, Q) mapping ``load_coefficients`` to (F_x, F_y, M about the cut) of one side.
+    """Matrices (3, Q, S) mapping ``load_coefficients`` to (F_x, F_y, M about the cut) of one side.
 
     ``on_side`` (S, J) and ``points_on_side`` (S, n_point_forces) select that side's joints and
     point forces; ``moments`` = (A, S_x, S_y, J_O) (S,) of that side's material, per unit thickness.
@@ -84,9 +87,59 @@ def load_basis(loads, joints, on_side, points_on_side, moments, cut, rho_t):
     fx += [area, zero, sy, sx]
     fy += [zero, area, -sx, sy]
     mo += [-sy, sx, -polar, zero]
-    fx, fy, mo = (np.column_stack(b) for b in (fx, fy, mo))
-    m_cut = mo - cut[:, :1] * fy + cut[:, 1:] * fx
+    fx, fy, mo = (np.array(b) for b in (fx, fy, mo))
+    m_cut = mo - cut[:, 0] * fy + cut[:, 1] * fx
     return np.stack([fx, fy, m_cut])
+
+
+@dataclass(frozen=True)
+class ForceBasis:
+    """N, V, M per unit load coefficient: ``normal``, ``shear``, ``moment`` (Q, S), so that
+    ``load_coefficients(loads) @ normal`` is N (P, S); ``whole`` (3, Q): the resultant (F_x, F_y,
+    M about the origin) of every load on the link; ``cut`` (S, 2): the cut points (x, y_na)."""
+
+    normal: NDArray[np.float64]
+    shear: NDArray[np.float64]
+    moment: NDArray[np.float64]
+    whole: NDArray[np.float64]
+    cut: NDArray[np.float64]
+
+    def mismatch(self, coefficients, normal, shear, moment) -> NDArray[np.float64]:
+        """The two-sided check (P,) of section forces (P, S) made from ``coefficients`` (P, Q).
+
+        The right free body carries every load not on the left, so its cut differs from the left's
+        by the resultant of all loads, taken about the cut point.
+        """
+        total_x, total_y = self.whole[:2] @ coefficients.T
+        d_force = np.maximum(np.abs(total_x), np.abs(total_y))
+        whole_x, whole_y, whole_m = self.whole[:, :, None]
+        d_moment = _largest(coefficients @ (whole_m - whole_y * self.cut[:, 0] + whole_x * self.cut[:, 1]))
+        force_scale = np.maximum(_largest(normal), _largest(shear))
+        return np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, _largest(moment)))
+
+
+def force_basis(
+    link: LinkProfile, loads: LinkLoadCase, sections: SectionTable, moments: RegionMoments | None = None,
+) -> ForceBasis:
+    """The ``ForceBasis`` at the stations of ``sections`` (member frame of ``loads.frame_joints``),
+    from the free body left of each cut: (N, V) = -F_L, M = M_L."""
+    i, j = loads.frame_joints
+    x = sections.x
+    joints = link.frame(i, j).to_local(link.joints)
+    if moments is None:
+        moments = region_moments(link.boundary(i, j), x)
+    rho_t = link.density * link.thickness
+    cut = np.column_stack([x, sections.neutral_axis])
+    point_x = np.array([pf.at[0] for pf in loads.point_forces]).reshape(-1)
+    left = load_basis(
+        loads, joints, joints[None, :, 0] <= x[:, None], point_x[None, :] <= x[:, None],
+        (moments.area, moments.first_x, moments.first_y, moments.polar), cut, rho_t,
+    )
+    whole = load_basis(
+        loads, joints, np.ones((1, len(joints)), bool), np.ones((1, len(point_x)), bool),
+        moments.total, np.zeros((1, 2)), rho_t,
+    )
+    return ForceBasis(-left[0], -left[1], left[2], whole[:, :, 0], cut)
 
 
 def internal_forces(
@@ -96,55 +149,15 @@ def internal_forces(
     moments: RegionMoments | None = None,
 ) -> InternalForces:
     """N, V, M at the stations of ``sections`` (member frame of ``loads.frame_joints``)."""
-    i, j = loads.frame_joints
-    x = sections.x
-    joints = link.frame(i, j).to_local(link.joints)
-    if moments is None:
-        moments = region_moments(link.boundary(i, j), x)
-    rho_t = link.density * link.thickness
-    cut = np.column_stack([x, sections.neutral_axis])
+    basis = force_basis(link, loads, sections, moments)
     coefficients = load_coefficients(loads)
-    point_x = np.array([pf.at[0] for pf in loads.point_forces]).reshape(-1)
-    left = load_basis(
-        loads, joints, joints[None, :, 0] <= x[:, None], point_x[None, :] <= x[:, None],
-        (moments.area, moments.first_x, moments.first_y, moments.polar), cut, rho_t,
-    )
-    # BLAS runs several times faster with the long (positions) axis last; the copy back to
-    # row-major keeps every later elementwise operation on one memory layout (mixed ones are ~4x
-    # slower). (N, V) = -F_L: the sign goes on the small basis, not on the (P, S) result.
-    normal, shear, moment = (
-        np.ascontiguousarray(((sign * b) @ coefficients.T).T) for sign, b in zip((-1.0, -1.0, 1.0), left)
-    )
-    # The right free body carries every load not on the left, so its cut differs from the left's by
-    # the resultant of all loads, taken about the cut point: that is the equilibrium check.
-    whole = load_basis(
-        loads, joints, np.ones((1, len(joints)), bool), np.ones((1, len(point_x)), bool),
-        moments.total, np.zeros((1, 2)), rho_t,
-    )
-    total_x, total_y, total_m = (coefficients @ b[0] for b in whole)
-    d_force = np.maximum(np.abs(total_x), np.abs(total_y))
-    # |M_total about (x, y_na)| is affine in the cut point: its largest value over the stations is
-    # at a vertex of their convex hull.
-    k = _hull(cut)
-    d_moment = np.abs(total_m[:, None] - x[k] * total_y[:, None] + sections.neutral_axis[k] * total_x[:, None]).max(axis=1)
-    force_scale = np.maximum(_largest(normal), _largest(shear))
-    moment_scale = _largest(moment)
-    mismatch = np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, moment_scale))
-    return InternalForces(x, normal, shear, moment, mismatch)
+    normal, shear, moment = (coefficients @ b for b in (basis.normal, basis.shear, basis.moment))
+    return InternalForces(sections.x, normal, shear, moment, basis.mismatch(coefficients, normal, shear, moment))
 
 
 def _largest(values: NDArray[np.float64]) -> NDArray[np.float64]:
     """max |values| over the stations, (P,), by two reductions instead of a temporary |values|."""
     return np.maximum(values.max(axis=1), -values.min(axis=1))
-
-
-def _hull(points: NDArray[np.float64]) -> NDArray[np.intp]:
-    """Indices of the convex-hull vertices of ``points`` (S, 2); the extreme ones when collinear."""
-    try:
-        return ConvexHull(points).vertices
-    except QhullError:
-        along = points[:, 0] if np.ptp(points[:, 0]) > 0 else points[:, 1]
-        return np.unique([int(np.argmin(along)), int(np.argmax(along))])
 
 
 def _ratio(diff, scale):

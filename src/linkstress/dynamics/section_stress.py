@@ -39,11 +39,10 @@ import numpy as np
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
-from linkstress.dynamics.internal_forces import InternalForces, internal_forces
+from linkstress.dynamics.internal_forces import ALPHA, FREE_Y, ForceBasis, InternalForces, force_basis, load_coefficients
 from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
-from linkstress.region_moments import region_moments
 from linkstress.sections import SectionTable
 
 
@@ -113,40 +112,53 @@ def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: Secti
     return flags
 
 
-def _quartic(u, n, m, w, c):
-    """sigma_vM^2 = (n + m u)^2 + 3 w^2 (C - u^2)^2 at fibre offset u."""
-    sigma, shape = n + m * u, c - u * u
-    return sigma * sigma + 3 * w * w * shape * shape
-
-
 def _polish(u, n, m, w, c, beta, half, steps: int = 2):
     """Newton steps on d(sigma_vM^2)/du with the body-load term, from the interior maximum of the
     linear stress (the term is a correction of a few per cent, so a few steps converge)."""
+    shift = 0.6 * half * half
+    w12 = 12 * w * w
     for _ in range(steps):
-        sigma = n + m * u + beta * u * (u * u - 0.6 * half * half)
-        slope = m + beta * (3 * u * u - 0.6 * half * half)
-        gradient = 2 * sigma * slope - 12 * w * w * u * (c - u * u)
-        curvature = 2 * slope * slope + 12 * sigma * beta * u - 12 * w * w * (c - 3 * u * u)
+        uu = u * u
+        sigma = n + u * (m + beta * (uu - shift))
+        slope = m + beta * (3 * uu - shift)
+        gradient = 2 * sigma * slope - w12 * u * (c - uu)
+        curvature = 2 * slope * slope + 12 * sigma * beta * u - w12 * (c - 3 * uu)
         u = u - np.divide(gradient, curvature, out=np.zeros_like(u), where=curvature < 0)
     return u
 
 
 def interior_maximum(n, m, w, c):
-    """The chord's interior local maximum of sigma_vM^2: offset u and whether it exists.
+    """The offset u of the chord's interior local maximum of sigma_vM^2 (arrays of one shape).
 
-    d(sigma_vM^2)/du / 2 = 6 w^2 u^3 + (m^2 - 6 w^2 C) u + m n. Called only where
-    p = (m^2 - 6 w^2 C) / (6 w^2) < 0; with three real roots the middle one is the local maximum
-    (Cardano's trigonometric solution).
+    d(sigma_vM^2)/du / 2 = 6 w^2 u^3 + (m^2 - 6 w^2 C) u + m n. Called where it has three real roots
+    (``has_interior_maximum``); the middle one is the maximum (Cardano's trigonometric solution;
+    clipping the cosine's argument takes a double root where rounding put three roots at two).
     """
     w6 = 6 * w * w
     p = (m * m - w6 * c) / w6
-    # A huge q (tiny shear, large N) overflows to inf and rightly rules out three roots.
-    with np.errstate(over="ignore", invalid="ignore"):
-        q = m * n / w6
-        three_roots = 27 * q * q < -4 * p * p * p
-        radius = np.sqrt(-p / 3)
+    q = m * n / w6
+    radius = np.sqrt(np.maximum(-p / 3, 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
         cos_arg = np.clip(-q / (2 * radius**3), -1.0, 1.0)
-    return 2 * radius * np.cos(np.arccos(cos_arg) / 3 - 2 * np.pi / 3), three_roots
+    return 2 * radius * np.cos(np.arccos(cos_arg) / 3 - 2 * np.pi / 3)
+
+
+INTERIOR_SLACK = 1e-9
+"""Relative slack of the three-root test, so that rounding never hides a maximum at a double root."""
+
+
+def has_interior_maximum(n, m, w, c):
+    """Where the cubic of ``interior_maximum`` has three real roots, as a mask.
+
+    With P = m^2 - 6 w^2 C and Q = m n (the cubic's p and q times 6 w^2 > 0), three roots need
+    P < 0 and 27 q^2 < -4 p^3, that is 27 Q^2 6 w^2 < -4 P^3: no division, so it runs on whole
+    arrays of sections where w may be zero (then there is no interior maximum).
+    """
+    w6 = 6 * w * w
+    with np.errstate(over="ignore", invalid="ignore"):
+        p = m * m - w6 * c
+        q = m * n
+        return (p < 0) & (27 * q * q * w6 < -4 * (1 + INTERIOR_SLACK) * p * p * p)
 
 
 def section_stresses(
@@ -157,22 +169,37 @@ def section_stresses(
     """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position.
 
     Candidates for the largest von Mises of a section: its outer fibres (free edges, tau = 0), the
-    ends of chords at holes, and each chord's interior maximum where shear matters.
+    ends of chords at holes, and each chord's interior maximum where shear matters. Every stress is
+    linear in the load coefficients (``load_coefficients``), so N, V, M and the outer fibres' sigma
+    are each one product of those with a basis made once per link.
     """
     frame_joints = loads.frame_joints
     table = link.sections(stations, *frame_joints)
-    moments = region_moments(link.boundary(*frame_joints), table.x)
-    forces = internal_forces(link, loads, table, moments)
+    basis = force_basis(link, loads, table)
     shape = _SectionShape.of(table, link.density)
-    free = loads.gravity[:, 1] - loads.origin_acceleration[:, 1]
-    blocks = [slice(start, start + POSITION_BLOCK) for start in range(0, len(free), POSITION_BLOCK)]
-    parts = [
-        shape.critical_fibres(forces.normal[p], forces.shear[p], forces.moment[p], free[p], loads.alpha[p])
-        for p in blocks
-    ]
-    von_mises, u, sigma, tau = (np.concatenate(column) for column in zip(*parts))
+    top, bottom, body = shape.fibre_basis(basis)
+    coefficients = load_coefficients(loads)
+    size = (len(coefficients), len(table.x))
+    normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
+    fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
+    mismatch = np.empty(size[0])
+    interior = []
+    for start in range(0, size[0], POSITION_BLOCK):
+        p = slice(start, start + POSITION_BLOCK)
+        c = coefficients[p]
+        for out, b in ((normal, basis.normal), (shear, basis.shear), (moment, basis.moment)):
+            np.matmul(c, b, out=out[p])
+        mismatch[p] = basis.mismatch(c, normal[p], shear[p], moment[p])
+        s_top, s_bottom = c @ top, c @ bottom
+        shape.outer_fibres(s_top, s_bottom, fibres.block(p))
+        candidates = shape.interior_candidates(s_top, s_bottom, np.abs(c @ body), normal[p], shear[p], moment[p])
+        interior.append([flat + start * size[1] for flat in candidates])
+    forces = InternalForces(table.x, normal, shear, moment, mismatch)
+    shape.hole_ends(forces, fibres)
+    for chord, flat in zip(shape.chords, zip(*interior)):
+        shape.interior(forces, coefficients, chord, np.concatenate(flat), fibres)
     return SectionStresses(
-        table, forces, von_mises, table.neutral_axis + u, sigma, tau, near_holes(link, frame_joints, table),
+        table, forces, von_mises, table.neutral_axis + u, sigma, fibres.tau, near_holes(link, frame_joints, table),
         pin_hole_estimates(link, loads),
     )
 
@@ -184,21 +211,22 @@ whole-sweep arrays on a long sweep (this is blocking, not a loop over positions)
 
 @dataclass(frozen=True)
 class _Chord:
-    """Slot k's chords: stations ``cols`` that have one, their ends' offsets ``ua``, ``ub`` from the
-    neutral axis, C, which ends are at holes, and sqrt(6 C) / 2 (the interior-maximum test)."""
+    """Chord slot k at every station (zero where a station has no k-th chord): its ends' offsets
+    ``ua``, ``ub`` from the neutral axis and C; the stations ``cols`` that have one (a slice when
+    all do), and the stations whose chord ends at a hole below (``hole_below``) or above
+    (``hole_above``)."""
 
-    cols: NDArray[np.intp]
     ua: NDArray[np.float64]
     ub: NDArray[np.float64]
     c: NDArray[np.float64]
-    inner_bottom: bool
-    inner_top: NDArray[np.bool_]
-    test: NDArray[np.float64]
+    cols: NDArray[np.intp] | slice
+    hole_below: NDArray[np.intp]
+    hole_above: NDArray[np.intp]
 
 
 @dataclass(frozen=True)
 class _SectionShape:
-    """What the fibre search needs of the sections, independent of the loads."""
+    """What the fibre search needs of the sections, independent of the loads (all per station)."""
 
     x: NDArray[np.float64]
     inv_area: NDArray[np.float64]
@@ -207,7 +235,9 @@ class _SectionShape:
     u_bottom: NDArray[np.float64]
     half: NDArray[np.float64]
     single: NDArray[np.bool_]
+    split: NDArray[np.intp]
     lever: NDArray[np.float64]
+    shear_gain: NDArray[np.float64]
     density: float
     chords: tuple[_Chord, ...]
 
@@ -217,70 +247,141 @@ class _SectionShape:
         yna = table.neutral_axis
         half = (table.top - table.bottom) / 2
         single = solid & (table.n_chords == 1) & (half > 0)
+        n_st = len(table.x)
         chords = []
         for k in range(table.lower.shape[1]):
-            cols = np.flatnonzero((table.n_chords > k) & solid)
-            ub = table.upper[cols, k] - yna[cols]
-            c = 2 * table.first_moment(table.upper[:, k])[cols] / table.thickness + ub * ub
-            test = np.zeros(len(table.x))
-            test[cols] = np.sqrt(6 * c) / 2
+            has = (table.n_chords > k) & solid
+            ua = np.where(has, table.lower[:, k] - yna, 0.0)
+            ub = np.where(has, table.upper[:, k] - yna, 0.0)
+            c = np.where(has, 2 * table.first_moment(table.upper[:, k]) / table.thickness + ub * ub, 0.0)
+            cols = np.flatnonzero(has)
             chords.append(_Chord(
-                cols, table.lower[cols, k] - yna[cols], ub, c, k > 0, table.n_chords[cols] > k + 1, test,
+                ua, ub, c, slice(None) if len(cols) == n_st else cols,
+                cols if k > 0 else cols[:0], np.flatnonzero(has & (table.n_chords > k + 1)),
             ))
+        inv_inertia = np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0)
         return cls(
             x=table.x,
             inv_area=np.where(solid, 1.0 / np.where(solid, table.area, 1.0), 0.0),
-            inv_inertia=np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0),
+            inv_inertia=inv_inertia,
             u_top=table.top - yna,
             u_bottom=table.bottom - yna,
             half=half,
             single=single,
+            split=np.flatnonzero(solid & ~single),
             # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
             lever=np.where(single, 0.4 * density * half, 0.0),
+            # (32/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
+            shear_gain=np.where(single, (32 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
             chords=tuple(chords),
         )
 
-    def critical_fibres(self, normal, shear, moment, free, alpha):
-        """(von Mises, u, sigma, tau) at the critical fibre, each (P, S), for section forces (P, S)
-        and the body load's free - alpha x terms (P,) of these positions."""
-        n = normal * self.inv_area
-        m = moment * self.inv_inertia
-        w = shear * (self.inv_inertia / 2)
-        outer = free[:, None] * self.lever - alpha[:, None] * (self.x * self.lever)
-        s_top = m * self.u_top
-        s_top += n
-        s_top += outer
-        s_bottom = m * self.u_bottom
-        s_bottom += n
-        s_bottom -= outer
+    def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
+        """Per unit load coefficient, (Q, S) each: sigma at the top and bottom fibres, N / A + M u / I
+        and the body-load term +-0.4 b_y c, b_y = rho ((g - a_O)_y - alpha x); and b_y c on
+        single chords (zero elsewhere), for ``interior_candidates``."""
+        along = basis.normal * self.inv_area
+        top = along + basis.moment * (self.inv_inertia * self.u_top)
+        bottom = along + basis.moment * (self.inv_inertia * self.u_bottom)
+        for fibre, sign in ((top, 1.0), (bottom, -1.0)):
+            fibre[FREE_Y] += sign * self.lever
+            fibre[ALPHA] -= sign * self.x * self.lever
+        body = np.zeros_like(top)
+        body[FREE_Y] = self.lever / 0.4
+        body[ALPHA] = -self.x * self.lever / 0.4
+        return top, bottom, body
+
+    def outer_fibres(self, s_top, s_bottom, fibres: "_Fibres") -> None:
+        """The larger of the top and bottom fibres' sigma (P, S) (free edges, tau = 0) into ``fibres``."""
         top_wins = np.abs(s_top) >= np.abs(s_bottom)
-        fibre = _Fibres(
-            best=np.where(top_wins, s_top * s_top, s_bottom * s_bottom),
-            u=np.where(top_wins, self.u_top, self.u_bottom),
-            sigma=np.where(top_wins, s_top, s_bottom),
-            tau=np.zeros(n.shape),  # the outer fibres are free edges
-        )
+        np.copyto(fibres.sigma, s_bottom)
+        np.copyto(fibres.sigma, s_top, where=top_wins)
+        np.abs(fibres.sigma, out=fibres.von_mises)
+        np.copyto(fibres.u, self.u_bottom)
+        np.copyto(fibres.u, self.u_top, where=top_wins)
+
+    def interior_candidates(self, s_top, s_bottom, body, normal, shear, moment) -> list[NDArray[np.intp]]:
+        """Per chord slot, the flat (position, station) indices where the chord's interior may hold
+        the section's maximum (necessary conditions, so none is missed), for section forces, outer
+        fibres' sigma and ``body`` = |b_y| c (``body_basis``), all (P, S).
+
+        A single chord is symmetric about the neutral axis (half-depth c, C = c^2). With the body
+        term, sigma(u) = n + m_e u - beta u (c^2 - u^2), m_e = m + 0.4 beta c^2, so the outer fibres
+        give E = |n| + |m_e| c and an interior fibre at |u| = v gives at most
+        (|n| + |m_e| v + |beta| v (c^2 - v^2))^2 + 3 w^2 (c^2 - v^2)^2. Factoring out c - v and
+        bounding the rest over v in [0, c], it can beat E^2 only if
+
+            (32/9) w^2 c^4 + 2 b c (2|n| + 2|m_e| c + 0.385 b c) > |m_e| c (2|n| + |m_e| c),
+
+        b = |b_y|, where 2|n| = |s_top + s_bottom| and 2|m_e| c = |s_top - s_bottom|. Sections split
+        by holes (no body term) are searched where the cubic of ``interior_maximum`` has three real
+        roots.
+        """
+        two_n = s_top + s_bottom
+        np.abs(two_n, out=two_n)
+        two_m = s_top - s_bottom
+        np.abs(two_m, out=two_m)
+        ends = two_n * 2
+        ends += two_m
+        ends *= two_m
+        gain = two_n
+        gain += two_m
+        gain += 0.385 * body
+        gain *= body
+        gain *= 8
+        shear_term = shear * shear
+        shear_term *= self.shear_gain
+        gain += shear_term
+        found = [np.flatnonzero(gain > ends)] + [np.empty(0, np.intp) for _ in self.chords[1:]]
+        if len(self.split):
+            for k, chord in enumerate(self.chords):
+                cols = self.split if isinstance(chord.cols, slice) else chord.cols
+                n, m, w = (f[:, cols] * g[cols] for f, g in ((normal, self.inv_area), (moment, self.inv_inertia),
+                                                              (shear, self.inv_inertia / 2)))
+                rows, j = np.nonzero(has_interior_maximum(n, m, w, chord.c[cols]))
+                found[k] = np.concatenate([found[k], rows * len(self.x) + cols[j]])
+        return found
+
+    def hole_ends(self, forces: InternalForces, fibres: "_Fibres") -> None:
+        """Chord ends at holes (every position, these few stations) that beat ``fibres``."""
+        count = forces.normal.shape[0]
         for chord in self.chords:
-            for end, inner in ((chord.ua, np.full(len(chord.cols), chord.inner_bottom)), (chord.ub, chord.inner_top)):
-                if inner.any():
-                    # a chord end at a hole: every position, these few stations
-                    rows, j = np.indices((n.shape[0], int(inner.sum()))).reshape(2, -1)
-                    at, u, c_ = chord.cols[inner][j], end[inner][j], chord.c[inner][j]
-                    n_, m_, w_ = n[rows, at], m[rows, at], w[rows, at]
-                    fibre.keep_larger(rows, at, _quartic(u, n_, m_, w_, c_), u, n_ + m_ * u, w_ * (c_ - u * u))
-            rows, at = np.nonzero(np.abs(moment) < np.abs(shear) * chord.test)
-            if len(rows):
-                sub = np.searchsorted(chord.cols, at)
-                u, exists = interior_maximum(n[rows, at], m[rows, at], w[rows, at], chord.c[sub])
-                rows, sub, at, u = rows[exists], sub[exists], at[exists], u[exists]
-                n_, m_, w_, c_ = n[rows, at], m[rows, at], w[rows, at], chord.c[sub]
-                beta_ = self.beta(free[rows] - alpha[rows] * self.x[at], at)
-                u = np.clip(_polish(u, n_, m_, w_, c_, beta_, self.half[at]), chord.ua[sub], chord.ub[sub])
-                sigma = n_ + m_ * u + beta_ * u * (u * u - 0.6 * self.half[at] ** 2)
-                tau = w_ * (c_ - u * u)
-                fibre.keep_larger(rows, at, sigma * sigma + 3 * tau * tau, u, sigma, tau)
-        return np.sqrt(fibre.best), fibre.u, fibre.sigma, fibre.tau
+            for at, end in ((chord.hole_below, chord.ua), (chord.hole_above, chord.ub)):
+                if len(at):
+                    flat = (np.arange(count)[:, None] * len(self.x) + at).ravel()
+                    n, m, w, at = self._reduced(forces, flat)
+                    self._consider(fibres, flat, n, m, w, chord.c[at], end[at], 0.0, at)
+
+    def interior(self, forces: InternalForces, coefficients, chord: _Chord, flat, fibres: "_Fibres") -> None:
+        """The chord's interior maxima at the flat (position, station) indices ``flat`` where they
+        beat ``fibres``."""
+        if not len(flat):
+            return
+        n, m, w, at = self._reduced(forces, flat)
+        c = chord.c[at]
+        u = interior_maximum(n, m, w, c)
+        rows = flat // len(self.x)
+        beta = self.beta(coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at], at)
+        u = np.clip(_polish(u, n, m, w, c, beta, self.half[at]), chord.ua[at], chord.ub[at])
+        self._consider(fibres, flat, n, m, w, c, u, beta, at)
+
+    def _reduced(self, forces: InternalForces, flat):
+        """n = N / A, m = M / I, w = V / 2I at flat (position, station) indices, and the stations."""
+        at = flat % len(self.x)
+        inv_inertia = self.inv_inertia[at]
+        return (
+            forces.normal.reshape(-1)[flat] * self.inv_area[at],
+            forces.moment.reshape(-1)[flat] * inv_inertia,
+            forces.shear.reshape(-1)[flat] * (inv_inertia / 2),
+            at,
+        )
+
+    def _consider(self, fibres, flat, n, m, w, c, u, beta, at) -> None:
+        """Fibre offset u at the flat indices: sigma with the body-load term, tau, von Mises."""
+        sigma = n + m * u + beta * u * (u * u - 0.6 * self.half[at] ** 2)
+        tau = w * (c - u * u)
+        fibres.keep_larger(flat, np.sqrt(sigma * sigma + 3 * tau * tau), u, sigma, tau)
 
     def beta(self, free_term, at):
         """b_y / c^2, the body-load term's coefficient, for rho (free - alpha x) = density x ``free_term``."""
@@ -290,19 +391,23 @@ class _SectionShape:
 
 @dataclass
 class _Fibres:
-    """The critical fibre of every (position, station) so far: sigma_vM^2, offset u from the neutral
-    axis, sigma and tau there."""
+    """The critical fibre of every (position, station) so far: von Mises, offset u from the neutral
+    axis, sigma and tau there (views into the result arrays)."""
 
-    best: NDArray[np.float64]
+    von_mises: NDArray[np.float64]
     u: NDArray[np.float64]
     sigma: NDArray[np.float64]
     tau: NDArray[np.float64]
 
-    def keep_larger(self, rows, at, f, u, sigma, tau) -> None:
-        """Where candidate ``f`` beats the fibre so far at (rows, at), take it."""
-        wins = f > self.best[rows, at]
-        rows, at = rows[wins], at[wins]
-        self.best[rows, at] = f[wins]
-        self.u[rows, at] = u[wins]
-        self.sigma[rows, at] = sigma[wins]
-        self.tau[rows, at] = tau[wins]
+    def block(self, positions: slice) -> "_Fibres":
+        return _Fibres(self.von_mises[positions], self.u[positions], self.sigma[positions], self.tau[positions])
+
+    def keep_larger(self, flat, f, u, sigma, tau) -> None:
+        """Where candidate von Mises ``f`` beats the fibre so far at flat indices ``flat``, take it."""
+        best = self.von_mises.reshape(-1)
+        wins = f > best[flat]
+        flat = flat[wins]
+        best[flat] = f[wins]
+        self.u.reshape(-1)[flat] = u[wins]
+        self.sigma.reshape(-1)[flat] = sigma[wins]
+        self.tau.reshape(-1)[flat] = tau[wins]
