@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely import affinity
@@ -15,6 +16,7 @@ from shapely.geometry import Polygon
 
 from linkstress.bounds import bounding_functions
 from linkstress.mass_properties import area_properties
+from linkstress.profile import LinkProfile
 from linkstress.sections import section_table
 
 
@@ -73,3 +75,17 @@ def test_upper_bound_is_never_below_lower_bound_and_brackets_every_chord(polygon
     table = section_table(polygon, x, 1.0)
     assert (table.top <= upper[: len(x)] + 1e-12 * (hi - lo)).all()
     assert (table.bottom >= lower[: len(x)] - 1e-12 * (hi - lo)).all()
+
+
+def test_hole_centroids_and_areas_match_shapely_for_far_off_holes():
+    # A plate 1000 m from the origin with a round and a square hole, drawn in either orientation.
+    shell = [(1000, 1000), (1000.4, 1000), (1000.4, 1000.1), (1000, 1000.1)]
+    round_hole = [(1000.1 + 0.02 * math.cos(t), 1000.05 + 0.02 * math.sin(t)) for t in np.linspace(0, 2 * math.pi, 90, endpoint=False)]
+    square = [(1000.3, 1000.03), (1000.3, 1000.07), (1000.34, 1000.07), (1000.34, 1000.03)]
+    outline = Polygon(shell, [round_hole, square])
+    link = LinkProfile(outline, [[1000.1, 1000.05], [1000.2, 1000.05]], 0.01)
+    centres, areas = link.holes
+    for k, ring in enumerate(outline.interiors):
+        hole = Polygon(ring)
+        np.testing.assert_allclose(centres[k], hole.centroid.coords[0], rtol=0, atol=1e-12)
+        assert areas[k] == pytest.approx(hole.area, rel=1e-9)

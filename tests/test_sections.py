@@ -11,7 +11,7 @@ from shapely.geometry import LineString, Polygon
 from linkstress.builders import straight_bar
 from linkstress.errors import GeometryError
 from linkstress.profile import LinkProfile
-from linkstress.sections import section_table
+from linkstress.sections import cut_extent, section_table
 
 
 def rect(x0, y0, w, h):
@@ -120,3 +120,21 @@ def test_stations_outside_the_link_are_refused_with_the_extent():
         bar.sections([0.5, 1.2])
     with pytest.raises(GeometryError, match="outside"):
         bar.sections([float("nan")])
+
+
+def test_cut_extent_is_the_section_tables_top_and_bottom_through_holes_and_rounded_ends():
+    bar = LinkProfile(
+        Polygon(
+            [(-0.03 + 0.03 * math.cos(t), 0.03 * math.sin(t)) for t in np.linspace(math.pi / 2, 3 * math.pi / 2, 40)]
+            + [(0.5, -0.03), (0.5, 0.03)],
+            [[(0.01 * math.cos(t), 0.01 * math.sin(t)) for t in np.linspace(0, 2 * math.pi, 64, endpoint=False)]],
+        ),
+        [[0.0, 0.0], [0.5, 0.0]],
+        0.01,
+    )
+    x = np.array([0.2, -0.05, 0.0, 0.005, -0.0299, 0.3])  # unsorted, through the hole and the round end
+    bottom, top = cut_extent(bar.boundary(), x)
+    table = bar.sections(x)
+    np.testing.assert_array_equal(bottom, table.bottom)
+    np.testing.assert_array_equal(top, table.top)
+    assert top[0] == pytest.approx(0.03) and bottom[0] == pytest.approx(-0.03)

@@ -41,7 +41,7 @@ class Boundary:
         """Edges of closed rings given as vertices (n, 2) without the repeated first vertex. With
         ``snap_x`` > 0 [m], edges whose ends differ in x by at most that much become exactly vertical."""
         starts = [_snap_vertical(r, snap_x) if snap_x > 0 else r for r in rings]
-        ends = [np.roll(r, -1, axis=0) for r in starts]
+        ends = [np.concatenate([r[1:], r[:1]]) for r in starts]
         return cls(np.concatenate(starts), np.concatenate(ends))
 
 
@@ -83,13 +83,14 @@ def boundary_of(outline: Polygon | Boundary) -> Boundary:
 
 def _snap_vertical(xy: NDArray[np.float64], tol: float) -> NDArray[np.float64]:
     """Give each run of vertices joined by near-vertical edges the x of the run's first vertex."""
-    steps = np.abs(np.diff(xy[:, 0], append=xy[0, 0])) <= tol
+    x = xy[:, 0]
+    steps = np.abs(np.concatenate([x[1:], x[:1]]) - x) <= tol
     if steps.all() or not steps.any():
         return xy
     # Start the ring after a step that is not near-vertical, so no run wraps around the end.
     shift = int(np.argmin(steps)) + 1
-    xy = np.roll(xy, -shift, axis=0)
-    steps = np.roll(steps, -shift)
+    xy = np.concatenate([xy[shift:], xy[:shift]])
+    steps = np.concatenate([steps[shift:], steps[:shift]])
     index = np.arange(len(xy))
     run_start = np.maximum.accumulate(np.where(np.concatenate([[False], steps[:-1]]), 0, index))
     snapped = xy.copy()

@@ -100,6 +100,15 @@ class LinkProfile:
         """Mass moment of inertia about the centre of mass, axis normal to the plane [kg m^2]."""
         return self.density * self.thickness * self.polar_moment_area
 
+    @cached_property
+    def holes(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Centroids (H, 2) [m] (sketch frame) and areas (H,) [m^2] of the holes, in outline order."""
+        rings = self._rings[1:]
+        if not rings:
+            return np.zeros((0, 2)), np.zeros(0)
+        values = np.array([_ring_centroid_and_area(r) for r in rings])
+        return values[:, :2], values[:, 2]
+
     # -- member frames -------------------------------------------------------------------------
 
     def frame(self, i: int = 0, j: int = 1) -> MemberFrame:
@@ -143,6 +152,19 @@ class LinkProfile:
         """Smallest and largest x [m] of the outline in member frame (i, j)."""
         edges = self.boundary(i, j)
         return edges.x_min, edges.x_max
+
+
+def _ring_centroid_and_area(xy: NDArray[np.float64]) -> tuple[float, float, float]:
+    """(x_c, y_c, area) [m, m, m^2] of the region inside a ring of vertices (n, 2), either orientation
+    (shoelace about the first vertex, so that far-off rings keep their digits)."""
+    local = xy - xy[0]
+    x0, y0 = local.T
+    x1, y1 = np.concatenate([local[1:], local[:1]]).T
+    cross = x0 * y1 - x1 * y0
+    twice_area = cross.sum()
+    cx = ((x0 + x1) * cross).sum() / (3 * twice_area)
+    cy = ((y0 + y1) * cross).sum() / (3 * twice_area)
+    return float(cx + xy[0, 0]), float(cy + xy[0, 1]), abs(float(twice_area)) / 2
 
 
 def _check_outline(name: str, outline: Polygon) -> None:

@@ -90,6 +90,24 @@ def height_on_edge(
     return np.where(x == x0, y0, np.where(x == x1, y1, y))
 
 
+def cut_extent(outline: Polygon | Boundary, stations: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Lowest and highest y [m] of the material on the cuts at ``stations`` [m] inside the outline's
+    x extent (member frame), without the rest of a section table."""
+    x = np.asarray(stations, float).ravel()
+    edges = boundary_of(outline)
+    x = within_extent(x, edges.x_min, edges.x_max, "station")
+    order = np.argsort(x)
+    cut = edge_crossings(edges.starts, edges.ends, x[order], sort=False)
+    bottom = np.full(len(x), np.inf)
+    top = np.full(len(x), -np.inf)
+    np.minimum.at(bottom, order[cut.station], cut.y)
+    np.maximum.at(top, order[cut.station], cut.y)
+    if not np.isfinite(top).all():
+        bad = float(x[~np.isfinite(top)][0])
+        raise GeometryError(f"station x = {bad!r} m cuts no material of the link")
+    return bottom, top
+
+
 @dataclass(frozen=True)
 class SectionTable:
     """Section properties at stations along a member, all arrays indexed by station.

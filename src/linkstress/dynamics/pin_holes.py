@@ -20,10 +20,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from shapely.geometry import Polygon
 
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
+from linkstress.sections import cut_extent
 
 KT_TABLE = (
     (0.05, 28.424), (0.10, 13.328), (0.20, 5.808), (0.30, 3.347),
@@ -72,11 +72,12 @@ def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleE
         return ()
     joints = link.frame(*loads.frame_joints).to_local(link.joints)
     # The section through each pin's centre spans the lug's full depth H (its top and bottom fibres).
-    cut = link.sections(joints[[j for j, _ in holed], 0], *loads.frame_joints)
+    bottom, top = cut_extent(link.boundary(*loads.frame_joints), joints[[j for j, _ in holed], 0])
+    areas = link.holes[1]
     estimates = []
     for k, (j, hole) in enumerate(holed):
-        diameter = 2 * float(np.sqrt(Polygon(link.outline.interiors[hole]).area / np.pi))
-        depth = float(cut.top[k] - cut.bottom[k])
+        diameter = 2 * float(np.sqrt(areas[hole] / np.pi))
+        depth = float(top[k] - bottom[k])
         net = max(depth - diameter, 1e-300) * link.thickness
         nominal = np.hypot(*loads.pin_forces[:, j].T) / net
         kt = pin_hole_kt(diameter / depth) if depth > 0 else None

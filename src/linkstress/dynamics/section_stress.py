@@ -37,7 +37,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from shapely.geometry import Polygon
 
 from linkstress.dynamics.internal_forces import ALPHA, FREE_Y, ForceBasis, InternalForces, force_basis, load_coefficients
 from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
@@ -103,13 +102,9 @@ NEAR_HOLE_SLACK = 1e-9
 def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: SectionTable) -> NDArray[np.bool_]:
     """Stations closer (along x) to a hole's centre than the local section depth (St-Venant: a pin's
     load spreads into a beam-like stress state about one depth from where it is applied)."""
-    frame = link.frame(*frame_joints)
-    flags = np.zeros(len(sections.x), bool)
+    centres = link.frame(*frame_joints).to_local(link.holes[0])[:, 0]
     depth = sections.top - sections.bottom
-    for ring in link.outline.interiors:
-        centre = frame.to_local(Polygon(ring).centroid.coords[0])[0]
-        flags |= np.abs(sections.x - centre) < depth * (1 - NEAR_HOLE_SLACK)
-    return flags
+    return (np.abs(sections.x[:, None] - centres) < (depth * (1 - NEAR_HOLE_SLACK))[:, None]).any(axis=1)
 
 
 def _polish(u, n, m, w, c, beta, half, steps: int = 2):
@@ -183,7 +178,7 @@ def section_stresses(
     normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
     fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
     mismatch = np.empty(size[0])
-    interior = []
+    single, split, chords = [], [], []
     for start in range(0, size[0], POSITION_BLOCK):
         p = slice(start, start + POSITION_BLOCK)
         c = coefficients[p]
@@ -192,12 +187,16 @@ def section_stresses(
         mismatch[p] = basis.mismatch(c, normal[p], shear[p], moment[p])
         s_top, s_bottom = c @ top, c @ bottom
         shape.outer_fibres(s_top, s_bottom, fibres.block(p))
-        candidates = shape.interior_candidates(s_top, s_bottom, np.abs(c @ body), normal[p], shear[p], moment[p])
-        interior.append([flat + start * size[1] for flat in candidates])
+        at_single, at_split, chord = shape.interior_candidates(
+            s_top, s_bottom, np.abs(c @ body), normal[p], shear[p], moment[p]
+        )
+        single.append(at_single + start * size[1])
+        split.append(at_split + start * size[1])
+        chords.append(chord)
     forces = InternalForces(table.x, normal, shear, moment, mismatch)
-    shape.hole_ends(forces, fibres)
-    for chord, flat in zip(shape.chords, zip(*interior)):
-        shape.interior(forces, coefficients, chord, np.concatenate(flat), fibres)
+    shape.hole_end_fibres(forces, fibres)
+    shape.single_interiors(forces, coefficients, np.concatenate(single), fibres)
+    shape.split_interiors(forces, np.concatenate(split), np.concatenate(chords), fibres)
     return SectionStresses(
         table, forces, von_mises, table.neutral_axis + u, sigma, fibres.tau, near_holes(link, frame_joints, table),
         pin_hole_estimates(link, loads),
@@ -210,23 +209,20 @@ whole-sweep arrays on a long sweep (this is blocking, not a loop over positions)
 
 
 @dataclass(frozen=True)
-class _Chord:
-    """Chord slot k at every station (zero where a station has no k-th chord): its ends' offsets
-    ``ua``, ``ub`` from the neutral axis and C; the stations ``cols`` that have one (a slice when
-    all do), and the stations whose chord ends at a hole below (``hole_below``) or above
-    (``hole_above``)."""
+class _Chords:
+    """Chords of the stations split by holes, one entry per chord: station ``at``, ends' offsets
+    ``ua``, ``ub`` from the neutral axis, and C (``interior_maximum``)."""
 
+    at: NDArray[np.intp]
     ua: NDArray[np.float64]
     ub: NDArray[np.float64]
     c: NDArray[np.float64]
-    cols: NDArray[np.intp] | slice
-    hole_below: NDArray[np.intp]
-    hole_above: NDArray[np.intp]
 
 
 @dataclass(frozen=True)
 class _SectionShape:
-    """What the fibre search needs of the sections, independent of the loads (all per station)."""
+    """What the fibre search needs of the sections, independent of the loads: per station, and the
+    chords of split sections, and the chord ends at holes (station, offset u, C)."""
 
     x: NDArray[np.float64]
     inv_area: NDArray[np.float64]
@@ -234,12 +230,11 @@ class _SectionShape:
     u_top: NDArray[np.float64]
     u_bottom: NDArray[np.float64]
     half: NDArray[np.float64]
-    single: NDArray[np.bool_]
-    split: NDArray[np.intp]
     lever: NDArray[np.float64]
     shear_gain: NDArray[np.float64]
     density: float
-    chords: tuple[_Chord, ...]
+    split: _Chords
+    hole_ends: _Chords
 
     @classmethod
     def of(cls, table: SectionTable, density: float) -> "_SectionShape":
@@ -247,34 +242,33 @@ class _SectionShape:
         yna = table.neutral_axis
         half = (table.top - table.bottom) / 2
         single = solid & (table.n_chords == 1) & (half > 0)
-        n_st = len(table.x)
-        chords = []
-        for k in range(table.lower.shape[1]):
-            has = (table.n_chords > k) & solid
-            ua = np.where(has, table.lower[:, k] - yna, 0.0)
-            ub = np.where(has, table.upper[:, k] - yna, 0.0)
-            c = np.where(has, 2 * table.first_moment(table.upper[:, k]) / table.thickness + ub * ub, 0.0)
-            cols = np.flatnonzero(has)
-            chords.append(_Chord(
-                ua, ub, c, slice(None) if len(cols) == n_st else cols,
-                cols if k > 0 else cols[:0], np.flatnonzero(has & (table.n_chords > k + 1)),
-            ))
         inv_inertia = np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0)
+        split, ends = [], []
+        for k in range(table.lower.shape[1]):
+            at = np.flatnonzero(solid & (table.n_chords > 1) & (table.n_chords > k))
+            ua, ub = table.lower[at, k] - yna[at], table.upper[at, k] - yna[at]
+            c = 2 * table.first_moment(table.upper[:, k])[at] / table.thickness + ub * ub
+            split.append((at, ua, ub, c))
+            # a chord's lower end is at a hole above the first chord; its upper end below the last
+            below = np.full(len(at), k > 0)
+            above = table.n_chords[at] > k + 1
+            ends += [(at[below], ua[below], c[below]), (at[above], ub[above], c[above])]
+        split_at, split_ua, split_ub, split_c = (np.concatenate(v) for v in zip(*split))
+        end_at, end_u, end_c = (np.concatenate(v) for v in zip(*ends))
         return cls(
             x=table.x,
             inv_area=np.where(solid, 1.0 / np.where(solid, table.area, 1.0), 0.0),
             inv_inertia=inv_inertia,
             u_top=table.top - yna,
             u_bottom=table.bottom - yna,
-            half=half,
-            single=single,
-            split=np.flatnonzero(solid & ~single),
+            half=np.where(single, half, 0.0),
             # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
             lever=np.where(single, 0.4 * density * half, 0.0),
             # (32/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
             shear_gain=np.where(single, (32 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
-            chords=tuple(chords),
+            split=_Chords(split_at, split_ua, split_ub, split_c),
+            hole_ends=_Chords(end_at, end_u, end_u, end_c),
         )
 
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
@@ -301,10 +295,11 @@ class _SectionShape:
         np.copyto(fibres.u, self.u_bottom)
         np.copyto(fibres.u, self.u_top, where=top_wins)
 
-    def interior_candidates(self, s_top, s_bottom, body, normal, shear, moment) -> list[NDArray[np.intp]]:
-        """Per chord slot, the flat (position, station) indices where the chord's interior may hold
-        the section's maximum (necessary conditions, so none is missed), for section forces, outer
-        fibres' sigma and ``body`` = |b_y| c (``body_basis``), all (P, S).
+    def interior_candidates(self, s_top, s_bottom, body, normal, shear, moment):
+        """Flat (position, station) indices where a single chord's interior may hold the section's
+        maximum, and (flat index, chord) pairs for the chords of split sections; necessary
+        conditions, so none is missed. Section forces, outer fibres' sigma and ``body`` = |b_y| c
+        are (P, S).
 
         A single chord is symmetric about the neutral axis (half-depth c, C = c^2). With the body
         term, sigma(u) = n + m_e u - beta u (c^2 - u^2), m_e = m + 0.4 beta c^2, so the outer fibres
@@ -314,9 +309,9 @@ class _SectionShape:
 
             (32/9) w^2 c^4 + 2 b c (2|n| + 2|m_e| c + 0.385 b c) > |m_e| c (2|n| + |m_e| c),
 
-        b = |b_y|, where 2|n| = |s_top + s_bottom| and 2|m_e| c = |s_top - s_bottom|. Sections split
-        by holes (no body term) are searched where the cubic of ``interior_maximum`` has three real
-        roots.
+        b = |b_y|, where 2|n| = |s_top + s_bottom| and 2|m_e| c = |s_top - s_bottom|. Chords of
+        sections split by holes (no body term) are searched where the cubic of
+        ``interior_maximum`` has three real roots.
         """
         two_n = s_top + s_bottom
         np.abs(two_n, out=two_n)
@@ -333,38 +328,38 @@ class _SectionShape:
         shear_term = shear * shear
         shear_term *= self.shear_gain
         gain += shear_term
-        found = [np.flatnonzero(gain > ends)] + [np.empty(0, np.intp) for _ in self.chords[1:]]
-        if len(self.split):
-            for k, chord in enumerate(self.chords):
-                cols = self.split if isinstance(chord.cols, slice) else chord.cols
-                n, m, w = (f[:, cols] * g[cols] for f, g in ((normal, self.inv_area), (moment, self.inv_inertia),
-                                                              (shear, self.inv_inertia / 2)))
-                rows, j = np.nonzero(has_interior_maximum(n, m, w, chord.c[cols]))
-                found[k] = np.concatenate([found[k], rows * len(self.x) + cols[j]])
-        return found
+        single = np.flatnonzero(gain > ends)
+        at = self.split.at
+        n, m, w = normal[:, at] * self.inv_area[at], moment[:, at] * self.inv_inertia[at], shear[:, at] * self.inv_inertia[at]
+        rows, chord = np.nonzero(has_interior_maximum(n, m, w / 2, self.split.c))
+        return single, rows * len(self.x) + at[chord], chord
 
-    def hole_ends(self, forces: InternalForces, fibres: "_Fibres") -> None:
+    def hole_end_fibres(self, forces: InternalForces, fibres: "_Fibres") -> None:
         """Chord ends at holes (every position, these few stations) that beat ``fibres``."""
-        count = forces.normal.shape[0]
-        for chord in self.chords:
-            for at, end in ((chord.hole_below, chord.ua), (chord.hole_above, chord.ub)):
-                if len(at):
-                    flat = (np.arange(count)[:, None] * len(self.x) + at).ravel()
-                    n, m, w, at = self._reduced(forces, flat)
-                    self._consider(fibres, flat, n, m, w, chord.c[at], end[at], 0.0, at)
-
-    def interior(self, forces: InternalForces, coefficients, chord: _Chord, flat, fibres: "_Fibres") -> None:
-        """The chord's interior maxima at the flat (position, station) indices ``flat`` where they
-        beat ``fibres``."""
-        if not len(flat):
-            return
+        ends = self.hole_ends
+        count = len(forces.normal)
+        flat = (np.arange(count)[:, None] * len(self.x) + ends.at).ravel()
         n, m, w, at = self._reduced(forces, flat)
-        c = chord.c[at]
+        self._consider(fibres, flat, n, m, w, np.tile(ends.c, count), np.tile(ends.ua, count), 0.0, at, repeated=True)
+
+    def single_interiors(self, forces: InternalForces, coefficients, flat, fibres: "_Fibres") -> None:
+        """Interior maxima of single chords (with the body-load term) at flat indices ``flat``."""
+        n, m, w, at = self._reduced(forces, flat)
+        half = self.half[at]
+        c = half * half
         u = interior_maximum(n, m, w, c)
         rows = flat // len(self.x)
-        beta = self.beta(coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at], at)
-        u = np.clip(_polish(u, n, m, w, c, beta, self.half[at]), chord.ua[at], chord.ub[at])
+        beta = self.density * (coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at]) / c
+        u = np.clip(_polish(u, n, m, w, c, beta, half), -half, half)
         self._consider(fibres, flat, n, m, w, c, u, beta, at)
+
+    def split_interiors(self, forces: InternalForces, flat, chord, fibres: "_Fibres") -> None:
+        """Interior maxima of the split sections' chords ``chord`` at flat indices ``flat``."""
+        n, m, w, at = self._reduced(forces, flat)
+        split = self.split
+        c = split.c[chord]
+        u = np.clip(_polish(interior_maximum(n, m, w, c), n, m, w, c, 0.0, 0.0), split.ua[chord], split.ub[chord])
+        self._consider(fibres, flat, n, m, w, c, u, 0.0, at, repeated=True)
 
     def _reduced(self, forces: InternalForces, flat):
         """n = N / A, m = M / I, w = V / 2I at flat (position, station) indices, and the stations."""
@@ -377,16 +372,11 @@ class _SectionShape:
             at,
         )
 
-    def _consider(self, fibres, flat, n, m, w, c, u, beta, at) -> None:
+    def _consider(self, fibres, flat, n, m, w, c, u, beta, at, repeated: bool = False) -> None:
         """Fibre offset u at the flat indices: sigma with the body-load term, tau, von Mises."""
         sigma = n + m * u + beta * u * (u * u - 0.6 * self.half[at] ** 2)
         tau = w * (c - u * u)
-        fibres.keep_larger(flat, np.sqrt(sigma * sigma + 3 * tau * tau), u, sigma, tau)
-
-    def beta(self, free_term, at):
-        """b_y / c^2, the body-load term's coefficient, for rho (free - alpha x) = density x ``free_term``."""
-        single = self.single[at]
-        return np.where(single, self.density * free_term / np.where(single, self.half[at], 1.0) ** 2, 0.0)
+        fibres.keep_larger(flat, np.sqrt(sigma * sigma + 3 * tau * tau), u, sigma, tau, repeated)
 
 
 @dataclass
@@ -402,10 +392,16 @@ class _Fibres:
     def block(self, positions: slice) -> "_Fibres":
         return _Fibres(self.von_mises[positions], self.u[positions], self.sigma[positions], self.tau[positions])
 
-    def keep_larger(self, flat, f, u, sigma, tau) -> None:
-        """Where candidate von Mises ``f`` beats the fibre so far at flat indices ``flat``, take it."""
+    def keep_larger(self, flat, f, u, sigma, tau, repeated: bool = False) -> None:
+        """Where candidate von Mises ``f`` beats the fibre so far at flat indices ``flat``, take it;
+        with ``repeated`` (an index may occur more than once), the largest of its candidates."""
         best = self.von_mises.reshape(-1)
-        wins = f > best[flat]
+        wins = np.flatnonzero(f > best[flat])
+        if repeated and len(wins) > 1:
+            order = np.lexsort((f[wins], flat[wins]))
+            wins = wins[order]
+            last = np.append(flat[wins][1:] != flat[wins][:-1], True)
+            wins = wins[last]
         flat = flat[wins]
         best[flat] = f[wins]
         self.u.reshape(-1)[flat] = u[wins]
