@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +14,7 @@ from linkstress.analysis import Plan, run_analysis
 from linkstress.builders import straight_bar, stadium
 from linkstress.dynamics.internal_forces import internal_forces
 from linkstress.dynamics.section_stress import default_stations, section_stresses
+from linkstress.kinematics.motion import angle_motion
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import Material
 from linkstress.scene import load_scene
@@ -177,11 +179,7 @@ def test_section_maximum_is_exact_against_dense_fibres(pin, alpha, omega, ax):
         q = table.first_moment(np.broadcast_to(ys, (len(x), len(ys))))[s]
         tau = f.shear[0, s] * q / (table.second_moment[s] * table.thickness)
         dense = np.sqrt(sigma**2 + 3 * tau**2).max()
-        # Exact for the linear stress. With the body-load term (|delta_sigma| <= 0.4 |b_y| c in a solid
-        # section) von Mises, 1-Lipschitz in sigma, can move by that much at the true and at the
-        # found maximum: the found value is within twice the term of the true one.
-        slack = 0.8 * abs(b_y[s]) * (table.top[s] - table.bottom[s]) / 2 if table.n_chords[s] == 1 else 0.0
-        assert result.von_mises[0, s] >= dense * (1 - 1e-12) - slack
+        assert result.von_mises[0, s] >= dense * (1 - 1e-9)
         assert result.von_mises[0, s] <= dense * (1 + 1e-6) + 1e-9
         # and the reported fibre carries that von Mises
         vm_at = np.sqrt(result.sigma[0, s] ** 2 + 3 * result.tau[0, s] ** 2)
@@ -209,3 +207,25 @@ def test_sections_split_by_a_curved_links_outline_take_the_largest_of_their_chor
             tau = f.shear[p, s] * q / (table.second_moment[s] * table.thickness)
             dense = np.sqrt(sigma**2 + 3 * tau**2).max()
             assert dense * (1 - 1e-12) <= stress.von_mises[p, s] <= dense * (1 + 1e-6)
+
+
+def test_seed_coupler_maximum_with_the_body_load_term_is_that_of_dense_fibres_over_a_turn():
+    # The seed coupler is a 0.5 m deep steel bar: near its free ends N and M fade and its own
+    # d'Alembert load makes most of the stress, with peaks inside the section (the case where a
+    # search from the linear stress's peak fell short by 6 % of the link's maximum).
+    scene = load_scene(CASES / "seed_ansys_fourbar" / "scene.toml")
+    scene = replace(scene, motion=angle_motion(np.linspace(0.0, 360.0, 72, endpoint=False), -1.0, 0.0))
+    result = run_analysis(scene, Plan(forces=True, stresses=("coupler",), stations=200, validate=(), notes=()))
+    stress, loads = result.stresses["coupler"], result.forces.link_loads["coupler"]
+    table, f = stress.sections, stress.forces
+    b_y = 7850.0 * (loads.gravity[:, 1] - loads.origin_acceleration[:, 1])[:, None] - 7850.0 * loads.alpha[:, None] * table.x
+    v = np.linspace(-1.0, 1.0, 2001)
+    for s in np.flatnonzero(table.n_chords == 1):
+        c = (table.top[s] - table.bottom[s]) / 2
+        u = v * c
+        sigma = (f.normal[:, s, None] / table.area[s] + f.moment[:, s, None] * u / table.second_moment[s]
+                 + (b_y[:, s, None] / c**2) * u * (u * u - 0.6 * c * c))
+        tau = f.shear[:, s, None] / (2 * table.second_moment[s]) * (c * c - u * u)
+        dense = np.sqrt(sigma**2 + 3 * tau**2).max(axis=1)
+        assert (stress.von_mises[:, s] >= dense * (1 - 1e-9)).all()
+        assert (stress.von_mises[:, s] <= dense * (1 + 1e-6)).all()

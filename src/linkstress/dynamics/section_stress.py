@@ -8,9 +8,9 @@ Q(y) (``linkstress.sections``), at fibre y of the plate of thickness t, with u =
 Within one material chord [a, b], Q(y) = (t / 2)(C - u^2) with C = 2 Q(b) / t + (b - y_na)^2, so
 sigma_vM^2 = (n + m u)^2 + 3 w^2 (C - u^2)^2 (n = N/A, m = M/I, w = V / 2I) is a quartic in u with a
 positive leading term: its largest value on the chord is at an end or at its only interior local
-maximum, the middle real root of the cubic f'(u) = 0 (trigonometric form). The maximum over each
-section is therefore exact, not sampled. Near a pin hole beam theory does not hold: stations closer
-to a hole's centre than one local section depth are flagged, and their values are nominal.
+maximum, the middle real root of the cubic f'(u) = 0 (``fibre_peaks``). Near a pin hole beam theory
+does not hold: stations closer to a hole's centre than one local section depth are flagged, and
+their values are nominal.
 
 Distributed body load. The d'Alembert (and gravity) load acts through the depth, and elementary
 beam theory misses the part of sigma it causes. For a solid section of half-depth c under a
@@ -22,13 +22,16 @@ d = -b_y / (4 c^2) and, beside M y / I (same M), the self-equilibrated term
 
 (+0.4 b_y c at the top fibre), while its shear stress is exactly Jourawski's. It is added on every
 single-chord section, with b_y = rho (g - a_O - alpha k x r)_y at the station (the part of the
-d'Alembert load uniform through the depth). The search above is exact for the linear stress; with
-the correction the outer fibres stay exact and an interior maximum is polished by Newton steps on
-the corrected sigma. Since von Mises is 1-Lipschitz in sigma and the correction is at most
-0.4 |b_y| c at any fibre, the value found is within 0.8 |b_y| c of the exact maximum (a few per cent
-of the correction's own few per cent), and exact wherever the maximum is at an outer fibre. On the stubby seed bars it is 2-4 % of the nominal stress, and takes the
-beam-versus-FEA difference there from up to 3.8 % to under 0.6 %; sections split by holes get no
-correction (their values are nominal anyway).
+d'Alembert load uniform through the depth); sigma is then a cubic in u and the chord's interior
+maxima are found by ``fibre_peaks.single_chord_peak``. On the stubby seed bars the term is 2-4 % of
+the nominal stress and takes the beam-versus-FEA difference there from up to 3.8 % to under 0.6 %;
+near a link's free ends, where N and M fade, it is most of the stress. Sections split by holes get
+no correction (their values are nominal anyway).
+
+Every stress is linear in the load coefficients, so N, V, M and the outer fibres' sigma over a
+sweep are products of the (P, Q) coefficients with (Q, S) bases made once per link, evaluated in
+blocks of positions; only the (position, station) pairs where a bound says a chord's interior can
+beat its outer fibres are searched further.
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.dynamics.fibre_peaks import cubic_peak, has_cubic_peak, single_chord_peak
 from linkstress.dynamics.internal_forces import ALPHA, FREE_Y, ForceBasis, InternalForces, force_basis, load_coefficients
 from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
@@ -107,55 +111,6 @@ def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: Secti
     return (np.abs(sections.x[:, None] - centres) < (depth * (1 - NEAR_HOLE_SLACK))[:, None]).any(axis=1)
 
 
-def _polish(u, n, m, w, c, beta, half, steps: int = 2):
-    """Newton steps on d(sigma_vM^2)/du with the body-load term, from the interior maximum of the
-    linear stress (the term is a correction of a few per cent, so a few steps converge)."""
-    shift = 0.6 * half * half
-    w12 = 12 * w * w
-    for _ in range(steps):
-        uu = u * u
-        sigma = n + u * (m + beta * (uu - shift))
-        slope = m + beta * (3 * uu - shift)
-        gradient = 2 * sigma * slope - w12 * u * (c - uu)
-        curvature = 2 * slope * slope + 12 * sigma * beta * u - w12 * (c - 3 * uu)
-        u = u - np.divide(gradient, curvature, out=np.zeros_like(u), where=curvature < 0)
-    return u
-
-
-def interior_maximum(n, m, w, c):
-    """The offset u of the chord's interior local maximum of sigma_vM^2 (arrays of one shape).
-
-    d(sigma_vM^2)/du / 2 = 6 w^2 u^3 + (m^2 - 6 w^2 C) u + m n. Called where it has three real roots
-    (``has_interior_maximum``); the middle one is the maximum (Cardano's trigonometric solution;
-    clipping the cosine's argument takes a double root where rounding put three roots at two).
-    """
-    w6 = 6 * w * w
-    p = (m * m - w6 * c) / w6
-    q = m * n / w6
-    radius = np.sqrt(np.maximum(-p / 3, 0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cos_arg = np.clip(-q / (2 * radius**3), -1.0, 1.0)
-    return 2 * radius * np.cos(np.arccos(cos_arg) / 3 - 2 * np.pi / 3)
-
-
-INTERIOR_SLACK = 1e-9
-"""Relative slack of the three-root test, so that rounding never hides a maximum at a double root."""
-
-
-def has_interior_maximum(n, m, w, c):
-    """Where the cubic of ``interior_maximum`` has three real roots, as a mask.
-
-    With P = m^2 - 6 w^2 C and Q = m n (the cubic's p and q times 6 w^2 > 0), three roots need
-    P < 0 and 27 q^2 < -4 p^3, that is 27 Q^2 6 w^2 < -4 P^3: no division, so it runs on whole
-    arrays of sections where w may be zero (then there is no interior maximum).
-    """
-    w6 = 6 * w * w
-    with np.errstate(over="ignore", invalid="ignore"):
-        p = m * m - w6 * c
-        q = m * n
-        return (p < 0) & (27 * q * q * w6 < -4 * (1 + INTERIOR_SLACK) * p * p * p)
-
-
 def section_stresses(
     link: LinkProfile,
     loads: LinkLoadCase,
@@ -211,7 +166,7 @@ whole-sweep arrays on a long sweep (this is blocking, not a loop over positions)
 @dataclass(frozen=True)
 class _Chords:
     """Chords of the stations split by holes, one entry per chord: station ``at``, ends' offsets
-    ``ua``, ``ub`` from the neutral axis, and C (``interior_maximum``)."""
+    ``ua``, ``ub`` from the neutral axis, and C (``cubic_peak``)."""
 
     at: NDArray[np.intp]
     ua: NDArray[np.float64]
@@ -311,7 +266,7 @@ class _SectionShape:
 
         b = |b_y|, where 2|n| = |s_top + s_bottom| and 2|m_e| c = |s_top - s_bottom|. Chords of
         sections split by holes (no body term) are searched where the cubic of
-        ``interior_maximum`` has three real roots.
+        ``cubic_peak`` has three real roots.
         """
         two_n = s_top + s_bottom
         np.abs(two_n, out=two_n)
@@ -331,7 +286,7 @@ class _SectionShape:
         single = np.flatnonzero(gain > ends)
         at = self.split.at
         n, m, w = normal[:, at] * self.inv_area[at], moment[:, at] * self.inv_inertia[at], shear[:, at] * self.inv_inertia[at]
-        rows, chord = np.nonzero(has_interior_maximum(n, m, w / 2, self.split.c))
+        rows, chord = np.nonzero(has_cubic_peak(n, m, w / 2, self.split.c))
         return single, rows * len(self.x) + at[chord], chord
 
     def hole_end_fibres(self, forces: InternalForces, fibres: "_Fibres") -> None:
@@ -343,22 +298,24 @@ class _SectionShape:
         self._consider(fibres, flat, n, m, w, np.tile(ends.c, count), np.tile(ends.ua, count), 0.0, at, repeated=True)
 
     def single_interiors(self, forces: InternalForces, coefficients, flat, fibres: "_Fibres") -> None:
-        """Interior maxima of single chords (with the body-load term) at flat indices ``flat``."""
+        """Interior maxima of single chords (with the body-load term) at flat indices ``flat``.
+
+        In s = u / c: sigma = n + (m - 0.6 beta c^2) c s + beta c^3 s^3 with beta c^3 = b_y c, and
+        3 tau^2 = 3 w^2 c^4 (1 - s^2)^2 (``single_chord_peak``)."""
         n, m, w, at = self._reduced(forces, flat)
         half = self.half[at]
         c = half * half
-        u = interior_maximum(n, m, w, c)
         rows = flat // len(self.x)
-        beta = self.density * (coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at]) / c
-        u = np.clip(_polish(u, n, m, w, c, beta, half), -half, half)
-        self._consider(fibres, flat, n, m, w, c, u, beta, at)
+        body = self.density * (coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at]) * half
+        s = single_chord_peak(n, m * half - 0.6 * body, body, 3 * (w * c) ** 2)
+        self._consider(fibres, flat, n, m, w, c, s * half, body / (half * c), at)
 
     def split_interiors(self, forces: InternalForces, flat, chord, fibres: "_Fibres") -> None:
         """Interior maxima of the split sections' chords ``chord`` at flat indices ``flat``."""
         n, m, w, at = self._reduced(forces, flat)
         split = self.split
         c = split.c[chord]
-        u = np.clip(_polish(interior_maximum(n, m, w, c), n, m, w, c, 0.0, 0.0), split.ua[chord], split.ub[chord])
+        u = np.clip(cubic_peak(n, m, w, c), split.ua[chord], split.ub[chord])
         self._consider(fibres, flat, n, m, w, c, u, 0.0, at, repeated=True)
 
     def _reduced(self, forces: InternalForces, flat):
