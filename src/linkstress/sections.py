@@ -12,7 +12,7 @@ All stations are cut at once: each boundary edge is matched with the sorted stat
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -130,6 +130,9 @@ class SectionTable:
     second_moment: NDArray[np.float64]
     top: NDArray[np.float64]
     bottom: NDArray[np.float64]
+    crossings: Crossings | None = field(default=None, repr=False, compare=False)
+    """The edge crossings the table was cut from (``edge_crossings`` at the sorted stations, right-hand
+    limit), which ``region_moments`` can reuse."""
 
     @property
     def c_top(self) -> NDArray[np.float64]:
@@ -176,13 +179,14 @@ def section_table(outline: Polygon | Boundary, stations: ArrayLike, thickness: f
     xs = x[order]
     at_end = xs == maxx
     inner = edge_crossings(starts, ends, xs[~at_end])
-    right_end = edge_crossings(starts, ends, xs[at_end], left_limit=True)
-    n_inner = int((~at_end).sum())
-    station_sorted = np.concatenate([inner.station, right_end.station + n_inner])
-    y = np.concatenate([inner.y, right_end.y])
+    station_sorted, y = inner.station, inner.y
+    if at_end.any():
+        right_end = edge_crossings(starts, ends, xs[at_end], left_limit=True)
+        station_sorted = np.concatenate([station_sorted, right_end.station + int((~at_end).sum())])
+        y = np.concatenate([y, right_end.y])
     pairs = y.reshape(-1, 2)
     pair_station = order[station_sorted[::2]]
-    return _table_from_chords(x, thickness, pair_station, pairs[:, 0], pairs[:, 1])
+    return replace(_table_from_chords(x, thickness, pair_station, pairs[:, 0], pairs[:, 1]), crossings=inner)
 
 
 def _table_from_chords(

@@ -127,7 +127,7 @@ def force_basis(
     x = sections.x
     joints = link.frame(i, j).to_local(link.joints)
     if moments is None:
-        moments = region_moments(link.boundary(i, j), x)
+        moments = region_moments(link.boundary(i, j), x, sections.crossings)
     rho_t = link.density * link.thickness
     cut = np.column_stack([x, sections.neutral_axis])
     point_x = np.array([pf.at[0] for pf in loads.point_forces]).reshape(-1)
