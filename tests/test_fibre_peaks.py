@@ -25,7 +25,7 @@ def test_single_chord_peak_is_the_highest_of_a_hundred_thousand_fibres(a, b, d_s
     # d_scale sweeps the body-load term from absent to three times the rest, where g has up to
     # three maxima in the chord.
     d, e = d_scale * d_unit, 0.0 if no_shear else e
-    s = single_chord_peak(*(np.array([v]) for v in (a, b, d, e)))[0]
+    s = single_chord_peak(*(np.array([v]) for v in (a, b, d, e)))[1][0]
     dense = g(FIBRES, a, b, d, e).max()
     assert -1.0 <= s <= 1.0
     assert g(s, a, b, d, e) >= dense * (1 - 1e-9) - 1e-300
@@ -35,7 +35,7 @@ def test_single_chord_peak_finds_a_peak_between_samples_that_rise_toward_an_end(
     # From the seed coupler near its free end (sigma in Pa): the nine samples peak at s = 0, the
     # chord at s = 0.14; Newton's first step from s = 0 overshoots the samples' bracket.
     a, b, d, e = -38.7696327, -2566.45608, 3670.48139, 3325345.90
-    s = single_chord_peak(*(np.array([v]) for v in (a, b, d, e)))[0]
+    s = single_chord_peak(*(np.array([v]) for v in (a, b, d, e)))[1][0]
     assert s == np.clip(s, 0.13, 0.15)
     assert g(s, a, b, d, e) >= g(FIBRES, a, b, d, e).max() * (1 - 1e-9)
 
@@ -49,3 +49,16 @@ def test_cubic_peak_is_the_interior_maximum_of_the_linear_stress():
     dense = [FIBRES[np.argmax((n[k] + m[k] * FIBRES) ** 2 + 3 * w[k] ** 2 * (c[k] - FIBRES**2) ** 2)] for k in range(2)]
     np.testing.assert_allclose(u, dense, atol=2e-5)
     assert abs(u[0]) < 1e-12 and u[1] > 0.0
+
+
+def test_single_chord_peak_climbs_only_where_g_may_beat_the_floor():
+    # g = (s + 0.1 s^3)^2 + 0.5 (1 - s^2)^2: 1.21 at the ends, 0.5 at the middle. Against a floor of
+    # 1.21 (the ends, reached already) nothing inside can win on the first entry; the second, with
+    # more shear, peaks inside above its ends.
+    a, b, d = np.zeros(2), np.ones(2), np.full(2, 0.1)
+    e = np.array([0.5, 4.0])
+    ends = (a + b + d) ** 2
+    kept, s = single_chord_peak(a, b, d, e, ends)
+    assert kept.tolist() == [1]
+    assert g(s[0], 0.0, 1.0, 0.1, 4.0) > ends[1]
+    assert g(s[0], 0.0, 1.0, 0.1, 4.0) >= g(FIBRES, 0.0, 1.0, 0.1, 4.0).max() * (1 - 1e-9)

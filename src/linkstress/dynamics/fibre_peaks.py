@@ -61,23 +61,48 @@ CLIMB_STEPS = 4
 
 
 def single_chord_peak(
-    a: NDArray[np.float64], b: NDArray[np.float64], d: NDArray[np.float64], e: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """s in [-1, 1] where g(s) = (a + b s + d s^3)^2 + e (1 - s^2)^2 is largest (arrays of one
+    a: NDArray[np.float64],
+    b: NDArray[np.float64],
+    d: NDArray[np.float64],
+    e: NDArray[np.float64],
+    floor: NDArray[np.float64] | None = None,
+) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
+    """Where g(s) = (a + b s + d s^3)^2 + e (1 - s^2)^2 is largest for s in [-1, 1] (arrays of one
     shape, e >= 0): a climb from every sample of ``GRID`` that is at least as high as its
-    neighbours, the highest summit kept."""
+    neighbours, the highest summit kept.
+
+    With ``floor`` (the larger of g(-1) and g(1), reached already at the outer fibres), only the
+    entries whose g may exceed it are climbed: between samples h apart g exceeds the higher sample
+    by at most h^2 / 8 max|g''|, and |g''| <= sum k (k - 1) |p_k| on the chord for g = sum p_k s^k.
+    Returns the indices of the entries climbed and their s.
+    """
     sampled = np.stack([a, b, d], axis=1) @ np.stack([np.ones_like(GRID), GRID, GRID**3])
     sampled *= sampled
     sampled += e[:, None] * (1 - GRID * GRID) ** 2
     summit = np.ones(sampled.shape, bool)
     summit[:, 1:] &= sampled[:, 1:] >= sampled[:, :-1]
     summit[:, :-1] &= sampled[:, :-1] >= sampled[:, 1:]
+    if floor is not None:
+        # p2 = b^2 - 2e, p3 = 2ad, p4 = 2bd + e, p6 = d^2
+        bend = 2 * np.abs(b * b - 2 * e) + 12 * np.abs(a * d) + 12 * np.abs(2 * b * d + e) + 30 * d * d
+        h = GRID[1] - GRID[0]
+        summit &= sampled + (h * h / 8) * bend[:, None] > floor[:, None]
+        # An end whose neighbour sample is lower: g there is at most g(end) - |g'(end)| t + bend t^2 / 2
+        # at a distance t inside, never above the end (reached already) while t <= 2 |g'(end)| / bend.
+        # g'(+-1) = 2 sigma(+-1) sigma'(+-1): the shear term's slope vanishes at the free edges.
+        slope_bottom = 2 * (a - b - d) * (b + 3 * d)
+        slope_top = 2 * (a + b + d) * (b + 3 * d)
+        summit[:, 0] &= -slope_bottom < bend * h / 2
+        summit[:, -1] &= slope_top < bend * h / 2
     rows, k = np.nonzero(summit)
     s, g = _climb(GRID[k], a[rows], b[rows], d[rows], e[rows], GRID[np.maximum(k - 1, 0)], GRID[np.minimum(k + 1, len(GRID) - 1)])
-    # rows come sorted and every row has a summit: reduce each row's run of starts
-    first = np.flatnonzero(np.r_[True, rows[1:] != rows[:-1]])
-    best = np.maximum.reduceat(g, first) if len(g) else g
-    return np.maximum.reduceat(np.where(g == best[rows], s, -np.inf), first) if len(g) else s
+    if not len(g):
+        return rows, s
+    # rows come sorted: reduce each row's run of starts
+    starts_run = np.r_[True, rows[1:] != rows[:-1]]
+    first = np.flatnonzero(starts_run)
+    best = np.maximum.reduceat(g, first)[np.cumsum(starts_run) - 1]
+    return rows[first], np.maximum.reduceat(np.where(g == best, s, -np.inf), first)
 
 
 def _climb(s, a, b, d, e, lo, hi):

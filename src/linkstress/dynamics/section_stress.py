@@ -307,8 +307,9 @@ class _SectionShape:
         c = half * half
         rows = flat // len(self.x)
         body = self.density * (coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at]) * half
-        s = single_chord_peak(n, m * half - 0.6 * body, body, 3 * (w * c) ** 2)
-        self._consider(fibres, flat, n, m, w, c, s * half, body / (half * c), at)
+        reached = fibres.von_mises.reshape(-1)[flat]
+        k, s = single_chord_peak(n, m * half - 0.6 * body, body, 3 * (w * c) ** 2, reached * reached)
+        self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], s * half[k], body[k] / (half[k] * c[k]), at[k])
 
     def split_interiors(self, forces: InternalForces, flat, chord, fibres: "_Fibres") -> None:
         """Interior maxima of the split sections' chords ``chord`` at flat indices ``flat``."""
