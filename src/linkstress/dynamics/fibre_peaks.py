@@ -95,9 +95,9 @@ def single_chord_peak(
         summit[:, 0] &= -slope_bottom < bend * h / 2
         summit[:, -1] &= slope_top < bend * h / 2
     rows, k = np.nonzero(summit)
+    if not len(rows):
+        return rows, GRID[k]
     s, g = _climb(GRID[k], a[rows], b[rows], d[rows], e[rows], GRID[np.maximum(k - 1, 0)], GRID[np.minimum(k + 1, len(GRID) - 1)])
-    if not len(g):
-        return rows, s
     # rows come sorted: reduce each row's run of starts
     starts_run = np.r_[True, rows[1:] != rows[:-1]]
     first = np.flatnonzero(starts_run)

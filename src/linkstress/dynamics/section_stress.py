@@ -292,6 +292,8 @@ class _SectionShape:
     def hole_end_fibres(self, forces: InternalForces, fibres: "_Fibres") -> None:
         """Chord ends at holes (every position, these few stations) that beat ``fibres``."""
         ends = self.hole_ends
+        if not len(ends.at):
+            return
         count = len(forces.normal)
         flat = (np.arange(count)[:, None] * len(self.x) + ends.at).ravel()
         n, m, w, at = self._reduced(forces, flat)
@@ -302,6 +304,8 @@ class _SectionShape:
 
         In s = u / c: sigma = n + (m - 0.6 beta c^2) c s + beta c^3 s^3 with beta c^3 = b_y c, and
         3 tau^2 = 3 w^2 c^4 (1 - s^2)^2 (``single_chord_peak``)."""
+        if not len(flat):
+            return
         n, m, w, at = self._reduced(forces, flat)
         half = self.half[at]
         c = half * half
@@ -313,6 +317,8 @@ class _SectionShape:
 
     def split_interiors(self, forces: InternalForces, flat, chord, fibres: "_Fibres") -> None:
         """Interior maxima of the split sections' chords ``chord`` at flat indices ``flat``."""
+        if not len(flat):
+            return
         n, m, w, at = self._reduced(forces, flat)
         split = self.split
         c = split.c[chord]
