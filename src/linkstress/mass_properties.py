@@ -37,12 +37,16 @@ class AreaProperties:
 
 def area_properties(polygon: Polygon) -> AreaProperties:
     """Area, centroid and centroidal second moments of ``polygon`` (Green's theorem, exact)."""
-    edges = Boundary.from_rings(oriented_rings(polygon))
-    p, q = edges.starts, edges.ends
     minx, miny, maxx, maxy = polygon.bounds
-    ref = np.array([(minx + maxx) / 2, (miny + maxy) / 2])
-    x0, y0 = (p - ref).T
-    x1, y1 = (q - ref).T
+    return edge_area_properties(Boundary.from_rings(oriented_rings(polygon)), ((minx + maxx) / 2, (miny + maxy) / 2))
+
+
+def edge_area_properties(edges: Boundary, ref: tuple[float, float]) -> AreaProperties:
+    """``area_properties`` of the region bounded by ``edges`` (material on their left), with the sums
+    taken about ``ref`` [m], a point near the region, so that far-off regions keep their digits."""
+    ref = np.asarray(ref, float)
+    x0, y0 = (edges.starts - ref).T
+    x1, y1 = (edges.ends - ref).T
     cross = x0 * y1 - x1 * y0
     area = cross.sum() / 2
     cx = ((x0 + x1) * cross).sum() / (6 * area)

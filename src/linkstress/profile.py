@@ -20,7 +20,7 @@ from linkstress.boundary import Boundary, oriented_rings, rounding_slack
 from linkstress.bounds import BoundingFunctions, bounding_functions
 from linkstress.errors import GeometryError
 from linkstress.frames import MemberFrame
-from linkstress.mass_properties import AreaProperties, area_properties
+from linkstress.mass_properties import AreaProperties, area_properties, edge_area_properties
 from linkstress.materials import Material
 from linkstress.sections import SectionTable, section_table
 
@@ -106,8 +106,9 @@ class LinkProfile:
         rings = self._rings[1:]
         if not rings:
             return np.zeros((0, 2)), np.zeros(0)
-        values = np.array([_ring_centroid_and_area(r) for r in rings])
-        return values[:, :2], values[:, 2]
+        # A hole's ring runs clockwise; reversed, it bounds the hole itself.
+        holes = [edge_area_properties(Boundary.from_rings([r[::-1]]), r[0]) for r in rings]
+        return np.array([h.centroid for h in holes]), np.array([h.area for h in holes])
 
     # -- member frames -------------------------------------------------------------------------
 
@@ -152,19 +153,6 @@ class LinkProfile:
         """Smallest and largest x [m] of the outline in member frame (i, j)."""
         edges = self.boundary(i, j)
         return edges.x_min, edges.x_max
-
-
-def _ring_centroid_and_area(xy: NDArray[np.float64]) -> tuple[float, float, float]:
-    """(x_c, y_c, area) [m, m, m^2] of the region inside a ring of vertices (n, 2), either orientation
-    (shoelace about the first vertex, so that far-off rings keep their digits)."""
-    local = xy - xy[0]
-    x0, y0 = local.T
-    x1, y1 = np.concatenate([local[1:], local[:1]]).T
-    cross = x0 * y1 - x1 * y0
-    twice_area = cross.sum()
-    cx = ((x0 + x1) * cross).sum() / (3 * twice_area)
-    cy = ((y0 + y1) * cross).sum() / (3 * twice_area)
-    return float(cx + xy[0, 0]), float(cy + xy[0, 1]), abs(float(twice_area)) / 2
 
 
 def _check_outline(name: str, outline: Polygon) -> None:

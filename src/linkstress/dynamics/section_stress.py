@@ -175,6 +175,16 @@ class _Chords:
 
 
 @dataclass(frozen=True)
+class _HoleEdges:
+    """Chord ends at holes, one entry per end: station ``at``, offset ``u`` from the neutral axis,
+    and the chord's C."""
+
+    at: NDArray[np.intp]
+    u: NDArray[np.float64]
+    c: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
 class _SectionShape:
     """What the fibre search needs of the sections, independent of the loads: per station, and the
     chords of split sections, and the chord ends at holes (station, offset u, C)."""
@@ -189,7 +199,7 @@ class _SectionShape:
     shear_gain: NDArray[np.float64]
     density: float
     split: _Chords
-    hole_ends: _Chords
+    hole_ends: _HoleEdges
 
     @classmethod
     def of(cls, table: SectionTable, density: float) -> "_SectionShape":
@@ -223,7 +233,7 @@ class _SectionShape:
             shear_gain=np.where(single, (32 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
             split=_Chords(split_at, split_ua, split_ub, split_c),
-            hole_ends=_Chords(end_at, end_u, end_u, end_c),
+            hole_ends=_HoleEdges(end_at, end_u, end_c),
         )
 
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
@@ -297,7 +307,7 @@ class _SectionShape:
         count = len(forces.normal)
         flat = (np.arange(count)[:, None] * len(self.x) + ends.at).ravel()
         n, m, w, at = self._reduced(forces, flat)
-        self._consider(fibres, flat, n, m, w, np.tile(ends.c, count), np.tile(ends.ua, count), 0.0, at, repeated=True)
+        self._consider(fibres, flat, n, m, w, np.tile(ends.c, count), np.tile(ends.u, count), 0.0, at, repeated=True)
 
     def single_interiors(self, forces: InternalForces, coefficients, flat, fibres: "_Fibres") -> None:
         """Interior maxima of single chords (with the body-load term) at flat indices ``flat``.
