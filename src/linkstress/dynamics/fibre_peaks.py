@@ -8,9 +8,10 @@ asks this module for the interior candidates.
 - A chord of a section split by holes carries sigma = n + m u: sigma_vM^2 is a quartic and its
   interior maximum is the middle root of a cubic, in closed form (``cubic_peak``).
 - A single (solid) chord of half-depth c carries the body-load term as well. In s = u / c in
-  [-1, 1], sigma_vM^2 = g(s) = (a + b s + d s^3)^2 + e (1 - s^2)^2, whose derivative is a quintic
-  with up to three maxima in the chord. ``single_chord_peak`` samples nine fibres and climbs from
-  each sample that is higher than its neighbours, taking only the Newton steps that raise g.
+  [-1, 1], sigma_vM^2 = g(s) = (a + b s + d s^3)^2 + e (1 - s^2)^2, a sextic with at most two
+  maxima on the whole line (its slope, a quintic, has at most five roots: minimum, maximum, minimum,
+  maximum, minimum). ``single_chord_peak`` samples nine fibres, bounds g between
+  each pair of samples, and solves g' = 0 where a bracket may hold the maximum.
 """
 
 from __future__ import annotations
@@ -54,10 +55,17 @@ def has_cubic_peak(n, m, w, c):
         return (p < 0) & (27 * q * q * w6 < -4 * (1 + INTERIOR_SLACK) * p * p * p)
 
 
-GRID = np.linspace(-1.0, 1.0, 9)
-"""Fibres s sampled by ``single_chord_peak``: a peak of g between two samples shows as a sample
-higher than its neighbours."""
-CLIMB_STEPS = 4
+SAMPLES = 9
+"""Fibres sampled per bracket of the search (``single_chord_peak``), its ends included."""
+LEVELS = 3
+"""Passes of the search: the first samples the chord at spacing 1/4, each later one samples the
+brackets still undecided at an eighth of their width."""
+NEWTON_STEPS = 6
+
+_UNIT = np.linspace(0.0, 1.0, SAMPLES)
+GRID = -1.0 + 2.0 * _UNIT
+_G_POWERS = np.stack([GRID**k for k in (0, 1, 2, 3, 4, 6)], axis=1)
+_M_POWERS = np.stack([GRID**k for k in (0, 1, 2, 3, 5)], axis=1)
 
 
 def single_chord_peak(
@@ -68,67 +76,99 @@ def single_chord_peak(
     floor: NDArray[np.float64] | None = None,
 ) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
     """Where g(s) = (a + b s + d s^3)^2 + e (1 - s^2)^2 is largest for s in [-1, 1] (arrays of one
-    shape, e >= 0): a climb from every sample of ``GRID`` that is at least as high as its
-    neighbours, the highest summit kept.
+    shape, e >= 0), for the entries where it beats ``floor`` (g reached already, at the outer
+    fibres); without ``floor``, for every entry. Returns the indices of those entries and their s.
 
-    With ``floor`` (the larger of g(-1) and g(1), reached already at the outer fibres), only the
-    entries whose g may exceed it are climbed: between samples h apart g exceeds the higher sample
-    by at most h^2 / 8 max|g''|, and |g''| <= sum k (k - 1) |p_k| on the chord for g = sum p_k s^k.
-    Returns the indices of the entries climbed and their s.
+    g is sampled at nine fibres; every sample is at most the best value b so far. Between two samples
+    h apart, in t = (s - s0) / h, g is its cubic Hermite interpolant (values g0, g1, slopes g'0, g'1
+    at the ends), whose Bezier control points are g0, c1 = g0 + h g'0 / 3, c2 = g1 - h g'1 / 3, g1,
+    plus an error of at most (h^4 / 24) max|g''''| t^2 (1 - t)^2. With g0, g1 <= b and
+    t^2 (1 - t)^2 <= t (1 - t) / 4, g(t) - b <= t (1 - t) (3 (max(c1, c2) - b) + h^4 max|g''''| / 96),
+    so an interior point beats b only where
+
+        max(c1, c2) + (h^4 / 288) max|g''''| > b,
+
+    with max|g''''| <= 24 |2 b d + e| + 360 d^2 on the chord. In a bracket where g' falls from
+    positive to negative the maximum is the root of g', found by Newton's steps kept inside the
+    bracket. A bracket that may still beat the best value found but shows no such sign change (a
+    maximum and a minimum between two samples) is sampled again at an eighth of its width, up to
+    ``LEVELS`` passes; what is undecided after that is a bracket 2^-8 wide, which can exceed the
+    result by no more than its bound.
     """
-    sampled = np.stack([a, b, d], axis=1) @ np.stack([np.ones_like(GRID), GRID, GRID**3])
-    sampled *= sampled
-    sampled += e[:, None] * (1 - GRID * GRID) ** 2
-    summit = np.ones(sampled.shape, bool)
-    summit[:, 1:] &= sampled[:, 1:] >= sampled[:, :-1]
-    summit[:, :-1] &= sampled[:, :-1] >= sampled[:, 1:]
-    if floor is not None:
-        # p2 = b^2 - 2e, p3 = 2ad, p4 = 2bd + e, p6 = d^2
-        bend = 2 * np.abs(b * b - 2 * e) + 12 * np.abs(a * d) + 12 * np.abs(2 * b * d + e) + 30 * d * d
-        h = GRID[1] - GRID[0]
-        summit &= sampled + (h * h / 8) * bend[:, None] > floor[:, None]
-        # An end whose neighbour sample is lower: g there is at most g(end) - |g'(end)| t + bend t^2 / 2
-        # at a distance t inside, never above the end (reached already) while t <= 2 |g'(end)| / bend.
-        # g'(+-1) = 2 sigma(+-1) sigma'(+-1): the shear term's slope vanishes at the free edges.
-        slope_bottom = 2 * (a - b - d) * (b + 3 * d)
-        slope_top = 2 * (a + b + d) * (b + 3 * d)
-        summit[:, 0] &= -slope_bottom < bend * h / 2
-        summit[:, -1] &= slope_top < bend * h / 2
-    rows, k = np.nonzero(summit)
-    if not len(rows):
-        return rows, GRID[k]
-    s, g = _climb(GRID[k], a[rows], b[rows], d[rows], e[rows], GRID[np.maximum(k - 1, 0)], GRID[np.minimum(k + 1, len(GRID) - 1)])
-    # rows come sorted: reduce each row's run of starts
-    starts_run = np.r_[True, rows[1:] != rows[:-1]]
-    first = np.flatnonzero(starts_run)
-    best = np.maximum.reduceat(g, first)[np.cumsum(starts_run) - 1]
-    return rows[first], np.maximum.reduceat(np.where(g == best, s, -np.inf), first)
+    count = len(a)
+    best = np.full(count, -np.inf) if floor is None else np.array(floor, float)
+    at = np.full(count, np.nan)
+    rows, lo, width = np.arange(count), np.full(count, -1.0), np.full(count, 2.0)
+    for level in range(LEVELS):
+        if not len(rows):
+            break
+        rows, lo, width = _search(a, b, d, e, rows, lo, width, best, at, first=level == 0)
+    kept = np.flatnonzero(~np.isnan(at))
+    return kept, at[kept]
 
 
-def _climb(s, a, b, d, e, lo, hi):
-    """Steps up g from ``s`` within [lo, hi], each kept only where g rises (else the next is halved):
-    Newton's on g'(s) = 0 where g is concave, else a quarter of the bracket uphill; returns the
-    fibres and g at them."""
+def _search(a, b, d, e, rows, lo, width, best, at, first):
+    """One pass over the brackets [lo, lo + width] of entries ``rows``: samples, then Newton's steps
+    where g' changes sign downward; raises ``best`` and ``at`` in place and returns the brackets
+    between samples that are still undecided."""
+    a, b, d, e = a[rows], b[rows], d[rows], e[rows]
+    ab, ad, bd, b2e, dd = a * b, a * d, b * d, b * b - 2 * e, d * d
+    if first:
+        s = np.broadcast_to(GRID[:, None], (SAMPLES, len(rows)))
+        g = _G_POWERS @ np.stack([a * a + e, 2 * ab, b2e, 2 * ad, 2 * bd + e, dd])
+        m = _M_POWERS @ np.stack([ab, b2e, 3 * ad, 4 * bd + 2 * e, 3 * dd])
+    else:
+        s = lo + width * _UNIT[:, None]
+        g, m = _g(s, a, b, d, e), _half_slope(s, a, b, d, e)
+    above = np.flatnonzero(g.max(axis=0) > best[rows])
+    k = g[:, above].argmax(axis=0)
+    _raise(best, at, rows[above], g[k, above], s[k, above])
+    h = width / (SAMPLES - 1)
+    reach = (2 / 3) * h * m
+    bound = np.maximum(g[:-1] + reach[:-1], g[1:] - reach[1:])
+    bound += (h**4 / 288) * (24 * np.abs(2 * bd + e) + 360 * dd)
+    bracket = bound > best[rows]
+    crossing = bracket & (m[:-1] > 0) & (m[1:] < 0)
+    j, c = np.nonzero(crossing)
+    peak = _newton(s[j, c], s[j + 1, c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
+    _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
+    j, c = np.nonzero(bracket & ~crossing & (bound > best[rows]))
+    return rows[c], s[j, c], h[c]
 
-    def g_at(s):
-        sigma = a + s * (b + d * s * s)
-        shape = 1 - s * s
-        return sigma * sigma + e * shape * shape
 
-    best = g_at(s)
-    # g'(s) / 2 = 3 d^2 s^5 + (4 b d + 2 e) s^3 + 3 a d s^2 + (b^2 - 2 e) s + a b
+def _g(s, a, b, d, e):
+    sigma = a + s * (b + d * s * s)
+    shape = 1 - s * s
+    return sigma * sigma + e * shape * shape
+
+
+def _half_slope(s, a, b, d, e):
+    """g'(s) / 2 = 3 d^2 s^5 + (4 b d + 2 e) s^3 + 3 a d s^2 + (b^2 - 2 e) s + a b."""
+    ss = s * s
+    return ((((3 * d * d) * ss + 4 * b * d + 2 * e) * s + 3 * a * d) * s + b * b - 2 * e) * s + a * b
+
+
+def _newton(lo, hi, m_lo, m_hi, a, b, d, e):
+    """The root of g' in [lo, hi] where g'(lo) > 0 > g'(hi): from the secant's root, Newton's steps
+    where they stay in the bracket (which shrinks by the sign of g'), bisection where they would not."""
+    s = lo + (hi - lo) * m_lo / (m_lo - m_hi)
     c5, c3, c2, c1, c0 = 3 * d * d, 4 * b * d + 2 * e, 3 * a * d, b * b - 2 * e, a * b
-    scale = np.ones_like(s)
-    for _ in range(CLIMB_STEPS):
+    for _ in range(NEWTON_STEPS):
         ss = s * s
         slope = (((c5 * ss + c3) * s + c2) * s + c1) * s + c0
         bend = (5 * c5 * ss + 3 * c3) * ss + 2 * c2 * s + c1
-        uphill = np.copysign((hi - lo) / 4, slope)  # where g is not concave
-        step = np.clip(np.divide(-slope, bend, out=uphill, where=bend < 0), lo - s, hi - s)
-        trial = s + scale * step
-        value = g_at(trial)
-        rises = value > best
-        scale = np.where(rises, 1.0, scale / 2)
-        s = np.where(rises, trial, s)
-        best = np.where(rises, value, best)
-    return s, best
+        rising = slope > 0
+        lo = np.where(rising, s, lo)
+        hi = np.where(rising, hi, s)
+        step = s - np.divide(slope, bend, out=np.full_like(s, np.inf), where=bend != 0)
+        s = np.where((step >= lo) & (step <= hi), step, (lo + hi) / 2)
+    return s
+
+
+def _raise(best, at, rows, g, s):
+    """best[rows] = max(best[rows], g), and at[rows] = s where g wins; of a row repeated in ``rows``,
+    its largest g."""
+    before = best[rows]
+    np.maximum.at(best, rows, g)
+    wins = (g > before) & (g == best[rows])
+    at[rows[wins]] = s[wins]

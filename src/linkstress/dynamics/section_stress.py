@@ -133,7 +133,8 @@ def section_stresses(
     normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
     fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
     mismatch = np.empty(size[0])
-    single, split, chords = [], [], []
+    forces = InternalForces(table.x, normal, shear, moment, mismatch)
+    split, chords = [], []
     for start in range(0, size[0], POSITION_BLOCK):
         p = slice(start, start + POSITION_BLOCK)
         c = coefficients[p]
@@ -145,12 +146,10 @@ def section_stresses(
         at_single, at_split, chord = shape.interior_candidates(
             s_top, s_bottom, np.abs(c @ body), normal[p], shear[p], moment[p]
         )
-        single.append(at_single + start * size[1])
+        shape.single_interiors(forces, coefficients, at_single + start * size[1], fibres)
         split.append(at_split + start * size[1])
         chords.append(chord)
-    forces = InternalForces(table.x, normal, shear, moment, mismatch)
     shape.hole_end_fibres(forces, fibres)
-    shape.single_interiors(forces, coefficients, np.concatenate(single), fibres)
     shape.split_interiors(forces, np.concatenate(split), np.concatenate(chords), fibres)
     return SectionStresses(
         table, forces, von_mises, table.neutral_axis + u, sigma, fibres.tau, near_holes(link, frame_joints, table),
