@@ -61,6 +61,10 @@ LEVELS = 3
 """Passes of the search: the first samples the chord at spacing 1/4, each later one samples the
 brackets still undecided at an eighth of their width."""
 NEWTON_STEPS = 6
+SURE_STEPS = 3
+CONVERGED = 1e-9
+"""After ``SURE_STEPS`` Newton steps, an entry whose last step moved it by less than this (relative to
+its bracket and offset) has converged: the next step would move it by the square of that."""
 
 _UNIT = np.linspace(0.0, 1.0, SAMPLES)
 GRID = -1.0 + 2.0 * _UNIT
@@ -111,7 +115,8 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     """One pass over the brackets [lo, lo + width] of entries ``rows``: samples, then Newton's steps
     where g' changes sign downward; raises ``best`` and ``at`` in place and returns the brackets
     between samples that are still undecided."""
-    a, b, d, e = a[rows], b[rows], d[rows], e[rows]
+    if not first:
+        a, b, d, e = a[rows], b[rows], d[rows], e[rows]
     ab, ad, bd, b2e, dd = a * b, a * d, b * d, b * b - 2 * e, d * d
     if first:
         s = np.broadcast_to(GRID[:, None], (SAMPLES, len(rows)))
@@ -124,15 +129,22 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     k = g[:, above].argmax(axis=0)
     _raise(best, at, rows[above], g[k, above], s[k, above])
     h = width / (SAMPLES - 1)
-    reach = (2 / 3) * h * m
-    bound = np.maximum(g[:-1] + reach[:-1], g[1:] - reach[1:])
+    reach = m * ((2 / 3) * h)
+    bound = g[:-1] + reach[:-1]
+    np.maximum(bound, g[1:] - reach[1:], out=bound)
     bound += (h**4 / 288) * (24 * np.abs(2 * bd + e) + 360 * dd)
     bracket = bound > best[rows]
-    crossing = bracket & (m[:-1] > 0) & (m[1:] < 0)
+    rising = m > 0
+    crossing = rising[:-1] & ~rising[1:]
+    crossing &= m[1:] < 0
+    crossing &= bracket
     j, c = np.nonzero(crossing)
     peak = _newton(s[j, c], s[j + 1, c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
     _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
-    j, c = np.nonzero(bracket & ~crossing & (bound > best[rows]))
+    bracket &= ~crossing
+    j, c = np.nonzero(bracket)
+    open_ = bound[j, c] > best[rows[c]]
+    j, c = j[open_], c[open_]
     return rows[c], s[j, c], h[c]
 
 
@@ -150,10 +162,20 @@ def _half_slope(s, a, b, d, e):
 
 def _newton(lo, hi, m_lo, m_hi, a, b, d, e):
     """The root of g' in [lo, hi] where g'(lo) > 0 > g'(hi): from the secant's root, Newton's steps
-    where they stay in the bracket (which shrinks by the sign of g'), bisection where they would not."""
+    where they stay in the bracket (which shrinks by the sign of g'), bisection where they would not.
+    After ``SURE_STEPS`` only the entries still moving take further steps."""
     s = lo + (hi - lo) * m_lo / (m_lo - m_hi)
-    c5, c3, c2, c1, c0 = 3 * d * d, 4 * b * d + 2 * e, 3 * a * d, b * b - 2 * e, a * b
-    for _ in range(NEWTON_STEPS):
+    c = 3 * d * d, 4 * b * d + 2 * e, 3 * a * d, b * b - 2 * e, a * b
+    s, lo, hi, moved = _newton_steps(s, lo, hi, c, SURE_STEPS)
+    going = np.flatnonzero(moved > CONVERGED * (hi - lo + np.abs(s)))
+    if len(going):
+        s[going] = _newton_steps(s[going], lo[going], hi[going], [k[going] for k in c], NEWTON_STEPS - SURE_STEPS)[0]
+    return s
+
+
+def _newton_steps(s, lo, hi, c, steps):
+    c5, c3, c2, c1, c0 = c
+    for _ in range(steps):
         ss = s * s
         slope = (((c5 * ss + c3) * s + c2) * s + c1) * s + c0
         bend = (5 * c5 * ss + 3 * c3) * ss + 2 * c2 * s + c1
@@ -161,8 +183,10 @@ def _newton(lo, hi, m_lo, m_hi, a, b, d, e):
         lo = np.where(rising, s, lo)
         hi = np.where(rising, hi, s)
         step = s - np.divide(slope, bend, out=np.full_like(s, np.inf), where=bend != 0)
-        s = np.where((step >= lo) & (step <= hi), step, (lo + hi) / 2)
-    return s
+        new = np.where((step >= lo) & (step <= hi), step, (lo + hi) / 2)
+        moved = np.abs(new - s)
+        s = new
+    return s, lo, hi, moved
 
 
 def _raise(best, at, rows, g, s):

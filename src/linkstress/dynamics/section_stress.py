@@ -312,7 +312,9 @@ class _SectionShape:
         """Interior maxima of single chords (with the body-load term) at flat indices ``flat``.
 
         In s = u / c: sigma = n + (m - 0.6 beta c^2) c s + beta c^3 s^3 with beta c^3 = b_y c, and
-        3 tau^2 = 3 w^2 c^4 (1 - s^2)^2 (``single_chord_peak``)."""
+        3 tau^2 = 3 w^2 c^4 (1 - s^2)^2 (``single_chord_peak``). Where there is no body load (a crank
+        turning steadily about a fixed pivot, without gravity) sigma is linear and the maximum is in
+        closed form, as on split sections (``cubic_peak``)."""
         if not len(flat):
             return
         n, m, w, at = self._reduced(forces, flat)
@@ -320,6 +322,12 @@ class _SectionShape:
         c = half * half
         rows = flat // len(self.x)
         body = self.density * (coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at]) * half
+        plain = body == 0
+        k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))
+        u = np.clip(cubic_peak(n[k], m[k], w[k], c[k]), -half[k], half[k])
+        self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], u, 0.0, at[k])
+        loaded = np.flatnonzero(~plain)
+        n, m, w, at, half, c, body, flat = (v[loaded] for v in (n, m, w, at, half, c, body, flat))
         reached = fibres.von_mises.reshape(-1)[flat]
         k, s = single_chord_peak(n, m * half - 0.6 * body, body, 3 * (w * c) ** 2, reached * reached)
         self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], s * half[k], body[k] / (half[k] * c[k]), at[k])
