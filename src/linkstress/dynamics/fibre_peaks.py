@@ -139,7 +139,7 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     crossing &= m[1:] < 0
     crossing &= bracket
     j, c = np.nonzero(crossing)
-    peak = _newton(s[j, c], s[j + 1, c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
+    peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
     _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
     bracket &= ~crossing
     j, c = np.nonzero(bracket)
@@ -160,33 +160,44 @@ def _half_slope(s, a, b, d, e):
     return ((((3 * d * d) * ss + 4 * b * d + 2 * e) * s + 3 * a * d) * s + b * b - 2 * e) * s + a * b
 
 
-def _newton(lo, hi, m_lo, m_hi, a, b, d, e):
-    """The root of g' in [lo, hi] where g'(lo) > 0 > g'(hi): from the secant's root, Newton's steps
-    where they stay in the bracket (which shrinks by the sign of g'), bisection where they would not.
-    After ``SURE_STEPS`` only the entries still moving take further steps."""
-    s = lo + (hi - lo) * m_lo / (m_lo - m_hi)
-    c = 3 * d * d, 4 * b * d + 2 * e, 3 * a * d, b * b - 2 * e, a * b
-    s, lo, hi, moved = _newton_steps(s, lo, hi, c, SURE_STEPS)
-    going = np.flatnonzero(moved > CONVERGED * (hi - lo + np.abs(s)))
+def _newton(lo, hi, g_lo, g_hi, m_lo, m_hi, a, b, d, e):
+    """The root of g' in [lo, hi] where g'(lo) > 0 > g'(hi): from the peak of the bracket's cubic
+    Hermite interpolant, Newton's steps where they stay in the bracket (which shrinks by the sign
+    of g'), bisection where they would not. After ``SURE_STEPS`` only the entries still moving take
+    further steps."""
+    s = lo + (hi - lo) * _hermite_peak(g_hi - g_lo, (hi - lo) * 2 * m_lo, (hi - lo) * 2 * m_hi)
+    c5, c3, c2, c1, c0 = 3 * d * d, 4 * b * d + 2 * e, 3 * a * d, b * b - 2 * e, a * b
+    c = (c5, c3, c2, c1, c0, 5 * c5, 3 * c3, 2 * c2)
+    s, lo, hi, last = _newton_steps(s, lo, hi, c, SURE_STEPS)
+    going = np.flatnonzero(np.abs(s - last) > CONVERGED * (hi - lo + np.abs(s)))
     if len(going):
         s[going] = _newton_steps(s[going], lo[going], hi[going], [k[going] for k in c], NEWTON_STEPS - SURE_STEPS)[0]
     return s
 
 
 def _newton_steps(s, lo, hi, c, steps):
-    c5, c3, c2, c1, c0 = c
+    """``steps`` safeguarded Newton steps; returns s, the bracket, and s before the last step."""
+    c5, c3, c2, c1, c0, b4, b2, b1 = c
+    last = s
     for _ in range(steps):
         ss = s * s
         slope = (((c5 * ss + c3) * s + c2) * s + c1) * s + c0
-        bend = (5 * c5 * ss + 3 * c3) * ss + 2 * c2 * s + c1
+        bend = (b4 * ss + b2) * ss + b1 * s + c1
         rising = slope > 0
         lo = np.where(rising, s, lo)
         hi = np.where(rising, hi, s)
         step = s - np.divide(slope, bend, out=np.full_like(s, np.inf), where=bend != 0)
-        new = np.where((step >= lo) & (step <= hi), step, (lo + hi) / 2)
-        moved = np.abs(new - s)
-        s = new
-    return s, lo, hi, moved
+        last, s = s, np.where((step >= lo) & (step <= hi), step, (lo + hi) / 2)
+    return s, lo, hi, last
+
+
+def _hermite_peak(rise, p0, p1):
+    """Where in t in (0, 1) the cubic H with H(1) - H(0) = ``rise``, H'(0) = p0 > 0 > H'(1) = p1
+    peaks: the root of H'(t) = A t^2 + B t + p0 in (0, 1), 2 p0 / (sqrt(B^2 - 4 A p0) - B) for
+    either sign of A."""
+    a = 3 * (p0 + p1 - 2 * rise)
+    b = 2 * (3 * rise - 2 * p0 - p1)
+    return 2 * p0 / (np.sqrt(np.maximum(b * b - 4 * a * p0, 0.0)) - b)
 
 
 def _raise(best, at, rows, g, s):
