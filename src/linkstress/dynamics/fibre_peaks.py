@@ -36,9 +36,9 @@ def cubic_peak(n, m, w, c):
     p = (m * m - w6 * c) / w6
     q = m * n / w6
     radius = np.sqrt(np.maximum(-p / 3, 0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cos_arg = np.clip(-q / (2 * radius**3), -1.0, 1.0)
-    return 2 * radius * np.cos(np.arccos(np.nan_to_num(cos_arg)) / 3 - 2 * np.pi / 3)
+    cube = 2 * radius**3
+    cos_arg = np.clip(np.divide(-q, cube, out=np.zeros_like(cube), where=cube > 0), -1.0, 1.0)
+    return 2 * radius * np.cos(np.arccos(cos_arg) / 3 - 2 * np.pi / 3)
 
 
 def has_cubic_peak(n, m, w, c):

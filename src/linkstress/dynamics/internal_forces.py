@@ -128,18 +128,17 @@ def force_basis(
     joints = link.frame(i, j).to_local(link.joints)
     if moments is None:
         moments = region_moments(link.boundary(i, j), x, sections.crossings)
-    rho_t = link.density * link.thickness
     cut = np.column_stack([x, sections.neutral_axis])
     point_x = np.array([pf.at[0] for pf in loads.point_forces]).reshape(-1)
-    left = load_basis(
-        loads, joints, joints[None, :, 0] <= x[:, None], point_x[None, :] <= x[:, None],
-        (moments.area, moments.first_x, moments.first_y, moments.polar), cut, rho_t,
+    # One more column past the stations: the whole link, its moment about the origin.
+    beyond = np.append(x, np.inf)[:, None]
+    sides = np.column_stack([moments.area, moments.first_x, moments.first_y, moments.polar])
+    basis = load_basis(
+        loads, joints, joints[None, :, 0] <= beyond, point_x[None, :] <= beyond,
+        np.vstack([sides, moments.total]).T, np.vstack([cut, np.zeros(2)]), link.density * link.thickness,
     )
-    whole = load_basis(
-        loads, joints, np.ones((1, len(joints)), bool), np.ones((1, len(point_x)), bool),
-        moments.total, np.zeros((1, 2)), rho_t,
-    )
-    return ForceBasis(-left[0], -left[1], left[2], whole[:, :, 0], cut)
+    left = basis[:, :, :-1]
+    return ForceBasis(-left[0], -left[1], left[2], basis[:, :, -1], cut)
 
 
 def internal_forces(
