@@ -194,10 +194,11 @@ def _newton_steps(s, lo, hi, c, steps):
 def _hermite_peak(rise, p0, p1):
     """Where in t in (0, 1) the cubic H with H(1) - H(0) = ``rise``, H'(0) = p0 > 0 > H'(1) = p1
     peaks: the root of H'(t) = A t^2 + B t + p0 in (0, 1), 2 p0 / (sqrt(B^2 - 4 A p0) - B) for
-    either sign of A."""
+    either sign of A (clipped, where rounding takes the denominator to nothing)."""
     a = 3 * (p0 + p1 - 2 * rise)
     b = 2 * (3 * rise - 2 * p0 - p1)
-    return 2 * p0 / (np.sqrt(np.maximum(b * b - 4 * a * p0, 0.0)) - b)
+    with np.errstate(divide="ignore"):
+        return np.clip(2 * p0 / (np.sqrt(np.maximum(b * b - 4 * a * p0, 0.0)) - b), 0.0, 1.0)
 
 
 def _raise(best, at, rows, g, s):
