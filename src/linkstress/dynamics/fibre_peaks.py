@@ -145,7 +145,21 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     j, c = np.nonzero(bracket)
     open_ = bound[j, c] > best[rows[c]]
     j, c = j[open_], c[open_]
+    open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
+    j, c = j[open_], c[open_]
     return rows[c], s[j, c], h[c]
+
+
+def _monotone(lo, h, m0, m1, a, b, d, e):
+    """Where g' keeps one sign over [lo, lo + h], so that g has no peak inside: g'/2 is at least
+    (or at most) its cubic Hermite interpolant's control points m0, m0 + h m0' / 3, m1 - h m1' / 3,
+    m1 (m' = g''/2 at the ends) less the interpolation error (h^4 / 384) max|g'''''| / 2, with
+    g''''' = 720 d^2 s. The brackets a peak just past a sample leaves undecided by the bound on g
+    are decided here, without sampling them again."""
+    sign = np.sign(m0)
+    k0, k1 = _half_bend(lo, a, b, d, e), _half_bend(lo + h, a, b, d, e)
+    low = np.minimum(np.minimum(m0, m1) * sign, np.minimum((m0 + h * k0 / 3) * sign, (m1 - h * k1 / 3) * sign))
+    return (sign == np.sign(m1)) & (low > (h**4 / 384) * 360 * d * d)
 
 
 def _g(s, a, b, d, e):
@@ -158,6 +172,12 @@ def _half_slope(s, a, b, d, e):
     """g'(s) / 2 = 3 d^2 s^5 + (4 b d + 2 e) s^3 + 3 a d s^2 + (b^2 - 2 e) s + a b."""
     ss = s * s
     return ((((3 * d * d) * ss + 4 * b * d + 2 * e) * s + 3 * a * d) * s + b * b - 2 * e) * s + a * b
+
+
+def _half_bend(s, a, b, d, e):
+    """g''(s) / 2 = 15 d^2 s^4 + (12 b d + 6 e) s^2 + 6 a d s + b^2 - 2 e."""
+    ss = s * s
+    return (15 * d * d * ss + 12 * b * d + 6 * e) * ss + 6 * a * d * s + b * b - 2 * e
 
 
 def _newton(lo, hi, g_lo, g_hi, m_lo, m_hi, a, b, d, e):
