@@ -207,18 +207,12 @@ class _SectionShape:
         half = (table.top - table.bottom) / 2
         single = solid & (table.n_chords == 1) & (half > 0)
         inv_inertia = np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0)
-        split, ends = [], []
-        for k in range(table.lower.shape[1]):
-            at = np.flatnonzero(solid & (table.n_chords > 1) & (table.n_chords > k))
-            ua, ub = table.lower[at, k] - yna[at], table.upper[at, k] - yna[at]
-            c = 2 * table.first_moment(table.upper[:, k])[at] / table.thickness + ub * ub
-            split.append((at, ua, ub, c))
-            # a chord's lower end is at a hole above the first chord; its upper end below the last
-            below = np.full(len(at), k > 0)
-            above = table.n_chords[at] > k + 1
-            ends += [(at[below], ua[below], c[below]), (at[above], ub[above], c[above])]
-        split_at, split_ua, split_ub, split_c = (np.concatenate(v) for v in zip(*split))
-        end_at, end_u, end_c = (np.concatenate(v) for v in zip(*ends))
+        count = table.n_chords[:, None]
+        at, k = np.nonzero((solid[:, None] & (count > 1)) & (count > np.arange(table.lower.shape[1])))
+        ua, ub = table.lower[at, k] - yna[at], table.upper[at, k] - yna[at]
+        c = 2 * table.first_moment(table.upper)[at, k] / table.thickness + ub * ub
+        # a chord's lower end is at a hole above the first chord; its upper end below the last
+        below, above = k > 0, table.n_chords[at] > k + 1
         return cls(
             x=table.x,
             inv_area=np.where(solid, 1.0 / np.where(solid, table.area, 1.0), 0.0),
@@ -231,8 +225,8 @@ class _SectionShape:
             # (32/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
             shear_gain=np.where(single, (32 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
-            split=_Chords(split_at, split_ua, split_ub, split_c),
-            hole_ends=_HoleEdges(end_at, end_u, end_c),
+            split=_Chords(at, ua, ub, c),
+            hole_ends=_HoleEdges(*(np.concatenate([v[below], w[above]]) for v, w in ((at, at), (ua, ub), (c, c)))),
         )
 
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
