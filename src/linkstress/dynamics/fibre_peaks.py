@@ -206,7 +206,8 @@ def _newton_steps(s, lo, hi, c, steps):
         rising = slope > 0
         lo = np.where(rising, s, lo)
         hi = np.where(rising, hi, s)
-        step = s - np.divide(slope, bend, out=np.full_like(s, np.inf), where=bend != 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = s - slope / bend  # where bend = 0: not finite, so not in the bracket
         last, s = s, np.where((step >= lo) & (step <= hi), step, (lo + hi) / 2)
     return s, lo, hi, last
 
