@@ -68,13 +68,14 @@ def test_single_chord_peak_finds_a_maximum_hidden_between_samples_that_rise_towa
     # From the seed coupler over a turn: the samples at s = 0.5, 0.75, 1 rise, yet g peaks at
     # s = 0.611 (0.06 % above the top fibre, where the search starts) and dips before the end.
     # No sample is higher than both its neighbours there; the bracket's Hermite bound finds it.
+    # A thousand entries, as in a sweep, so that the search samples nine fibres per chord.
     a, b, d, e = -2052.1315869412115, -487.8821410196797, 138.13033485149026, 1008948.574192273
     top = g(1.0, a, b, d, e)
     assert g(0.5, a, b, d, e) < g(0.75, a, b, d, e) < top
-    kept, s = single_chord_peak(*(np.array([v]) for v in (a, b, d, e)), np.array([top]))
+    kept, s = single_chord_peak(*(np.full(1000, v) for v in (a, b, d, e, top)))
     dense = g(FIBRES, a, b, d, e)
-    assert kept.tolist() == [0] and abs(s[0] - FIBRES[np.argmax(dense)]) < 1e-4
-    assert g(s[0], a, b, d, e) >= dense.max() * (1 - 1e-12)
+    assert kept.tolist() == list(range(1000)) and np.all(abs(s - FIBRES[np.argmax(dense)]) < 1e-4)
+    assert np.all(g(s, a, b, d, e) >= dense.max() * (1 - 1e-12))
 
 
 def test_single_chord_peak_over_many_entries_at_once_matches_twenty_thousand_fibres():

@@ -16,6 +16,8 @@ asks this module for the interior candidates.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -57,9 +59,14 @@ def has_cubic_peak(n, m, w, c):
 
 SAMPLES = 9
 """Fibres sampled per bracket of the search (``single_chord_peak``), its ends included."""
+FEW_ENTRIES_SAMPLES = 8192
+"""Where the entries are few, the first pass samples more fibres (up to ``MOST_SAMPLES``), as many as
+make this many values: on short arrays a numpy call costs the same whatever its length, and denser
+samples leave almost no bracket undecided for a second pass."""
+MOST_SAMPLES = 257
 LEVELS = 3
-"""Passes of the search: the first samples the chord at spacing 1/4, each later one samples the
-brackets still undecided at an eighth of their width."""
+"""Passes of the search: the first samples the chord (at spacing 1/4 on long arrays), each later one
+samples the brackets still undecided at an eighth of their width."""
 NEWTON_STEPS = 6
 SURE_STEPS = 3
 CONVERGED = 1e-9
@@ -67,9 +74,23 @@ CONVERGED = 1e-9
 its bracket and offset) has converged: the next step would move it by the square of that."""
 
 _UNIT = np.linspace(0.0, 1.0, SAMPLES)
-GRID = -1.0 + 2.0 * _UNIT
-_G_POWERS = np.stack([GRID**k for k in (0, 1, 2, 3, 4, 6)], axis=1)
-_M_POWERS = np.stack([GRID**k for k in (0, 1, 2, 3, 5)], axis=1)
+
+
+def _first_samples(count: int) -> int:
+    """Fibres sampled by the first pass over ``count`` entries: 2^k + 1, from ``SAMPLES`` to
+    ``MOST_SAMPLES``, the most that keep samples x entries within ``FEW_ENTRIES_SAMPLES``."""
+    samples = SAMPLES
+    while 2 * samples - 1 <= MOST_SAMPLES and (2 * samples - 1) * count <= FEW_ENTRIES_SAMPLES:
+        samples = 2 * samples - 1
+    return samples
+
+
+@lru_cache(maxsize=None)
+def _chord_samples(count: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """``count`` fibres s evenly over [-1, 1], and the matrices that take (a^2 + e, 2ab, b^2 - 2e,
+    2ad, 2bd + e, d^2) to g and (ab, b^2 - 2e, 3ad, 4bd + 2e, 3d^2) to g'/2 there."""
+    s = np.linspace(-1.0, 1.0, count)
+    return s, np.stack([s**k for k in (0, 1, 2, 3, 4, 6)], axis=1), np.stack([s**k for k in (0, 1, 2, 3, 5)], axis=1)
 
 
 def single_chord_peak(
@@ -83,7 +104,8 @@ def single_chord_peak(
     shape, e >= 0), for the entries where it beats ``floor`` (g reached already, at the outer
     fibres); without ``floor``, for every entry. Returns the indices of those entries and their s.
 
-    g is sampled at nine fibres; every sample is at most the best value b so far. Between two samples
+    g is sampled at nine fibres (more where the entries are few: ``FEW_ENTRIES_SAMPLES``); every
+    sample is at most the best value b so far. Between two samples
     h apart, in t = (s - s0) / h, g is its cubic Hermite interpolant (values g0, g1, slopes g'0, g'1
     at the ends), whose Bezier control points are g0, c1 = g0 + h g'0 / 3, c2 = g1 - h g'1 / 3, g1,
     plus an error of at most (h^4 / 24) max|g''''| t^2 (1 - t)^2. With g0, g1 <= b and
@@ -119,16 +141,17 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
         a, b, d, e = a[rows], b[rows], d[rows], e[rows]
     ab, ad, bd, b2e, dd = a * b, a * d, b * d, b * b - 2 * e, d * d
     if first:
-        s = np.broadcast_to(GRID[:, None], (SAMPLES, len(rows)))
-        g = _G_POWERS @ np.stack([a * a + e, 2 * ab, b2e, 2 * ad, 2 * bd + e, dd])
-        m = _M_POWERS @ np.stack([ab, b2e, 3 * ad, 4 * bd + 2 * e, 3 * dd])
+        grid, g_powers, m_powers = _chord_samples(_first_samples(len(rows)))
+        s = np.broadcast_to(grid[:, None], (len(grid), len(rows)))
+        g = g_powers @ np.stack([a * a + e, 2 * ab, b2e, 2 * ad, 2 * bd + e, dd])
+        m = m_powers @ np.stack([ab, b2e, 3 * ad, 4 * bd + 2 * e, 3 * dd])
     else:
         s = lo + width * _UNIT[:, None]
         g, m = _g(s, a, b, d, e), _half_slope(s, a, b, d, e)
     above = np.flatnonzero(g.max(axis=0) > best[rows])
     k = g[:, above].argmax(axis=0)
     _raise(best, at, rows[above], g[k, above], s[k, above])
-    h = width / (SAMPLES - 1)
+    h = width / (len(s) - 1)
     reach = m * ((2 / 3) * h)
     bound = g[:-1] + reach[:-1]
     np.maximum(bound, g[1:] - reach[1:], out=bound)
