@@ -18,6 +18,9 @@ from linkstress.region_moments import region_moments
 def clipped_moments(polygon: Polygon, x: float) -> np.ndarray:
     """(A, S_x, S_y, J_O) of polygon ∩ {x' <= x} from shapely's clip and Green's theorem."""
     minx, miny, maxx, maxy = polygon.bounds
+    if x <= minx + 1e-9 * (maxx - minx):
+        # A sliver at the leftmost vertex: moments of order width^2, and GEOS cannot clip it.
+        return np.zeros(4)
     part = clip_by_rect(polygon, minx - 1, miny - 1, x, maxy + 1)
     pieces = part.geoms if isinstance(part, MultiPolygon) else [part]
     total = np.zeros(4)
