@@ -45,10 +45,12 @@ def region_moments(
 ) -> RegionMoments:
     """Moments of the part of ``outline`` (member frame, m; or its Boundary) left of each of
     ``stations`` [m]. ``crossings``: the edges' crossings with the sorted stations by
-    ``edge_crossings`` (right-hand limit), if already made."""
+    ``edge_crossings`` (right-hand limit), if already made (the stations then are those of a section
+    table, checked against the extent already)."""
     x = np.asarray(stations, float).ravel()
     edges = boundary_of(outline)
-    x = within_extent(x, edges.x_min, edges.x_max, "station")
+    if crossings is None:
+        x = within_extent(x, edges.x_min, edges.x_max, "station")
     order = np.argsort(x, kind="stable")
     starts, ends = edges.starts, edges.ends
     whole = edges.moments
@@ -66,6 +68,6 @@ def region_moments(
     part = segment_moments(
         np.where(rightward[:, None], starts[e], point), np.where(rightward[:, None], point, ends[e])
     )
-    station = order[cut.station]
-    area, first_x, first_y, polar = (left_of[k] + np.bincount(station, part[k], len(x)) for k in range(4))
+    np.add.at(left_of, (slice(None), order[cut.station]), part)
+    area, first_x, first_y, polar = left_of
     return RegionMoments(x, area, first_x, first_y, polar, tuple(float(v) for v in whole.sum(axis=1)))
