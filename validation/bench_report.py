@@ -247,7 +247,7 @@ def speed_error_figure(case: CaseStudy):
 def bench_html(result: BenchResult) -> str:
     sections = [
         "<p>Every stress method of linkstress timed the same way (wall time after imports, from the link profiles and "
-        "their joint loads to the stresses; best of several runs where a run is cheap) and compared with one reference: "
+        "their joint loads to the stresses; where a run is cheap, the best of as many runs as fill a window of a second in the full run) and compared with one reference: "
         "the Richardson extrapolation of the three finest P2 meshes. The quantity is the nominal von Mises stress at "
         "validate's comparison stations, at the beam's critical fibre.</p>",
         "<h2>Machine</h2>", table_html(("", ""), list(result.machine.items())),
