@@ -12,7 +12,7 @@ All stations are cut at once: each boundary edge is matched with the sorted stat
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -186,7 +186,7 @@ def section_table(outline: Polygon | Boundary, stations: ArrayLike, thickness: f
         y = np.concatenate([y, right_end.y])
     pairs = y.reshape(-1, 2)
     pair_station = order[station_sorted[::2]]
-    return replace(_table_from_chords(x, thickness, pair_station, pairs[:, 0], pairs[:, 1]), crossings=inner)
+    return _table_from_chords(x, thickness, pair_station, pairs[:, 0], pairs[:, 1], inner)
 
 
 def _table_from_chords(
@@ -195,6 +195,7 @@ def _table_from_chords(
     station: NDArray[np.intp],
     a: NDArray[np.float64],
     b: NDArray[np.float64],
+    crossings: Crossings | None = None,
 ) -> SectionTable:
     m = len(x)
     order = np.argsort(station, kind="stable")
@@ -233,4 +234,5 @@ def _table_from_chords(
         second_moment=second,
         top=top,
         bottom=bottom,
+        crossings=crossings,
     )
