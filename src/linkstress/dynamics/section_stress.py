@@ -226,7 +226,11 @@ class _SectionShape:
             shear_gain=np.where(single, (32 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
             split=_Chords(at, ua, ub, c),
-            hole_ends=_HoleEdges(*(np.concatenate([v[below], w[above]]) for v, w in ((at, at), (ua, ub), (c, c)))),
+            hole_ends=_HoleEdges(
+                np.concatenate([at[below], at[above]]),
+                np.concatenate([ua[below], ub[above]]),
+                np.concatenate([c[below], c[above]]),
+            ),
         )
 
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
