@@ -59,7 +59,7 @@ def has_cubic_peak(n, m, w, c):
 
 SAMPLES = 9
 """Fibres sampled per bracket of the search (``single_chord_peak``), its ends included."""
-FEW_ENTRIES_SAMPLES = 8192
+FEW_ENTRIES_SAMPLES = 2048
 """Where the entries are few, the first pass samples more fibres (up to ``MOST_SAMPLES``), as many as
 make this many values: on short arrays a numpy call costs the same whatever its length, and denser
 samples leave almost no bracket undecided for a second pass."""
@@ -162,14 +162,16 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     crossing &= m[1:] < 0
     crossing &= bracket
     j, c = np.nonzero(crossing)
-    peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
-    _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
+    if len(c):
+        peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
+        _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
     bracket &= ~crossing
     j, c = np.nonzero(bracket)
     open_ = bound[j, c] > best[rows[c]]
     j, c = j[open_], c[open_]
-    open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
-    j, c = j[open_], c[open_]
+    if len(c):
+        open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
+        j, c = j[open_], c[open_]
     return rows[c], s[j, c], h[c]
 
 

@@ -321,11 +321,14 @@ class _SectionShape:
         rows = flat // len(self.x)
         body = self.density * (coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at]) * half
         plain = body == 0
-        k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))
-        u = np.clip(cubic_peak(n[k], m[k], w[k], c[k]), -half[k], half[k])
-        self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], u, 0.0, at[k])
-        loaded = np.flatnonzero(~plain)
-        n, m, w, at, half, c, body, flat = (v[loaded] for v in (n, m, w, at, half, c, body, flat))
+        if plain.any():
+            k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))
+            u = np.clip(cubic_peak(n[k], m[k], w[k], c[k]), -half[k], half[k])
+            self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], u, 0.0, at[k])
+            loaded = np.flatnonzero(~plain)
+            n, m, w, at, half, c, body, flat = (v[loaded] for v in (n, m, w, at, half, c, body, flat))
+            if not len(flat):
+                return
         reached = fibres.von_mises.reshape(-1)[flat]
         k, s = single_chord_peak(n, m * half - 0.6 * body, body, 3 * (w * c) ** 2, reached * reached)
         self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], s * half[k], body[k] / (half[k] * c[k]), at[k])
