@@ -139,15 +139,15 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     between samples that are still undecided."""
     if not first:
         a, b, d, e = a[rows], b[rows], d[rows], e[rows]
-    ab, ad, bd, b2e, dd = a * b, a * d, b * d, b * b - 2 * e, d * d
+    slope = _slope_terms(a, b, d, e)
     if first:
         grid, g_powers, m_powers = _chord_samples(_first_samples(len(rows)))
         s = np.broadcast_to(grid[:, None], (len(grid), len(rows)))
-        g = g_powers @ np.stack([a * a + e, 2 * ab, b2e, 2 * ad, 2 * bd + e, dd])
-        m = m_powers @ np.stack([ab, b2e, 3 * ad, 4 * bd + 2 * e, 3 * dd])
+        g = g_powers @ np.stack([a * a + e, 2 * a * b, b * b - 2 * e, 2 * a * d, 2 * b * d + e, d * d])
+        m = m_powers @ np.stack(slope)
     else:
         s = lo + width * _UNIT[:, None]
-        g, m = _g(s, a, b, d, e), _half_slope(s, a, b, d, e)
+        g, m = _g(s, a, b, d, e), _half_slope(s, slope)
     above = np.flatnonzero(g.max(axis=0) > best[rows])
     k = g[:, above].argmax(axis=0)
     _raise(best, at, rows[above], g[k, above], s[k, above])
@@ -155,7 +155,7 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     reach = m * ((2 / 3) * h)
     bound = g[:-1] + reach[:-1]
     np.maximum(bound, g[1:] - reach[1:], out=bound)
-    bound += (h**4 / 288) * (24 * np.abs(2 * bd + e) + 360 * dd)
+    bound += (h**4 / 288) * (24 * np.abs(2 * b * d + e) + 360 * d * d)
     bracket = bound > best[rows]
     rising = m > 0
     crossing = rising[:-1] & ~rising[1:]
@@ -163,26 +163,27 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     crossing &= bracket
     j, c = np.nonzero(crossing)
     if len(c):
-        peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
+        peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], [t[c] for t in slope])
         _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
     bracket &= ~crossing
     j, c = np.nonzero(bracket)
     open_ = bound[j, c] > best[rows[c]]
     j, c = j[open_], c[open_]
     if len(c):
-        open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], a[c], b[c], d[c], e[c])
+        open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], [t[c] for t in slope], d[c])
         j, c = j[open_], c[open_]
     return rows[c], s[j, c], h[c]
 
 
-def _monotone(lo, h, m0, m1, a, b, d, e):
+def _monotone(lo, h, m0, m1, slope, d):
     """Where g' keeps one sign over [lo, lo + h], so that g has no peak inside: g'/2 is at least
     (or at most) its cubic Hermite interpolant's control points m0, m0 + h m0' / 3, m1 - h m1' / 3,
     m1 (m' = g''/2 at the ends) less the interpolation error (h^4 / 384) max|g'''''| / 2, with
     g''''' = 720 d^2 s. The brackets a peak just past a sample leaves undecided by the bound on g
     are decided here, without sampling them again."""
     sign = np.sign(m0)
-    k0, k1 = _half_bend(lo, a, b, d, e), _half_bend(lo + h, a, b, d, e)
+    bend = _bend_terms(slope)
+    k0, k1 = _half_bend(lo, bend), _half_bend(lo + h, bend)
     low = np.minimum(np.minimum(m0, m1) * sign, np.minimum((m0 + h * k0 / 3) * sign, (m1 - h * k1 / 3) * sign))
     return (sign == np.sign(m1)) & (low > (h**4 / 384) * 360 * d * d)
 
@@ -193,41 +194,51 @@ def _g(s, a, b, d, e):
     return sigma * sigma + e * shape * shape
 
 
-def _half_slope(s, a, b, d, e):
-    """g'(s) / 2 = 3 d^2 s^5 + (4 b d + 2 e) s^3 + 3 a d s^2 + (b^2 - 2 e) s + a b."""
+def _slope_terms(a, b, d, e):
+    """(c0, c1, c2, c3, c5) of g'(s) / 2 = c5 s^5 + c3 s^3 + c2 s^2 + c1 s + c0: a b, b^2 - 2 e, 3 a d,
+    4 b d + 2 e, 3 d^2."""
+    return a * b, b * b - 2 * e, 3 * a * d, 4 * b * d + 2 * e, 3 * d * d
+
+
+def _bend_terms(slope):
+    """(k0, k1, k2, k4) of g''(s) / 2 = k4 s^4 + k2 s^2 + k1 s + k0, from ``_slope_terms``."""
+    c0, c1, c2, c3, c5 = slope
+    return c1, 2 * c2, 3 * c3, 5 * c5
+
+
+def _half_slope(s, slope):
+    c0, c1, c2, c3, c5 = slope
     ss = s * s
-    return ((((3 * d * d) * ss + 4 * b * d + 2 * e) * s + 3 * a * d) * s + b * b - 2 * e) * s + a * b
+    return (((c5 * ss + c3) * s + c2) * s + c1) * s + c0
 
 
-def _half_bend(s, a, b, d, e):
-    """g''(s) / 2 = 15 d^2 s^4 + (12 b d + 6 e) s^2 + 6 a d s + b^2 - 2 e."""
+def _half_bend(s, bend):
+    k0, k1, k2, k4 = bend
     ss = s * s
-    return (15 * d * d * ss + 12 * b * d + 6 * e) * ss + 6 * a * d * s + b * b - 2 * e
+    return (k4 * ss + k2) * ss + k1 * s + k0
 
 
-def _newton(lo, hi, g_lo, g_hi, m_lo, m_hi, a, b, d, e):
+def _newton(lo, hi, g_lo, g_hi, m_lo, m_hi, slope):
     """The root of g' in [lo, hi] where g'(lo) > 0 > g'(hi): from the peak of the bracket's cubic
     Hermite interpolant, Newton's steps where they stay in the bracket (which shrinks by the sign
     of g'), bisection where they would not. After ``SURE_STEPS`` only the entries still moving take
     further steps."""
     s = lo + (hi - lo) * _hermite_peak(g_hi - g_lo, (hi - lo) * 2 * m_lo, (hi - lo) * 2 * m_hi)
-    c5, c3, c2, c1, c0 = 3 * d * d, 4 * b * d + 2 * e, 3 * a * d, b * b - 2 * e, a * b
-    c = (c5, c3, c2, c1, c0, 5 * c5, 3 * c3, 2 * c2)
-    s, lo, hi, last = _newton_steps(s, lo, hi, c, SURE_STEPS)
+    bend = _bend_terms(slope)
+    s, lo, hi, last = _newton_steps(s, lo, hi, slope, bend, SURE_STEPS)
     going = np.flatnonzero(np.abs(s - last) > CONVERGED * (hi - lo + np.abs(s)))
     if len(going):
-        s[going] = _newton_steps(s[going], lo[going], hi[going], [k[going] for k in c], NEWTON_STEPS - SURE_STEPS)[0]
+        s[going] = _newton_steps(
+            s[going], lo[going], hi[going], [t[going] for t in slope], [t[going] for t in bend], NEWTON_STEPS - SURE_STEPS
+        )[0]
     return s
 
 
-def _newton_steps(s, lo, hi, c, steps):
+def _newton_steps(s, lo, hi, slope_terms, bend_terms, steps):
     """``steps`` safeguarded Newton steps; returns s, the bracket, and s before the last step."""
-    c5, c3, c2, c1, c0, b4, b2, b1 = c
     last = s
     for _ in range(steps):
-        ss = s * s
-        slope = (((c5 * ss + c3) * s + c2) * s + c1) * s + c0
-        bend = (b4 * ss + b2) * ss + b1 * s + c1
+        slope, bend = _half_slope(s, slope_terms), _half_bend(s, bend_terms)
         rising = slope > 0
         lo = np.where(rising, s, lo)
         hi = np.where(rising, hi, s)
