@@ -93,3 +93,17 @@ def test_single_chord_peak_over_many_entries_at_once_matches_twenty_thousand_fib
     left_out = np.setdiff1d(np.arange(2000), kept)
     assert (dense[left_out] <= floor[left_out] * (1 + 1e-12)).all()
     assert 0.2 < len(kept) / 2000 < 0.95
+
+
+def test_single_chord_peak_resamples_a_bracket_holding_a_maximum_and_a_minimum():
+    # g peaks at s = 0.883 and dips to a minimum at s = 0.999, both between the last two of nine
+    # samples (0.75 and 1), where g' is positive at both: no sign change shows the peak (0.08 % above
+    # the top fibre), the bracket's bound leaves it open, and only sampling it again finds it.
+    # A thousand entries, as in a sweep, so that the search samples nine fibres per chord.
+    a, b, d, e = 0.31477981971170244, 0.4859813726676905, -0.161968490919564, 0.17418713373461728
+    top = g(1.0, a, b, d, e)
+    kept, s = single_chord_peak(*(np.full(1000, v) for v in (a, b, d, e, top)))
+    dense = g(FIBRES, a, b, d, e)
+    assert dense.max() > top * (1 + 5e-4)
+    assert kept.tolist() == list(range(1000)) and np.all(abs(s - FIBRES[np.argmax(dense)]) < 1e-4)
+    assert np.all(g(s, a, b, d, e) >= dense.max() * (1 - 1e-12))
