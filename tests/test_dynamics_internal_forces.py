@@ -218,7 +218,8 @@ def test_seed_coupler_maximum_with_the_body_load_term_is_that_of_dense_fibres_ov
     result = run_analysis(scene, Plan(forces=True, stresses=("coupler",), stations=200, validate=(), notes=()))
     stress, loads = result.stresses["coupler"], result.forces.link_loads["coupler"]
     table, f = stress.sections, stress.forces
-    b_y = 7850.0 * (loads.gravity[:, 1] - loads.origin_acceleration[:, 1])[:, None] - 7850.0 * loads.alpha[:, None] * table.x
+    rho = scene.links["coupler"].profile.density
+    b_y = rho * ((loads.gravity[:, 1] - loads.origin_acceleration[:, 1])[:, None] - loads.alpha[:, None] * table.x)
     v = np.linspace(-1.0, 1.0, 2001)
     for s in np.flatnonzero(table.n_chords == 1):
         c = (table.top[s] - table.bottom[s]) / 2

@@ -131,8 +131,9 @@ class SectionTable:
     top: NDArray[np.float64]
     bottom: NDArray[np.float64]
     crossings: Crossings | None = field(default=None, repr=False, compare=False)
-    """The edge crossings the table was cut from (``edge_crossings`` at the sorted stations, right-hand
-    limit), which ``region_moments`` can reuse."""
+    """The edge crossings the table was cut from (``edge_crossings`` at the sorted stations short of the
+    outline's right end, right-hand limit), which ``region_moments`` can reuse: stations at the right
+    end come last in that order and take every edge whole there."""
 
     @property
     def c_top(self) -> NDArray[np.float64]:
