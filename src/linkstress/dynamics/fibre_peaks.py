@@ -86,11 +86,16 @@ def _first_samples(count: int) -> int:
 
 
 @lru_cache(maxsize=None)
-def _chord_samples(count: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """``count`` fibres s evenly over [-1, 1], and the matrices that take (a^2 + e, 2ab, b^2 - 2e,
-    2ad, 2bd + e, d^2) to g and (ab, b^2 - 2e, 3ad, 4bd + 2e, 3d^2) to g'/2 there."""
+def _chord_samples(count: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``count`` fibres s evenly over [-1, 1], and the matrix (4 count, 6) that takes the coefficients
+    (a^2 + e, 2ab, b^2 - 2e, 2ad, 2bd + e, d^2) of g's powers (1, s, s^2, s^3, s^4, s^6) to g, g'/2,
+    and g -+ (2h/3) g'/2 (h the spacing) there: the samples and the ends of each bracket's bound."""
     s = np.linspace(-1.0, 1.0, count)
-    return s, np.stack([s**k for k in (0, 1, 2, 3, 4, 6)], axis=1), np.stack([s**k for k in (0, 1, 2, 3, 5)], axis=1)
+    powers = np.array([0, 1, 2, 3, 4, 6])
+    g = s[:, None] ** powers
+    half_slope = powers * s[:, None] ** np.maximum(powers - 1, 0) / 2
+    reach = (2 / 3) * (2 / (count - 1)) * half_slope
+    return s, np.vstack([g, half_slope, g + reach, g - reach])
 
 
 def single_chord_peak(
@@ -139,38 +144,45 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     between samples that are still undecided."""
     if not first:
         a, b, d, e = a[rows], b[rows], d[rows], e[rows]
-    slope = _slope_terms(a, b, d, e)
+    fourth = 2 * b * d + e
+    square = d * d
     if first:
-        grid, g_powers, m_powers = _chord_samples(_first_samples(len(rows)))
-        s = np.broadcast_to(grid[:, None], (len(grid), len(rows)))
-        g = g_powers @ np.stack([a * a + e, 2 * a * b, b * b - 2 * e, 2 * a * d, 2 * b * d + e, d * d])
-        m = m_powers @ np.stack(slope)
+        grid, matrix = _chord_samples(_first_samples(len(rows)))
+        count = len(grid)
+        s = np.broadcast_to(grid[:, None], (count, len(rows)))
+        g, m, up, down = np.split(matrix @ np.stack([a * a + e, 2 * a * b, b * b - 2 * e, 2 * a * d, fourth, square]), 4)
     else:
+        count = SAMPLES
         s = lo + width * _UNIT[:, None]
-        g, m = _g(s, a, b, d, e), _half_slope(s, slope)
-    above = np.flatnonzero(g.max(axis=0) > best[rows])
-    k = g[:, above].argmax(axis=0)
-    _raise(best, at, rows[above], g[k, above], s[k, above])
-    h = width / (len(s) - 1)
-    reach = m * ((2 / 3) * h)
-    bound = g[:-1] + reach[:-1]
-    np.maximum(bound, g[1:] - reach[1:], out=bound)
-    bound += (h**4 / 288) * (24 * np.abs(2 * b * d + e) + 360 * d * d)
+        g, m = _g(s, a, b, d, e), _half_slope(s, _slope_terms(a, b, d, e))
+        reach = m * ((2 / 3) * width / (count - 1))
+        up, down = g + reach, g - reach
+    top = g.max(axis=0)
+    above = np.flatnonzero(top > best[rows])
+    peak = s[_row_of_max(g, top)[above], above]
+    if first:  # one bracket per entry: no np.maximum.at
+        best[rows[above]], at[rows[above]] = top[above], peak
+    else:
+        _raise(best, at, rows[above], top[above], peak)
+    h = width / (count - 1)
+    bound = np.maximum(up[:-1], down[1:])
+    bound += (h**4 / 288) * (24 * np.abs(fourth) + 360 * square)
     bracket = bound > best[rows]
     rising = m > 0
     crossing = rising[:-1] & ~rising[1:]
     crossing &= m[1:] < 0
     crossing &= bracket
-    j, c = np.nonzero(crossing)
+    j, c = _nonzero(crossing)
     if len(c):
-        peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], [t[c] for t in slope])
+        slope = _slope_terms(a[c], b[c], d[c], e[c])
+        peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], slope)
         _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
     bracket &= ~crossing
-    j, c = np.nonzero(bracket)
+    j, c = _nonzero(bracket)
     open_ = bound[j, c] > best[rows[c]]
     j, c = j[open_], c[open_]
     if len(c):
-        open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], [t[c] for t in slope], d[c])
+        open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], _slope_terms(a[c], b[c], d[c], e[c]), d[c])
         j, c = j[open_], c[open_]
     return rows[c], s[j, c], h[c]
 
@@ -239,12 +251,15 @@ def _newton_steps(s, lo, hi, slope_terms, bend_terms, steps):
     last = s
     for _ in range(steps):
         slope, bend = _half_slope(s, slope_terms), _half_bend(s, bend_terms)
-        rising = slope > 0
-        lo = np.where(rising, s, lo)
-        hi = np.where(rising, hi, s)
+        rising = (slope > 0).view(np.uint8)
+        # lo = s where g' rises, hi = s where it falls: by arithmetic, since np.where on a mask
+        # of no pattern costs several times more
+        lo = lo + rising * (s - lo)
+        hi = s + rising * (hi - s)
         with np.errstate(divide="ignore", invalid="ignore"):
             step = s - slope / bend  # where bend = 0: not finite, so not in the bracket
-        last, s = s, np.where((step >= lo) & (step <= hi), step, (lo + hi) / 2)
+        last, s = s, (lo + hi) / 2
+        np.copyto(s, step, where=(step >= lo) & (step <= hi))
     return s, lo, hi, last
 
 
@@ -256,6 +271,20 @@ def _hermite_peak(rise, p0, p1):
     b = 2 * (3 * rise - 2 * p0 - p1)
     with np.errstate(divide="ignore"):
         return np.clip(2 * p0 / (np.sqrt(np.maximum(b * b - 4 * a * p0, 0.0)) - b), 0.0, 1.0)
+
+
+def _row_of_max(g, top):
+    """Per column of g, the first row where it equals ``top``, its column maximum, as argmax would
+    give it (argmax along the first axis makes a strided pass several times slower)."""
+    from_last = np.arange(len(g) - 1, -1, -1, dtype=np.uint16)[:, None]
+    return len(g) - 1 - ((g == top).view(np.uint8) * from_last).max(axis=0)
+
+
+def _nonzero(mask):
+    """np.nonzero of a 2-D mask, through its flat indices (several times faster on long rows)."""
+    flat = np.flatnonzero(mask)
+    row = flat // mask.shape[1]
+    return row, flat - row * mask.shape[1]
 
 
 def _raise(best, at, rows, g, s):
