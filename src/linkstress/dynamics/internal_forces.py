@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 from numpy.typing import NDArray
 
 from linkstress.loads import LinkLoadCase
@@ -96,24 +97,27 @@ def load_basis(loads, joints, on_side, points_on_side, moments, cut, rho_t):
 class ForceBasis:
     """N, V, M per unit load coefficient: ``normal``, ``shear``, ``moment`` (Q, S), so that
     ``load_coefficients(loads) @ normal`` is N (P, S); ``whole`` (3, Q): the resultant (F_x, F_y,
-    M about the origin) of every load on the link; ``cut`` (S, 2): the cut points (x, y_na)."""
+    M about the origin) of every load on the link; ``cut`` (S, 2): the cut points (x, y_na);
+    ``corners`` (H, 2): the corners of their convex hull."""
 
     normal: NDArray[np.float64]
     shear: NDArray[np.float64]
     moment: NDArray[np.float64]
     whole: NDArray[np.float64]
     cut: NDArray[np.float64]
+    corners: NDArray[np.float64]
 
     def mismatch(self, coefficients, normal, shear, moment) -> NDArray[np.float64]:
         """The two-sided check (P,) of section forces (P, S) made from ``coefficients`` (P, Q).
 
         The right free body carries every load not on the left, so its cut differs from the left's
-        by the resultant of all loads, taken about the cut point.
+        by the resultant of all loads, taken about the cut point. That moment is affine in the
+        cut point, so its largest size over the cuts is at a corner of their convex hull.
         """
-        total_x, total_y = self.whole[:2] @ coefficients.T
-        d_force = np.maximum(np.abs(total_x), np.abs(total_y))
-        whole_x, whole_y, whole_m = self.whole[:, :, None]
-        d_moment = _largest(coefficients @ (whole_m - whole_y * self.cut[:, 0] + whole_x * self.cut[:, 1]))
+        total = coefficients @ self.whole.T
+        d_force = np.maximum(np.abs(total[:, 0]), np.abs(total[:, 1]))
+        x, y = self.corners.T
+        d_moment = _largest(total @ np.stack([y, -x, np.ones_like(x)]))
         force_scale = np.maximum(_largest(normal), _largest(shear))
         return np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, _largest(moment)))
 
@@ -138,7 +142,8 @@ def force_basis(
         np.vstack([sides, moments.total]).T, np.vstack([cut, np.zeros(2)]), link.density * link.thickness,
     )
     left = basis[:, :, :-1]
-    return ForceBasis(-left[0], -left[1], left[2], basis[:, :, -1], cut)
+    corners = shapely.get_coordinates(shapely.MultiPoint(cut).convex_hull)
+    return ForceBasis(-left[0], -left[1], left[2], basis[:, :, -1], cut, corners)
 
 
 def internal_forces(

@@ -127,10 +127,11 @@ def section_stresses(
     table = link.sections(stations, *frame_joints)
     basis = force_basis(link, loads, table)
     shape = _SectionShape.of(table, link.density)
-    top, bottom, body = shape.fibre_basis(basis)
+    mean, spread, body = shape.fibre_basis(basis)
     coefficients = load_coefficients(loads)
     size = (len(coefficients), len(table.x))
-    normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
+    normal, shear, moment = (coefficients @ b for b in (basis.normal, basis.shear, basis.moment))
+    von_mises, u, sigma = (np.empty(size) for _ in range(3))
     fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
     mismatch = np.empty(size[0])
     forces = InternalForces(table.x, normal, shear, moment, mismatch)
@@ -138,13 +139,11 @@ def section_stresses(
     for start in range(0, size[0], POSITION_BLOCK):
         p = slice(start, start + POSITION_BLOCK)
         c = coefficients[p]
-        for out, b in ((normal, basis.normal), (shear, basis.shear), (moment, basis.moment)):
-            np.matmul(c, b, out=out[p])
         mismatch[p] = basis.mismatch(c, normal[p], shear[p], moment[p])
-        s_top, s_bottom = c @ top, c @ bottom
-        shape.outer_fibres(s_top, s_bottom, fibres.block(p))
+        block = fibres.block(p)
+        size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, block)
         at_single, at_split, chord = shape.interior_candidates(
-            s_top, s_bottom, np.abs(c @ body), normal[p], shear[p], moment[p]
+            size_n, size_m, block.von_mises, np.abs(c @ body), normal[p], shear[p], moment[p]
         )
         shape.single_interiors(forces, coefficients, at_single + start * size[1], fibres)
         split.append(at_split + start * size[1])
@@ -156,6 +155,9 @@ def section_stresses(
         pin_hole_estimates(link, loads),
     )
 
+
+BODY_TERM = 0.1925
+"""Half the 0.385 of the body-load term in ``interior_candidates``' test."""
 
 POSITION_BLOCK = 256
 """Positions evaluated together: (block x stations) arrays stay in cache, about twice as fast as
@@ -222,8 +224,8 @@ class _SectionShape:
             half=np.where(single, half, 0.0),
             # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
             lever=np.where(single, 0.4 * density * half, 0.0),
-            # (32/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
-            shear_gain=np.where(single, (32 / 9) * inv_inertia**2 * half**4, 0.0),
+            # (8/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
+            shear_gain=np.where(single, (8 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
             split=_Chords(at, ua, ub, c),
             hole_ends=_HoleEdges(
@@ -234,34 +236,41 @@ class _SectionShape:
         )
 
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
-        """Per unit load coefficient, (Q, S) each: sigma at the top and bottom fibres, N / A + M u / I
-        and the body-load term +-0.4 b_y c, b_y = rho ((g - a_O)_y - alpha x); and b_y c on
-        single chords (zero elsewhere), for ``interior_candidates``."""
+        """Per unit load coefficient, (Q, S) each: the mean and half the difference of sigma at the
+        top and bottom fibres, N / A + M u / I and the body-load term +-0.4 b_y c,
+        b_y = rho ((g - a_O)_y - alpha x); and 0.1925 b_y c on single chords (zero elsewhere), for
+        ``interior_candidates``."""
         along = basis.normal * self.inv_area
-        top = along + basis.moment * (self.inv_inertia * self.u_top)
-        bottom = along + basis.moment * (self.inv_inertia * self.u_bottom)
-        for fibre, sign in ((top, 1.0), (bottom, -1.0)):
-            fibre[FREE_Y] += sign * self.lever
-            fibre[ALPHA] -= sign * self.x * self.lever
-        body = np.zeros_like(top)
-        body[FREE_Y] = self.lever / 0.4
-        body[ALPHA] = -self.x * self.lever / 0.4
-        return top, bottom, body
+        mean = along + basis.moment * (self.inv_inertia * (self.u_top + self.u_bottom) / 2)
+        spread = basis.moment * (self.inv_inertia * (self.u_top - self.u_bottom) / 2)
+        spread[FREE_Y] += self.lever
+        spread[ALPHA] -= self.x * self.lever
+        body = np.zeros_like(mean)
+        body[FREE_Y] = self.lever * (BODY_TERM / 0.4)
+        body[ALPHA] = -self.x * self.lever * (BODY_TERM / 0.4)
+        return mean, spread, body
 
-    def outer_fibres(self, s_top, s_bottom, fibres: "_Fibres") -> None:
-        """The larger of the top and bottom fibres' sigma (P, S) (free edges, tau = 0) into ``fibres``."""
-        top_wins = np.abs(s_top) >= np.abs(s_bottom)
-        np.copyto(fibres.sigma, s_bottom)
-        np.copyto(fibres.sigma, s_top, where=top_wins)
-        np.abs(fibres.sigma, out=fibres.von_mises)
-        np.copyto(fibres.u, self.u_bottom)
-        np.copyto(fibres.u, self.u_top, where=top_wins)
+    def outer_fibres(self, mean, spread, fibres: "_Fibres"):
+        """The larger of the top and bottom fibres' |sigma| = |mean +- spread| (P, S) (free edges,
+        tau = 0) into ``fibres``: |mean| + |spread|, at the top where mean and spread have one sign
+        (by sign bit: a tie under pure axial load goes to the top in tension, to the bottom in
+        compression), its sigma of the mean's sign. Returns |mean| and |spread| (``spread`` made its
+        absolute value in place)."""
+        top = (np.signbit(mean) == np.signbit(spread)).view(np.uint8)
+        size_n = np.abs(mean)
+        size_m = np.abs(spread, out=spread)
+        np.add(size_n, size_m, out=fibres.von_mises)
+        np.copysign(fibres.von_mises, mean, out=fibres.sigma)
+        np.multiply(top, self.u_top - self.u_bottom, out=fibres.u)
+        fibres.u += self.u_bottom
+        return size_n, size_m
 
-    def interior_candidates(self, s_top, s_bottom, body, normal, shear, moment):
+    def interior_candidates(self, size_n, size_m, outer, body, normal, shear, moment):
         """Flat (position, station) indices where a single chord's interior may hold the section's
         maximum, and (flat index, chord) pairs for the chords of split sections; necessary
-        conditions, so none is missed. Section forces, outer fibres' sigma and ``body`` = |b_y| c
-        are (P, S).
+        conditions, so none is missed. Section forces, the outer fibres' |mean| and |spread| of
+        sigma and their von Mises ``outer`` = |mean| + |spread|, and ``body`` = 0.1925 |b_y| c are
+        (P, S).
 
         A single chord is symmetric about the neutral axis (half-depth c, C = c^2). With the body
         term, sigma(u) = n + m_e u - beta u (c^2 - u^2), m_e = m + 0.4 beta c^2, so the outer fibres
@@ -271,26 +280,19 @@ class _SectionShape:
 
             (32/9) w^2 c^4 + 2 b c (2|n| + 2|m_e| c + 0.385 b c) > |m_e| c (2|n| + |m_e| c),
 
-        b = |b_y|, where 2|n| = |s_top + s_bottom| and 2|m_e| c = |s_top - s_bottom|. Chords of
-        sections split by holes (no body term) are searched where the cubic of
-        ``cubic_peak`` has three real roots.
+        b = |b_y|, where |n| = |mean| and |m_e| c = |spread|; divided by 4, with B = 0.1925 b c:
+        (4 / 0.1925) B (E + B) + (8/9) w^2 c^4 > |m_e| c (|n| + E). Chords of sections split by
+        holes (no body term) are searched where the cubic of ``cubic_peak`` has three real roots.
         """
-        two_n = s_top + s_bottom
-        np.abs(two_n, out=two_n)
-        two_m = s_top - s_bottom
-        np.abs(two_m, out=two_m)
-        ends = two_n * 2
-        ends += two_m
-        ends *= two_m
-        gain = two_n
-        gain += two_m
-        gain += 0.385 * body
+        gain = outer + body
         gain *= body
-        gain *= 8
+        gain *= 4 / BODY_TERM
         shear_term = shear * shear
         shear_term *= self.shear_gain
         gain += shear_term
-        single = np.flatnonzero(gain > ends)
+        size_n += outer
+        size_n *= size_m
+        single = np.flatnonzero(gain > size_n)
         at = self.split.at
         n, m, w = normal[:, at] * self.inv_area[at], moment[:, at] * self.inv_inertia[at], shear[:, at] * self.inv_inertia[at]
         rows, chord = np.nonzero(has_cubic_peak(n, m, w / 2, self.split.c))
