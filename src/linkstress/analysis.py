@@ -19,6 +19,7 @@ from linkstress.dynamics.section_stress import SectionStresses, default_stations
 from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
 from linkstress.scene import Scene
+from linkstress.threads import blas_alone
 
 DEFAULT_STATIONS = 101
 """Section stations per link when the scene does not say (see the README's speed/error table)."""
@@ -110,8 +111,12 @@ class AnalysisResult:
 
 
 def run_analysis(scene: Scene, plan: Plan | None = None) -> AnalysisResult:
-    """Run ``plan`` (default: the scene's) on ``scene``."""
-    plan = plan or plan_for(scene)
+    """Run ``plan`` (default: the scene's) on ``scene`` (BLAS on one thread: ``linkstress.threads``)."""
+    with blas_alone():
+        return _run(scene, plan or plan_for(scene))
+
+
+def _run(scene: Scene, plan: Plan) -> AnalysisResult:
     seconds = {}
     start = time.perf_counter()
     kinematics = solve_machine(scene.machine, scene.motion)

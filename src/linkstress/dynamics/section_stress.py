@@ -47,6 +47,7 @@ from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.sections import SectionTable
+from linkstress.threads import blas_alone, in_parallel
 
 
 
@@ -121,8 +122,14 @@ def section_stresses(
     Candidates for the largest von Mises of a section: its outer fibres (free edges, tau = 0), the
     ends of chords at holes, and each chord's interior maximum where shear matters. Every stress is
     linear in the load coefficients (``load_coefficients``), so N, V, M and the outer fibres' sigma
-    are each one product of those with a basis made once per link.
+    are each one product of those with a basis made once per link. Blocks of positions run on
+    every core, BLAS on one thread (``linkstress.threads``).
     """
+    with blas_alone():
+        return _section_stresses(link, loads, stations)
+
+
+def _section_stresses(link: LinkProfile, loads: LinkLoadCase, stations: NDArray[np.float64]) -> SectionStresses:
     frame_joints = loads.frame_joints
     table = link.sections(stations, *frame_joints)
     basis = force_basis(link, loads, table)
@@ -135,9 +142,9 @@ def section_stresses(
     fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
     mismatch = np.empty(size[0])
     forces = InternalForces(table.x, normal, shear, moment, mismatch)
-    split, chords = [], []
-    for start in range(0, size[0], POSITION_BLOCK):
-        p = slice(start, start + POSITION_BLOCK)
+
+    def evaluate(p: slice) -> None:
+        """Every fibre candidate of positions ``p``: their writes touch only those rows."""
         c = coefficients[p]
         mismatch[p] = basis.mismatch(c, normal[p], shear[p], moment[p])
         block = fibres.block(p)
@@ -145,11 +152,14 @@ def section_stresses(
         at_single, at_split, chord = shape.interior_candidates(
             size_n, size_m, block.von_mises, np.abs(c @ body), normal[p], shear[p], moment[p]
         )
-        shape.single_interiors(forces, coefficients, at_single + start * size[1], fibres)
-        split.append(at_split + start * size[1])
-        chords.append(chord)
-    shape.hole_end_fibres(forces, fibres)
-    shape.split_interiors(forces, np.concatenate(split), np.concatenate(chords), fibres)
+        offset = p.start * size[1]
+        shape.single_interiors(forces, coefficients, at_single + offset, fibres)
+        shape.hole_end_fibres(forces, fibres, p)
+        shape.split_interiors(forces, at_split + offset, chord, fibres)
+
+    count = -(-size[0] // POSITION_BLOCK)
+    edges = np.linspace(0, size[0], count + 1).round().astype(int)
+    in_parallel(evaluate, [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])])
     return SectionStresses(
         table, forces, von_mises, table.neutral_axis + u, sigma, fibres.tau, near_holes(link, frame_joints, table),
         pin_hole_estimates(link, loads),
@@ -159,9 +169,11 @@ def section_stresses(
 BODY_TERM = 0.1925
 """Half the 0.385 of the body-load term in ``interior_candidates``' test."""
 
-POSITION_BLOCK = 256
-"""Positions evaluated together: (block x stations) arrays stay in cache, about twice as fast as
-whole-sweep arrays on a long sweep (this is blocking, not a loop over positions)."""
+POSITION_BLOCK = 512
+"""Most positions evaluated together: (block x stations) arrays stay in cache, faster than
+whole-sweep arrays on a long sweep (this is blocking, not a loop over positions), and the blocks
+run on every core (``linkstress.threads``); on two cores 512 beat 128 and 256 (more calls per
+position contend for the interpreter lock) and 1,024 (fewer blocks to share)."""
 
 
 @dataclass(frozen=True)
@@ -298,14 +310,15 @@ class _SectionShape:
         rows, chord = np.nonzero(has_cubic_peak(n, m, w / 2, self.split.c))
         return single, rows * len(self.x) + at[chord], chord
 
-    def hole_end_fibres(self, forces: InternalForces, fibres: "_Fibres") -> None:
-        """Chord ends at holes (every position, these few stations) that beat ``fibres``."""
+    def hole_end_fibres(self, forces: InternalForces, fibres: "_Fibres", positions: slice) -> None:
+        """Chord ends at holes (these few stations, at ``positions``) that beat ``fibres``."""
         ends = self.hole_ends
         if not len(ends.at):
             return
-        count = len(forces.normal)
-        flat = (np.arange(count)[:, None] * len(self.x) + ends.at).ravel()
+        rows = np.arange(len(forces.normal))[positions]
+        flat = (rows[:, None] * len(self.x) + ends.at).ravel()
         n, m, w, at = self._reduced(forces, flat)
+        count = len(rows)
         self._consider(fibres, flat, n, m, w, np.tile(ends.c, count), np.tile(ends.u, count), 0.0, at, repeated=True)
 
     def single_interiors(self, forces: InternalForces, coefficients, flat, fibres: "_Fibres") -> None:

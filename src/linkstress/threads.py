@@ -1,0 +1,49 @@
+"""Running numpy work on every core.
+
+numpy lets go of the interpreter lock inside its element loops, so blocks of a sweep that write
+disjoint rows run side by side on threads (``in_parallel``). BLAS has threads of its own: beside
+ours they compete for the same cores, and after each product they keep spinning on them for a
+while, which slows the single-threaded element loops that follow. The products in an analysis are
+small (a few load coefficients by a few hundred stations), so ``blas_alone`` keeps BLAS to one
+thread while an analysis runs.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import AbstractContextManager
+from functools import lru_cache
+from typing import TypeVar
+
+from threadpoolctl import ThreadpoolController
+
+Block = TypeVar("Block")
+
+
+def in_parallel(work: Callable[[Block], None], blocks: Sequence[Block]) -> None:
+    """``work(block)`` for every block, on a thread per core when there is more than one block.
+    The blocks' writes must not overlap; an exception in any block is raised here."""
+    if len(blocks) <= 1:
+        for block in blocks:
+            work(block)
+        return
+    with ThreadPoolExecutor(min(len(blocks), cores())) as pool:
+        list(pool.map(work, blocks))
+
+
+def blas_alone() -> AbstractContextManager:
+    """A context in which BLAS runs on the calling thread only."""
+    return _controller().limit(limits=1, user_api="blas")
+
+
+def cores() -> int:
+    """The cores this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+@lru_cache(maxsize=1)
+def _controller() -> ThreadpoolController:
+    # made once: finding the loaded BLAS libraries takes milliseconds
+    return ThreadpoolController()
