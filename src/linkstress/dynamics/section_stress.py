@@ -137,8 +137,7 @@ def _section_stresses(link: LinkProfile, loads: LinkLoadCase, stations: NDArray[
     mean, spread, body = shape.fibre_basis(basis)
     coefficients = load_coefficients(loads)
     size = (len(coefficients), len(table.x))
-    normal, shear, moment = (coefficients @ b for b in (basis.normal, basis.shear, basis.moment))
-    von_mises, u, sigma = (np.empty(size) for _ in range(3))
+    normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
     fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
     mismatch = np.empty(size[0])
     forces = InternalForces(table.x, normal, shear, moment, mismatch)
@@ -146,6 +145,8 @@ def _section_stresses(link: LinkProfile, loads: LinkLoadCase, stations: NDArray[
     def evaluate(p: slice) -> None:
         """Every fibre candidate of positions ``p``: their writes touch only those rows."""
         c = coefficients[p]
+        for out, b in ((normal, basis.normal), (shear, basis.shear), (moment, basis.moment)):
+            np.matmul(c, b, out=out[p])
         mismatch[p] = basis.mismatch(c, normal[p], shear[p], moment[p])
         block = fibres.block(p)
         size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, block)
@@ -156,12 +157,13 @@ def _section_stresses(link: LinkProfile, loads: LinkLoadCase, stations: NDArray[
         shape.single_interiors(forces, coefficients, at_single + offset, fibres)
         shape.hole_end_fibres(forces, fibres, p)
         shape.split_interiors(forces, at_split + offset, chord, fibres)
+        block.u += table.neutral_axis  # now the fibre's y
 
     count = -(-size[0] // POSITION_BLOCK)
     edges = np.linspace(0, size[0], count + 1).round().astype(int)
     in_parallel(evaluate, [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])])
     return SectionStresses(
-        table, forces, von_mises, table.neutral_axis + u, sigma, fibres.tau, near_holes(link, frame_joints, table),
+        table, forces, von_mises, u, sigma, fibres.tau, near_holes(link, frame_joints, table),
         pin_hole_estimates(link, loads),
     )
 
