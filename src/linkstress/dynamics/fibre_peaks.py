@@ -87,15 +87,17 @@ def _first_samples(count: int) -> int:
 
 @lru_cache(maxsize=None)
 def _chord_samples(count: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """``count`` fibres s evenly over [-1, 1], and the matrix (4 count, 6) that takes the coefficients
-    (a^2 + e, 2ab, b^2 - 2e, 2ad, 2bd + e, d^2) of g's powers (1, s, s^2, s^3, s^4, s^6) to g, g'/2,
-    and g -+ (2h/3) g'/2 (h the spacing) there: the samples and the ends of each bracket's bound."""
-    s = np.linspace(-1.0, 1.0, count)
+    """``count`` fibres evenly over the chord, as fractions of it (s = -1 + 2 t), and the matrix
+    (4 count, 6) that takes the coefficients (a^2 + e, 2ab, b^2 - 2e, 2ad, 2bd + e, d^2) of g's
+    powers (1, s, s^2, s^3, s^4, s^6) to g, g'/2, and g -+ (2h/3) g'/2 (h the spacing) there: the
+    samples and the ends of each bracket's bound."""
+    unit = np.linspace(0.0, 1.0, count)
+    s = -1.0 + 2.0 * unit
     powers = np.array([0, 1, 2, 3, 4, 6])
     g = s[:, None] ** powers
     half_slope = powers * s[:, None] ** np.maximum(powers - 1, 0) / 2
     reach = (2 / 3) * (2 / (count - 1)) * half_slope
-    return s, np.vstack([g, half_slope, g + reach, g - reach])
+    return unit, np.vstack([g, half_slope, g + reach, g - reach])
 
 
 def single_chord_peak(
@@ -141,30 +143,34 @@ def single_chord_peak(
 def _search(a, b, d, e, rows, lo, width, best, at, first):
     """One pass over the brackets [lo, lo + width] of entries ``rows``: samples, then Newton's steps
     where g' changes sign downward; raises ``best`` and ``at`` in place and returns the brackets
-    between samples that are still undecided."""
+    between samples that are still undecided.
+
+    Sample k of entry c is at lo[c] + width[c] k / (samples - 1); an element (k, c) of the
+    (samples - 1, entries) bracket masks has the flat index f = k n + c, which is also that of
+    its left sample in the (samples, entries) arrays (f + n its right one): every pick is a flat
+    one, several times cheaper than indexing by (row, column) pairs."""
     if not first:
         a, b, d, e = a[rows], b[rows], d[rows], e[rows]
     fourth = 2 * b * d + e
     square = d * d
     if first:
-        grid, matrix = _chord_samples(_first_samples(len(rows)))
-        count = len(grid)
-        s = np.broadcast_to(grid[:, None], (count, len(rows)))
+        unit, matrix = _chord_samples(_first_samples(len(rows)))
         g, m, up, down = np.split(matrix @ np.stack([a * a + e, 2 * a * b, b * b - 2 * e, 2 * a * d, fourth, square]), 4)
     else:
-        count = SAMPLES
-        s = lo + width * _UNIT[:, None]
+        unit = _UNIT
+        s = lo + width * unit[:, None]
         g, m = _g(s, a, b, d, e), _half_slope(s, _slope_terms(a, b, d, e))
-        reach = m * ((2 / 3) * width / (count - 1))
+        reach = m * ((2 / 3) * width / (len(unit) - 1))
         up, down = g + reach, g - reach
+    n = len(rows)
     top = g.max(axis=0)
     above = np.flatnonzero(top > best[rows])
-    peak = s[_row_of_max(g, top)[above], above]
+    peak = lo[above] + width[above] * unit[_row_of_max(g, top)[above]]
     if first:  # one bracket per entry: no np.maximum.at
         best[rows[above]], at[rows[above]] = top[above], peak
     else:
         _raise(best, at, rows[above], top[above], peak)
-    h = width / (count - 1)
+    h = width / (len(unit) - 1)
     bound = np.maximum(up[:-1], down[1:])
     bound += (h**4 / 288) * (24 * np.abs(fourth) + 360 * square)
     bracket = bound > best[rows]
@@ -172,19 +178,24 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     crossing = rising[:-1] & ~rising[1:]
     crossing &= m[1:] < 0
     crossing &= bracket
-    j, c = _nonzero(crossing)
-    if len(c):
+    g, m, bound = g.reshape(-1), m.reshape(-1), bound.reshape(-1)
+    f = np.flatnonzero(crossing)
+    if len(f):
+        c = f % n
+        s0 = lo[c] + width[c] * unit[f // n]
         slope = _slope_terms(a[c], b[c], d[c], e[c])
-        peak = _newton(s[j, c], s[j + 1, c], g[j, c], g[j + 1, c], m[j, c], m[j + 1, c], slope)
+        peak = _newton(s0, s0 + h[c], g[f], g[f + n], m[f], m[f + n], slope)
         _raise(best, at, rows[c], _g(peak, a[c], b[c], d[c], e[c]), peak)
     bracket &= ~crossing
-    j, c = _nonzero(bracket)
-    open_ = bound[j, c] > best[rows[c]]
-    j, c = j[open_], c[open_]
-    if len(c):
-        open_ = ~_monotone(s[j, c], h[c], m[j, c], m[j + 1, c], _slope_terms(a[c], b[c], d[c], e[c]), d[c])
-        j, c = j[open_], c[open_]
-    return rows[c], s[j, c], h[c]
+    f = np.flatnonzero(bracket)
+    c = f % n
+    still = bound[f] > best[rows[c]]
+    f, c = f[still], c[still]
+    if not len(f):
+        return rows[c], lo[c], h[c]
+    s0 = lo[c] + width[c] * unit[f // n]
+    open_ = ~_monotone(s0, h[c], m[f], m[f + n], _slope_terms(a[c], b[c], d[c], e[c]), d[c])
+    return rows[c[open_]], s0[open_], h[c[open_]]
 
 
 def _monotone(lo, h, m0, m1, slope, d):
@@ -278,13 +289,6 @@ def _row_of_max(g, top):
     give it (argmax along the first axis makes a strided pass several times slower)."""
     from_last = np.arange(len(g) - 1, -1, -1, dtype=np.uint16)[:, None]
     return len(g) - 1 - ((g == top).view(np.uint8) * from_last).max(axis=0)
-
-
-def _nonzero(mask):
-    """np.nonzero of a 2-D mask, through its flat indices (several times faster on long rows)."""
-    flat = np.flatnonzero(mask)
-    row = flat // mask.shape[1]
-    return row, flat - row * mask.shape[1]
 
 
 def _raise(best, at, rows, g, s):
