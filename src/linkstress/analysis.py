@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.dynamics.machine_forces import MachineForces, machine_forces
-from linkstress.dynamics.section_stress import SectionStresses, default_stations, section_stresses
+from linkstress.dynamics.section_stress import SectionStresses, default_stations, links_section_stresses
 from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
 from linkstress.scene import Scene
@@ -128,11 +128,10 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
         forces = machine_forces(scene, kinematics)
         seconds["forces"] = time.perf_counter() - start
         start = time.perf_counter()
+        jobs = []
         for name in plan.stresses:
-            link = scene.links[name]
-            loads = forces.link_loads[name]
-            stresses[name] = section_stresses(
-                link.profile, loads, default_stations(link.profile, loads.frame_joints, plan.stations),
-            )
+            profile, loads = scene.links[name].profile, forces.link_loads[name]
+            jobs.append((profile, loads, default_stations(profile, loads.frame_joints, plan.stations)))
+        stresses = dict(zip(plan.stresses, links_section_stresses(jobs)))
         seconds["stresses"] = time.perf_counter() - start
     return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds)

@@ -36,6 +36,7 @@ beat its outer fibres are searched further.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -125,47 +126,84 @@ def section_stresses(
     are each one product of those with a basis made once per link. Blocks of positions run on
     every core, BLAS on one thread (``linkstress.threads``).
     """
+    return links_section_stresses([(link, loads, stations)])[0]
+
+
+def links_section_stresses(
+    jobs: Sequence[tuple[LinkProfile, LinkLoadCase, NDArray[np.float64]]],
+) -> list[SectionStresses]:
+    """``section_stresses(link, loads, stations)`` for each job: the blocks of positions of every
+    link share the cores, so that no core waits at the end of one link's blocks."""
     with blas_alone():
-        return _section_stresses(link, loads, stations)
+        sweeps = [_Sweep.of(*job) for job in jobs]
+        in_parallel(_evaluate, [(sweep, block) for sweep in sweeps for block in sweep.blocks()])
+        return [sweep.result() for sweep in sweeps]
 
 
-def _section_stresses(link: LinkProfile, loads: LinkLoadCase, stations: NDArray[np.float64]) -> SectionStresses:
-    frame_joints = loads.frame_joints
-    table = link.sections(stations, *frame_joints)
-    basis = force_basis(link, loads, table)
-    shape = _SectionShape.of(table, link.density)
-    mean, spread, body = shape.fibre_basis(basis)
-    coefficients = load_coefficients(loads)
-    size = (len(coefficients), len(table.x))
-    normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
-    fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
-    mismatch = np.empty(size[0])
-    forces = InternalForces(table.x, normal, shear, moment, mismatch)
+def _evaluate(item: tuple["_Sweep", slice]) -> None:
+    sweep, positions = item
+    sweep.evaluate(positions)
 
-    def evaluate(p: slice) -> None:
-        """Every fibre candidate of positions ``p``: their writes touch only those rows."""
-        c = coefficients[p]
+
+@dataclass(frozen=True)
+class _Sweep:
+    """One link's section stresses over the sweep, being filled block by block."""
+
+    link: LinkProfile
+    loads: LinkLoadCase
+    table: SectionTable
+    basis: ForceBasis
+    shape: "_SectionShape"
+    fibre_bases: tuple[NDArray[np.float64], ...]
+    coefficients: NDArray[np.float64]
+    forces: InternalForces
+    fibres: "_Fibres"
+
+    @classmethod
+    def of(cls, link: LinkProfile, loads: LinkLoadCase, stations: NDArray[np.float64]) -> "_Sweep":
+        table = link.sections(stations, *loads.frame_joints)
+        basis = force_basis(link, loads, table)
+        shape = _SectionShape.of(table, link.density)
+        coefficients = load_coefficients(loads)
+        size = (len(coefficients), len(table.x))
+        normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
+        forces = InternalForces(table.x, normal, shear, moment, np.empty(size[0]))
+        fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
+        return cls(link, loads, table, basis, shape, shape.fibre_basis(basis), coefficients, forces, fibres)
+
+    def blocks(self) -> list[slice]:
+        """Near-equal blocks of at most ``POSITION_BLOCK`` positions."""
+        count = len(self.coefficients)
+        edges = np.linspace(0, count, -(-count // POSITION_BLOCK) + 1).round().astype(int)
+        return [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])]
+
+    def evaluate(self, p: slice) -> None:
+        """Every fibre candidate of positions ``p``: the writes touch only those rows."""
+        basis, shape, forces, fibres = self.basis, self.shape, self.forces, self.fibres
+        mean, spread, body = self.fibre_bases
+        c = self.coefficients[p]
+        normal, shear, moment = forces.normal[p], forces.shear[p], forces.moment[p]
         for out, b in ((normal, basis.normal), (shear, basis.shear), (moment, basis.moment)):
-            np.matmul(c, b, out=out[p])
-        mismatch[p] = basis.mismatch(c, normal[p], shear[p], moment[p])
+            np.matmul(c, b, out=out)
+        forces.mismatch[p] = basis.mismatch(c, normal, shear, moment)
         block = fibres.block(p)
         size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, block)
         at_single, at_split, chord = shape.interior_candidates(
-            size_n, size_m, block.von_mises, np.abs(c @ body), normal[p], shear[p], moment[p]
+            size_n, size_m, block.von_mises, np.abs(c @ body), normal, shear, moment
         )
-        offset = p.start * size[1]
-        shape.single_interiors(forces, coefficients, at_single + offset, fibres)
+        offset = p.start * len(shape.x)
+        shape.single_interiors(forces, self.coefficients, at_single + offset, fibres)
         shape.hole_end_fibres(forces, fibres, p)
         shape.split_interiors(forces, at_split + offset, chord, fibres)
-        block.u += table.neutral_axis  # now the fibre's y
+        block.u += self.table.neutral_axis  # now the fibre's y
 
-    count = -(-size[0] // POSITION_BLOCK)
-    edges = np.linspace(0, size[0], count + 1).round().astype(int)
-    in_parallel(evaluate, [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])])
-    return SectionStresses(
-        table, forces, von_mises, u, sigma, fibres.tau, near_holes(link, frame_joints, table),
-        pin_hole_estimates(link, loads),
-    )
+    def result(self) -> SectionStresses:
+        frame_joints = self.loads.frame_joints
+        fibres = self.fibres
+        return SectionStresses(
+            self.table, self.forces, fibres.von_mises, fibres.u, fibres.sigma, fibres.tau,
+            near_holes(self.link, frame_joints, self.table), pin_hole_estimates(self.link, self.loads),
+        )
 
 
 BODY_TERM = 0.1925
