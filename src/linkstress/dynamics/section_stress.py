@@ -245,8 +245,8 @@ class _SectionShape:
     x: NDArray[np.float64]
     inv_area: NDArray[np.float64]
     inv_inertia: NDArray[np.float64]
-    u_top: NDArray[np.float64]
-    u_bottom: NDArray[np.float64]
+    middle: NDArray[np.float64]
+    reach: NDArray[np.float64]
     half: NDArray[np.float64]
     lever: NDArray[np.float64]
     shear_gain: NDArray[np.float64]
@@ -271,8 +271,9 @@ class _SectionShape:
             x=table.x,
             inv_area=np.where(solid, 1.0 / np.where(solid, table.area, 1.0), 0.0),
             inv_inertia=inv_inertia,
-            u_top=table.top - yna,
-            u_bottom=table.bottom - yna,
+            # the outer fibres at u = middle +- reach
+            middle=(table.top + table.bottom) / 2 - yna,
+            reach=half,
             half=np.where(single, half, 0.0),
             # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
             lever=np.where(single, 0.4 * density * half, 0.0),
@@ -293,8 +294,8 @@ class _SectionShape:
         b_y = rho ((g - a_O)_y - alpha x); and 0.1925 b_y c on single chords (zero elsewhere), for
         ``interior_candidates``."""
         along = basis.normal * self.inv_area
-        mean = along + basis.moment * (self.inv_inertia * (self.u_top + self.u_bottom) / 2)
-        spread = basis.moment * (self.inv_inertia * (self.u_top - self.u_bottom) / 2)
+        mean = along + basis.moment * (self.inv_inertia * self.middle)
+        spread = basis.moment * (self.inv_inertia * self.reach)
         spread[FREE_Y] += self.lever
         spread[ALPHA] -= self.x * self.lever
         body = np.zeros_like(mean)
@@ -305,16 +306,16 @@ class _SectionShape:
     def outer_fibres(self, mean, spread, fibres: "_Fibres"):
         """The larger of the top and bottom fibres' |sigma| = |mean +- spread| (P, S) (free edges,
         tau = 0) into ``fibres``: |mean| + |spread|, at the top where mean and spread have one sign
-        (by sign bit: a tie under pure axial load goes to the top in tension, to the bottom in
-        compression), its sigma of the mean's sign. Returns |mean| and |spread| (``spread`` made its
-        absolute value in place)."""
-        top = (np.signbit(mean) == np.signbit(spread)).view(np.uint8)
+        (by the sign of their product, zeros signed: a tie under pure axial load goes to the top in
+        tension, to the bottom in compression), its sigma of the mean's sign. Returns |mean| and
+        |spread| (``spread`` made its absolute value in place)."""
+        side = mean * spread
+        np.copysign(self.reach, side, out=fibres.u)
+        fibres.u += self.middle
         size_n = np.abs(mean)
         size_m = np.abs(spread, out=spread)
         np.add(size_n, size_m, out=fibres.von_mises)
         np.copysign(fibres.von_mises, mean, out=fibres.sigma)
-        np.multiply(top, self.u_top - self.u_bottom, out=fibres.u)
-        fibres.u += self.u_bottom
         return size_n, size_m
 
     def interior_candidates(self, size_n, size_m, outer, body, normal, shear, moment):
