@@ -142,8 +142,9 @@ def _cross(r: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64
 
 def _length_scale(assembly: Assembly) -> float:
     points = [p.position for p in assembly.pins] + [b.position_g for b in assembly.bodies]
-    stacked = np.concatenate([p.reshape(-1, 2) for p in points])
-    span = float(np.ptp(stacked, axis=0).max()) if len(stacked) else 0.0
+    # (2, n): each coordinate a contiguous row, so that its extremes are two fast reductions
+    stacked = np.concatenate([p.reshape(-1, 2).T for p in points], axis=1)
+    span = float((stacked.max(axis=1) - stacked.min(axis=1)).max()) if stacked.shape[1] else 0.0
     return span if span > 0 else 1.0
 
 
@@ -180,7 +181,7 @@ def _regular(matrix: NDArray[np.float64]) -> NDArray[np.bool_]:
     """(P,) True where the system is far from singular (one LU per position, no SVD)."""
     sign, logdet = np.linalg.slogdet(matrix)
     with np.errstate(divide="ignore"):  # an empty row has det 0: sign 0 decides
-        log_rows = np.log(np.linalg.norm(matrix, axis=2)).sum(axis=1)
+        log_rows = np.log(np.einsum("pij,pij->pi", matrix, matrix)).sum(axis=1) / 2
     return (sign != 0) & (logdet - log_rows > np.log(SINGULAR_RATIO))
 
 
