@@ -51,7 +51,16 @@ def test_a_sweep_in_many_blocks_on_threads_equals_the_sweep_in_one_block(monkeyp
     scene = replace(scene, motion=angle_motion(np.linspace(3.0, 357.0, 37), -1.0, 0.0))
     plan = Plan(forces=True, stresses=("crank", "coupler", "output"), stations=61, validate=(), notes=())
     monkeypatch.setattr(section_stress, "POSITION_BLOCK", 4)
+    monkeypatch.setattr(section_stress, "THREADED_PAIRS", 0)
+    calls = []
+
+    def spy(work, items, threads=True):
+        calls.append((len(items), threads))
+        in_parallel(work, items, threads)
+
+    monkeypatch.setattr(section_stress, "in_parallel", spy)
     blocks = run_analysis(scene, plan)
+    assert calls == [(30, True)]
     monkeypatch.setattr(section_stress, "POSITION_BLOCK", 1000)
     for name in plan.stresses:
         loads = blocks.forces.link_loads[name]

@@ -22,15 +22,15 @@ from threadpoolctl import ThreadpoolController
 Block = TypeVar("Block")
 
 
-def in_parallel(work: Callable[[Block], None], blocks: Sequence[Block]) -> None:
-    """``work(block)`` for every block, on a thread per core when there is more than one block.
-    The blocks' writes must not overlap; an exception in any block is raised here."""
-    if len(blocks) <= 1:
+def in_parallel(work: Callable[[Block], None], blocks: Sequence[Block], threads: bool = True) -> None:
+    """``work(block)`` for every block, on a thread per core where ``threads`` and there is more
+    than one block (small work runs faster on the calling thread alone). The blocks' writes must
+    not overlap; an exception in any block is raised here."""
+    if not threads or len(blocks) <= 1 or cores() == 1:
         for block in blocks:
             work(block)
         return
-    with ThreadPoolExecutor(min(len(blocks), cores())) as pool:
-        list(pool.map(work, blocks))
+    list(_pool().map(work, blocks))
 
 
 def blas_alone() -> AbstractContextManager:
@@ -41,6 +41,12 @@ def blas_alone() -> AbstractContextManager:
 def cores() -> int:
     """The cores this process may run on."""
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+@lru_cache(maxsize=1)
+def _pool() -> ThreadPoolExecutor:
+    # kept for the process: starting threads for every call costs about a millisecond each
+    return ThreadPoolExecutor(cores(), thread_name_prefix="linkstress")
 
 
 @lru_cache(maxsize=1)

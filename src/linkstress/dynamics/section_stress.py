@@ -136,7 +136,10 @@ def links_section_stresses(
     link share the cores, so that no core waits at the end of one link's blocks."""
     with blas_alone():
         sweeps = [_Sweep.of(*job) for job in jobs]
-        in_parallel(_evaluate, [(sweep, block) for sweep in sweeps for block in sweep.blocks()])
+        pairs = sum(sweep.fibres.von_mises.size for sweep in sweeps)
+        in_parallel(
+            _evaluate, [(sweep, block) for sweep in sweeps for block in sweep.blocks()], threads=pairs >= THREADED_PAIRS,
+        )
         return [sweep.result() for sweep in sweeps]
 
 
@@ -205,6 +208,10 @@ class _Sweep:
             near_holes(self.link, frame_joints, self.table), pin_hole_estimates(self.link, self.loads),
         )
 
+
+THREADED_PAIRS = 50_000
+"""(Position, station) pairs from which the blocks run on threads: below it, about one block of
+positions, handing work to threads costs more than it saves."""
 
 BODY_TERM = 0.1925
 """Half the 0.385 of the body-load term in ``interior_candidates``' test."""
