@@ -242,12 +242,31 @@ def _half_bend(s, bend):
 
 
 def _newton(lo, hi, g_lo, g_hi, m_lo, m_hi, slope):
-    """The root of g' in [lo, hi] where g'(lo) > 0 > g'(hi): from the peak of the bracket's cubic
-    Hermite interpolant, Newton's steps where they stay in the bracket (which shrinks by the sign
-    of g'), bisection where they would not. After ``SURE_STEPS`` only the entries still moving take
-    further steps."""
-    s = lo + (hi - lo) * _hermite_peak(g_hi - g_lo, (hi - lo) * 2 * m_lo, (hi - lo) * 2 * m_hi)
-    bend = _bend_terms(slope)
+    """The root of g' in [lo, hi] where g'(lo) > 0 > g'(hi), a peak of g: from the peak of the
+    bracket's cubic Hermite interpolant, ``SURE_STEPS`` plain Newton steps, which from so close a
+    start land on it; an entry whose steps leave the bracket, end where g'' >= 0 (a trough) or are
+    still moving starts again with the safeguarded steps (``_guarded_newton``)."""
+    start = lo + (hi - lo) * _hermite_peak(g_hi - g_lo, (hi - lo) * 2 * m_lo, (hi - lo) * 2 * m_hi)
+    bend_terms = _bend_terms(slope)
+    s = start
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for _ in range(SURE_STEPS):
+            bend = _half_bend(s, bend_terms)
+            step = _half_slope(s, slope) / bend
+            s = s - step
+        # where a step was not finite, no comparison holds
+        landed = (s >= lo) & (s <= hi) & (bend < 0) & (np.abs(step) <= CONVERGED * (hi - lo + np.abs(s)))
+    again = np.flatnonzero(~landed)
+    if len(again):
+        s[again] = _guarded_newton(
+            start[again], lo[again], hi[again], [t[again] for t in slope], [t[again] for t in bend_terms]
+        )
+    return s
+
+
+def _guarded_newton(s, lo, hi, slope, bend):
+    """Newton's steps kept in the bracket [lo, hi] (which shrinks by the sign of g'), bisection where
+    they would leave it; after ``SURE_STEPS`` only the entries still moving take further steps."""
     s, lo, hi, last = _newton_steps(s, lo, hi, slope, bend, SURE_STEPS)
     going = np.flatnonzero(np.abs(s - last) > CONVERGED * (hi - lo + np.abs(s)))
     if len(going):
