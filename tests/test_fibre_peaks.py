@@ -107,3 +107,14 @@ def test_single_chord_peak_resamples_a_bracket_holding_a_maximum_and_a_minimum()
     assert dense.max() > top * (1 + 5e-4)
     assert kept.tolist() == list(range(1000)) and np.all(abs(s - FIBRES[np.argmax(dense)]) < 1e-4)
     assert np.all(g(s, a, b, d, e) >= dense.max() * (1 - 1e-12))
+
+
+def test_single_chord_peak_takes_safeguarded_steps_where_plain_newton_leaves_its_bracket():
+    # From the seed coupler's 3,600-position sweep (sigma in Pa, floor the outer fibres' g): in a
+    # batch of 300 (so nine samples are taken), the plain Newton steps from the Hermite peak do not
+    # land in the bracket, and the safeguarded steps must take over.
+    a, b, d, e, floor = -145.56586665773898, -1126.4074646735687, 1741.2493322132354, 484612.1632691437, 578219.9222272326
+    kept, s = single_chord_peak(*(np.full(300, v) for v in (a, b, d, e, floor)))
+    dense = g(FIBRES, a, b, d, e).max()
+    assert dense > floor and len(kept) == 300
+    assert (g(s, a, b, d, e) >= dense * (1 - 1e-12)).all()
