@@ -57,7 +57,8 @@ class SectionStresses:
     """Stresses along one link over P positions and S stations, member frame.
 
     ``forces``: N, V, M. ``von_mises`` (P, S) [Pa]: the largest von Mises over the section's fibres,
-    reached at ``fibre_y`` (P, S) [m]; ``sigma``/``tau`` (P, S) [Pa] at that fibre. ``near_hole`` (S,):
+    reached at ``fibre_y`` (P, S) [m]; ``sigma``/``tau`` (P, S) [Pa] at that fibre (made when asked
+    for, from the section forces). ``near_hole`` (S,):
     station within one section depth of a hole's centre (nominal values only); ``pin_holes``: the
     Kt x nominal estimate at each pin hole (``pin_holes.py``), labelled as an estimate. ``max_von_mises`` (P,) and
     ``max_at`` (P, 2) [m]: the largest over all stations; ``max_away_from_holes`` likewise over
@@ -68,10 +69,26 @@ class SectionStresses:
     forces: InternalForces
     von_mises: NDArray[np.float64]
     fibre_y: NDArray[np.float64]
-    sigma: NDArray[np.float64]
-    tau: NDArray[np.float64]
     near_hole: NDArray[np.bool_]
-    pin_holes: tuple[PinHoleEstimate, ...] = ()
+    pin_holes: tuple[PinHoleEstimate, ...]
+    shape: "_SectionShape"
+    body_load: NDArray[np.float64]
+    """(P, 2): (g - a_O)_y [m/s^2] and alpha [rad/s^2], for sigma's body-load term."""
+
+    @property
+    def sigma(self) -> NDArray[np.float64]:
+        """(P, S) [Pa]: sigma at the critical fibre, N / A + M u / I and, on single chords, the
+        body-load term."""
+        shape, forces = self.shape, self.forces
+        u = self.fibre_y - self.sections.neutral_axis
+        beta = shape.density * (self.body_load[:, :1] - self.body_load[:, 1:] * shape.x) * shape.inverse_square_half
+        return _sigma(forces.normal * shape.inv_area, forces.moment * shape.inv_inertia, u, beta, shape.half)
+
+    @property
+    def tau(self) -> NDArray[np.float64]:
+        """(P, S) [Pa]: Jourawski's V Q(y) / (I t) at the critical fibre."""
+        first_moment = self.sections.first_moment(self.fibre_y.T).T
+        return self.forces.shear * self.shape.inv_inertia * first_moment / self.sections.thickness
 
     @property
     def x(self) -> NDArray[np.float64]:
@@ -169,9 +186,9 @@ class _Sweep:
         shape = _SectionShape.of(table, link.density)
         coefficients = load_coefficients(loads)
         size = (len(coefficients), len(table.x))
-        normal, shear, moment, von_mises, u, sigma = (np.empty(size) for _ in range(6))
+        normal, shear, moment, von_mises, u = (np.empty(size) for _ in range(5))
         forces = InternalForces(table.x, normal, shear, moment, np.empty(size[0]))
-        fibres = _Fibres(von_mises, u, sigma, np.zeros(size))
+        fibres = _Fibres(von_mises, u)
         return cls(link, loads, table, basis, shape, shape.fibre_basis(basis), coefficients, forces, fibres)
 
     def blocks(self) -> list[slice]:
@@ -204,8 +221,9 @@ class _Sweep:
         frame_joints = self.loads.frame_joints
         fibres = self.fibres
         return SectionStresses(
-            self.table, self.forces, fibres.von_mises, fibres.u, fibres.sigma, fibres.tau,
+            self.table, self.forces, fibres.von_mises, fibres.u,
             near_holes(self.link, frame_joints, self.table), pin_hole_estimates(self.link, self.loads),
+            self.shape, self.coefficients[:, [FREE_Y, ALPHA]],
         )
 
 
@@ -255,6 +273,7 @@ class _SectionShape:
     middle: NDArray[np.float64]
     reach: NDArray[np.float64]
     half: NDArray[np.float64]
+    inverse_square_half: NDArray[np.float64]
     lever: NDArray[np.float64]
     shear_gain: NDArray[np.float64]
     density: float
@@ -282,6 +301,7 @@ class _SectionShape:
             middle=(table.top + table.bottom) / 2 - yna,
             reach=half,
             half=np.where(single, half, 0.0),
+            inverse_square_half=np.where(single, 1.0 / np.where(single, half * half, 1.0), 0.0),
             # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
             lever=np.where(single, 0.4 * density * half, 0.0),
             # (8/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
@@ -314,15 +334,14 @@ class _SectionShape:
         """The larger of the top and bottom fibres' |sigma| = |mean +- spread| (P, S) (free edges,
         tau = 0) into ``fibres``: |mean| + |spread|, at the top where mean and spread have one sign
         (by the sign of their product, zeros signed: a tie under pure axial load goes to the top in
-        tension, to the bottom in compression), its sigma of the mean's sign. Returns |mean| and
-        |spread| (``spread`` made its absolute value in place)."""
+        tension, to the bottom in compression). Returns |mean| and |spread| (``spread`` made its
+        absolute value in place)."""
         side = mean * spread
         np.copysign(self.reach, side, out=fibres.u)
         fibres.u += self.middle
         size_n = np.abs(mean)
         size_m = np.abs(spread, out=spread)
         np.add(size_n, size_m, out=fibres.von_mises)
-        np.copysign(fibres.von_mises, mean, out=fibres.sigma)
         return size_n, size_m
 
     def interior_candidates(self, size_n, size_m, outer, body, normal, shear, moment):
@@ -419,25 +438,29 @@ class _SectionShape:
 
     def _consider(self, fibres, flat, n, m, w, c, u, beta, at, repeated: bool = False) -> None:
         """Fibre offset u at the flat indices: sigma with the body-load term, tau, von Mises."""
-        sigma = n + m * u + beta * u * (u * u - 0.6 * self.half[at] ** 2)
+        sigma = _sigma(n, m, u, beta, self.half[at])
         tau = w * (c - u * u)
-        fibres.keep_larger(flat, np.sqrt(sigma * sigma + 3 * tau * tau), u, sigma, tau, repeated)
+        fibres.keep_larger(flat, np.sqrt(sigma * sigma + 3 * tau * tau), u, repeated)
+
+
+def _sigma(n, m, u, beta, half):
+    """sigma at offset u from the neutral axis: n + m u and the body-load term beta u (u^2 - 0.6 c^2)
+    of a single chord of half-depth c (beta = b_y / c^2; zero on split sections)."""
+    return n + m * u + beta * u * (u * u - 0.6 * half * half)
 
 
 @dataclass
 class _Fibres:
-    """The critical fibre of every (position, station) so far: von Mises, offset u from the neutral
-    axis, sigma and tau there (views into the result arrays)."""
+    """The critical fibre of every (position, station) so far: von Mises and offset u from the
+    neutral axis there (views into the result arrays)."""
 
     von_mises: NDArray[np.float64]
     u: NDArray[np.float64]
-    sigma: NDArray[np.float64]
-    tau: NDArray[np.float64]
 
     def block(self, positions: slice) -> "_Fibres":
-        return _Fibres(self.von_mises[positions], self.u[positions], self.sigma[positions], self.tau[positions])
+        return _Fibres(self.von_mises[positions], self.u[positions])
 
-    def keep_larger(self, flat, f, u, sigma, tau, repeated: bool = False) -> None:
+    def keep_larger(self, flat, f, u, repeated: bool = False) -> None:
         """Where candidate von Mises ``f`` beats the fibre so far at flat indices ``flat``, take it;
         with ``repeated`` (an index may occur more than once), the largest of its candidates."""
         best = self.von_mises.reshape(-1)
@@ -450,5 +473,3 @@ class _Fibres:
         flat = flat[wins]
         best[flat] = f[wins]
         self.u.reshape(-1)[flat] = u[wins]
-        self.sigma.reshape(-1)[flat] = sigma[wins]
-        self.tau.reshape(-1)[flat] = tau[wins]
