@@ -374,7 +374,8 @@ class _SectionShape:
         single = np.flatnonzero(gain > size_n)
         at = self.split.at
         n, m, w = normal[:, at] * self.inv_area[at], moment[:, at] * self.inv_inertia[at], shear[:, at] * self.inv_inertia[at]
-        rows, chord = np.nonzero(has_cubic_peak(n, m, w / 2, self.split.c))
+        pairs = np.flatnonzero(has_cubic_peak(n, m, w / 2, self.split.c))
+        rows, chord = np.divmod(pairs, len(at))
         return single, rows * len(self.x) + at[chord], chord
 
     def hole_end_fibres(self, forces: InternalForces, fibres: "_Fibres", positions: slice) -> None:
