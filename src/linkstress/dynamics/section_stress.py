@@ -38,6 +38,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -255,11 +256,21 @@ class _Chords:
 @dataclass(frozen=True)
 class _HoleEdges:
     """Chord ends at holes, one entry per end: station ``at``, offset ``u`` from the neutral axis,
-    and the chord's C."""
+    and the chord's C; ``layers``: the ends in groups of distinct stations (a station's k-th end in
+    group k), so that each group writes a station once."""
 
     at: NDArray[np.intp]
     u: NDArray[np.float64]
     c: NDArray[np.float64]
+
+    @cached_property
+    def layers(self) -> list[NDArray[np.intp]]:
+        order = np.argsort(self.at, kind="stable")
+        ordered = self.at[order]
+        starts = np.flatnonzero(np.append(True, ordered[1:] != ordered[:-1]))
+        rank = np.empty(len(order), np.intp)
+        rank[order] = np.arange(len(order)) - np.repeat(starts, np.diff(np.append(starts, len(order))))
+        return [np.flatnonzero(rank == k) for k in range(rank.max() + 1)] if len(rank) else []
 
 
 @dataclass(frozen=True)
@@ -381,13 +392,14 @@ class _SectionShape:
     def hole_end_fibres(self, forces: InternalForces, fibres: "_Fibres", positions: slice) -> None:
         """Chord ends at holes (these few stations, at ``positions``) that beat ``fibres``."""
         ends = self.hole_ends
-        if not len(ends.at):
-            return
-        rows = np.arange(len(forces.normal))[positions]
-        flat = (rows[:, None] * len(self.x) + ends.at).ravel()
-        n, m, w, at = self._reduced(forces, flat)
-        count = len(rows)
-        self._consider(fibres, flat, n, m, w, np.tile(ends.c, count), np.tile(ends.u, count), 0.0, at, repeated=True)
+        first = np.arange(len(forces.normal))[positions][:, None] * len(self.x)
+        for layer in ends.layers:
+            at = ends.at[layer]
+            n = forces.normal[positions][:, at] * self.inv_area[at]
+            m = forces.moment[positions][:, at] * self.inv_inertia[at]
+            w = forces.shear[positions][:, at] * (self.inv_inertia[at] / 2)
+            u, c = (np.broadcast_to(v[layer], n.shape).ravel() for v in (ends.u, ends.c))
+            self._consider(fibres, (first + at).ravel(), n.ravel(), m.ravel(), w.ravel(), c, u, 0.0, np.tile(at, len(n)))
 
     def single_interiors(self, forces: InternalForces, coefficients, flat, fibres: "_Fibres") -> None:
         """Interior maxima of single chords (with the body-load term) at flat indices ``flat``.
