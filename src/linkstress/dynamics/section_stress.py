@@ -209,8 +209,10 @@ class _Sweep:
         forces.mismatch[p] = basis.mismatch(c, normal, shear, moment)
         block = fibres.block(p)
         size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, block)
+        # a crank turning steadily about a fixed pivot, without gravity, has no body load
+        loaded = c[:, [FREE_Y, ALPHA]].any()
         at_single, at_split, chord = shape.interior_candidates(
-            size_n, size_m, block.von_mises, np.abs(c @ body), normal, shear, moment
+            size_n, size_m, block.von_mises, np.abs(c @ body) if loaded else None, normal, shear, moment
         )
         offset = p.start * len(shape.x)
         shape.single_interiors(forces, self.coefficients, at_single + offset, fibres)
@@ -359,8 +361,8 @@ class _SectionShape:
         """Flat (position, station) indices where a single chord's interior may hold the section's
         maximum, and (flat index, chord) pairs for the chords of split sections; necessary
         conditions, so none is missed. Section forces, the outer fibres' |mean| and |spread| of
-        sigma and their von Mises ``outer`` = |mean| + |spread|, and ``body`` = 0.1925 |b_y| c are
-        (P, S).
+        sigma and their von Mises ``outer`` = |mean| + |spread|, and ``body`` = 0.1925 |b_y| c (None
+        where there is no body load) are (P, S).
 
         A single chord is symmetric about the neutral axis (half-depth c, C = c^2). With the body
         term, sigma(u) = n + m_e u - beta u (c^2 - u^2), m_e = m + 0.4 beta c^2, so the outer fibres
@@ -374,12 +376,13 @@ class _SectionShape:
         (4 / 0.1925) B (E + B) + (8/9) w^2 c^4 > |m_e| c (|n| + E). Chords of sections split by
         holes (no body term) are searched where the cubic of ``cubic_peak`` has three real roots.
         """
-        gain = outer + body
-        gain *= body
-        gain *= 4 / BODY_TERM
-        shear_term = shear * shear
-        shear_term *= self.shear_gain
-        gain += shear_term
+        gain = shear * shear
+        gain *= self.shear_gain
+        if body is not None:
+            body_term = outer + body
+            body_term *= body
+            body_term *= 4 / BODY_TERM
+            gain += body_term
         size_n += outer
         size_n *= size_m
         single = np.flatnonzero(gain > size_n)
