@@ -171,14 +171,15 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     else:
         _raise(best, at, rows[above], top[above], peak)
     h = width / (len(unit) - 1)
-    bound = np.maximum(up[:-1], down[1:])
-    bound += (h**4 / 288) * (24 * np.abs(fourth) + 360 * square)
-    bracket = bound > best[rows]
+    error = (h**4 / 288) * (24 * np.abs(fourth) + 360 * square)
+    threshold = best[rows] - error
+    bracket = up[:-1] > threshold
+    bracket |= down[1:] > threshold
     rising = m > 0
     crossing = rising[:-1] & ~rising[1:]
     crossing &= m[1:] < 0
     crossing &= bracket
-    g, m, bound = g.reshape(-1), m.reshape(-1), bound.reshape(-1)
+    g, m, up, down = g.reshape(-1), m.reshape(-1), up.reshape(-1), down.reshape(-1)
     f = np.flatnonzero(crossing)
     if len(f):
         c = f % n
@@ -189,7 +190,7 @@ def _search(a, b, d, e, rows, lo, width, best, at, first):
     bracket &= ~crossing
     f = np.flatnonzero(bracket)
     c = f % n
-    still = bound[f] > best[rows[c]]
+    still = np.maximum(up[f], down[f + n]) > best[rows[c]] - error[c]
     f, c = f[still], c[still]
     if not len(f):
         return rows[c], lo[c], h[c]
