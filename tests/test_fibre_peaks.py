@@ -58,7 +58,7 @@ def test_single_chord_peak_climbs_only_where_g_may_beat_the_floor():
     a, b, d = np.zeros(2), np.ones(2), np.full(2, 0.1)
     e = np.array([0.5, 4.0])
     ends = (a + b + d) ** 2
-    kept, s = single_chord_peak(a, b, d, e, ends)
+    kept, s, _ = single_chord_peak(a, b, d, e, ends)
     assert kept.tolist() == [1]
     assert g(s[0], 0.0, 1.0, 0.1, 4.0) > ends[1]
     assert g(s[0], 0.0, 1.0, 0.1, 4.0) >= g(FIBRES, 0.0, 1.0, 0.1, 4.0).max() * (1 - 1e-9)
@@ -72,7 +72,7 @@ def test_single_chord_peak_finds_a_maximum_hidden_between_samples_that_rise_towa
     a, b, d, e = -2052.1315869412115, -487.8821410196797, 138.13033485149026, 1008948.574192273
     top = g(1.0, a, b, d, e)
     assert g(0.5, a, b, d, e) < g(0.75, a, b, d, e) < top
-    kept, s = single_chord_peak(*(np.full(1000, v) for v in (a, b, d, e, top)))
+    kept, s, _ = single_chord_peak(*(np.full(1000, v) for v in (a, b, d, e, top)))
     dense = g(FIBRES, a, b, d, e)
     assert kept.tolist() == list(range(1000)) and np.all(abs(s - FIBRES[np.argmax(dense)]) < 1e-4)
     assert np.all(g(s, a, b, d, e) >= dense.max() * (1 - 1e-12))
@@ -86,10 +86,11 @@ def test_single_chord_peak_over_many_entries_at_once_matches_twenty_thousand_fib
     a, b, e = rng.uniform(-1, 1, 2000), rng.uniform(-1, 1, 2000), rng.uniform(0, 1, 2000) ** 2
     d = rng.uniform(-3, 3, 2000)
     floor = np.maximum(g(-1.0, a, b, d, e), g(1.0, a, b, d, e))
-    kept, s = single_chord_peak(a, b, d, e, floor)
+    kept, s, peak = single_chord_peak(a, b, d, e, floor)
     fibres = np.linspace(-1.0, 1.0, 20001)
     dense = np.array([g(fibres, *row).max() for row in zip(a, b, d, e)])
     assert (g(s, a[kept], b[kept], d[kept], e[kept]) >= dense[kept] * (1 - 1e-12)).all()
+    np.testing.assert_allclose(peak, g(s, a[kept], b[kept], d[kept], e[kept]), rtol=1e-12)
     left_out = np.setdiff1d(np.arange(2000), kept)
     assert (dense[left_out] <= floor[left_out] * (1 + 1e-12)).all()
     assert 0.2 < len(kept) / 2000 < 0.95
@@ -102,7 +103,7 @@ def test_single_chord_peak_resamples_a_bracket_holding_a_maximum_and_a_minimum()
     # A thousand entries, as in a sweep, so that the search samples nine fibres per chord.
     a, b, d, e = 0.31477981971170244, 0.4859813726676905, -0.161968490919564, 0.17418713373461728
     top = g(1.0, a, b, d, e)
-    kept, s = single_chord_peak(*(np.full(1000, v) for v in (a, b, d, e, top)))
+    kept, s, _ = single_chord_peak(*(np.full(1000, v) for v in (a, b, d, e, top)))
     dense = g(FIBRES, a, b, d, e)
     assert dense.max() > top * (1 + 5e-4)
     assert kept.tolist() == list(range(1000)) and np.all(abs(s - FIBRES[np.argmax(dense)]) < 1e-4)
@@ -114,7 +115,7 @@ def test_single_chord_peak_takes_safeguarded_steps_where_plain_newton_leaves_its
     # batch of 300 (so nine samples are taken), the plain Newton steps from the Hermite peak do not
     # land in the bracket, and the safeguarded steps must take over.
     a, b, d, e, floor = -145.56586665773898, -1126.4074646735687, 1741.2493322132354, 484612.1632691437, 578219.9222272326
-    kept, s = single_chord_peak(*(np.full(300, v) for v in (a, b, d, e, floor)))
+    kept, s, _ = single_chord_peak(*(np.full(300, v) for v in (a, b, d, e, floor)))
     dense = g(FIBRES, a, b, d, e).max()
     assert dense > floor and len(kept) == 300
     assert (g(s, a, b, d, e) >= dense * (1 - 1e-12)).all()

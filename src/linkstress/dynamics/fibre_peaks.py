@@ -106,10 +106,11 @@ def single_chord_peak(
     d: NDArray[np.float64],
     e: NDArray[np.float64],
     floor: NDArray[np.float64] | None = None,
-) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
+) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
     """Where g(s) = (a + b s + d s^3)^2 + e (1 - s^2)^2 is largest for s in [-1, 1] (arrays of one
     shape, e >= 0), for the entries where it beats ``floor`` (g reached already, at the outer
-    fibres); without ``floor``, for every entry. Returns the indices of those entries and their s.
+    fibres); without ``floor``, for every entry. Returns the indices of those entries, their s and
+    g there.
 
     g is sampled at nine fibres (more where the entries are few: ``FEW_ENTRIES_SAMPLES``); every
     sample is at most the best value b so far. Between two samples
@@ -137,7 +138,7 @@ def single_chord_peak(
             break
         rows, lo, width = _search(a, b, d, e, rows, lo, width, best, at, first=level == 0)
     kept = np.flatnonzero(~np.isnan(at))
-    return kept, at[kept]
+    return kept, at[kept], best[kept]
 
 
 def _search(a, b, d, e, rows, lo, width, best, at, first):

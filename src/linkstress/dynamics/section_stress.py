@@ -428,8 +428,8 @@ class _SectionShape:
             if not len(flat):
                 return
         reached = fibres.von_mises.reshape(-1)[flat]
-        k, s = single_chord_peak(n, m * half - 0.6 * body, body, 3 * (w * c) ** 2, reached * reached)
-        self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], s * half[k], body[k] / (half[k] * c[k]), at[k])
+        k, s, peak = single_chord_peak(n, m * half - 0.6 * body, body, 3 * (w * c) ** 2, reached * reached)
+        fibres.keep_larger(flat[k], np.sqrt(peak), s * half[k])
 
     def split_interiors(self, forces: InternalForces, flat, chord, fibres: "_Fibres") -> None:
         """Interior maxima of the split sections' chords ``chord`` at flat indices ``flat``."""
