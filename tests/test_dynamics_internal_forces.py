@@ -230,3 +230,26 @@ def test_seed_coupler_maximum_with_the_body_load_term_is_that_of_dense_fibres_ov
         dense = np.sqrt(sigma**2 + 3 * tau**2).max(axis=1)
         assert (stress.von_mises[:, s] >= dense * (1 - 1e-9)).all()
         assert (stress.von_mises[:, s] <= dense * (1 + 1e-6)).all()
+
+
+def test_equilibrium_check_at_the_hull_corners_equals_the_check_at_every_cut(monkeypatch):
+    # The moment of the whole link's resultant is affine in the cut point, so its largest size over
+    # the cuts is reached at a corner of their convex hull (a long sweep takes those only).
+    import linkstress.dynamics.internal_forces as internal
+
+    scene = load_scene(CASES / "seed_ansys_fourbar" / "scene.toml")
+    scene = replace(scene, motion=angle_motion(np.linspace(0.0, 179.0, 400), -1.0, 0.0))
+    forces = run_analysis(scene, Plan(forces=True, stresses=(), stations=200, validate=(), notes=())).forces
+    for name in ("crank", "coupler", "output"):
+        link, loads = scene.links[name].profile, forces.link_loads[name]
+        stations = default_stations(link, loads.frame_joints, 200)
+        # an unbalanced force, so that the moment check varies along the link (and is not rounding)
+        extra = np.zeros_like(loads.pin_forces)
+        extra[:, 0] = [3.0, 40.0]
+        loads = replace(loads, pin_forces=loads.pin_forces + extra)
+        corners = section_stresses(link, loads, stations).forces.mismatch
+        monkeypatch.setattr(internal, "EVERY_CUT_PAIRS", 10**12)
+        every = section_stresses(link, loads, stations).forces.mismatch
+        monkeypatch.undo()
+        assert every.max() > 1e-3
+        np.testing.assert_allclose(corners, every, rtol=1e-12)
