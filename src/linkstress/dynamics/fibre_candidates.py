@@ -256,7 +256,8 @@ def fibre_sigma(n, m, u, beta, half):
 @dataclass
 class Fibres:
     """The critical fibre of every (position, station) so far: von Mises and offset u from the
-    neutral axis there (views into the result arrays)."""
+    neutral axis there (views into the result arrays; ``section_stress`` turns u into the fibre's y
+    once a block of positions is done)."""
 
     von_mises: NDArray[np.float64]
     u: NDArray[np.float64]
