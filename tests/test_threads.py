@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import multiprocessing
+import sys
 from dataclasses import replace
 from pathlib import Path
 
@@ -34,6 +36,25 @@ def test_in_parallel_raises_what_a_block_raised():
 
     with pytest.raises(ValueError, match="block 3"):
         in_parallel(work, list(range(6)))
+
+
+def _blocks_in_a_child() -> str:
+    seen = np.zeros(8, int)
+
+    def work(k):
+        seen[k] += 1
+
+    in_parallel(work, list(range(8)))
+    return "every block" if (seen == 1).all() else "missing blocks"
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="fork is POSIX")
+def test_in_parallel_works_in_a_process_forked_after_the_pool_was_made():
+    # validate and regress fork process pools; a child inherits the parent's pool object but none
+    # of its threads, and work handed to that pool would never run.
+    in_parallel(lambda k: None, list(range(8)))
+    with multiprocessing.get_context("fork").Pool(1) as pool:
+        assert pool.apply_async(_blocks_in_a_child).get(timeout=60) == "every block"
 
 
 def test_blas_alone_keeps_products_exact():

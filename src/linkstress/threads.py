@@ -49,6 +49,12 @@ def _pool() -> ThreadPoolExecutor:
     return ThreadPoolExecutor(cores(), thread_name_prefix="linkstress")
 
 
+if hasattr(os, "register_at_fork"):
+    # a forked child (a process pool's worker) has none of the parent's threads: it makes its own
+    # pool, where the parent's would take work and never run it
+    os.register_at_fork(after_in_child=_pool.cache_clear)
+
+
 @lru_cache(maxsize=1)
 def _controller() -> ThreadpoolController:
     # made once: finding the loaded BLAS libraries takes milliseconds
