@@ -25,7 +25,8 @@ Block = TypeVar("Block")
 def in_parallel(work: Callable[[Block], None], blocks: Sequence[Block], threads: bool = True) -> None:
     """``work(block)`` for every block, on a thread per core where ``threads`` and there is more
     than one block (small work runs faster on the calling thread alone). The blocks' writes must
-    not overlap; an exception in any block is raised here."""
+    not overlap; an exception in any block is raised here. Not to be called from inside a block: it
+    would wait for threads that its caller holds."""
     if not threads or len(blocks) <= 1 or cores() == 1:
         for block in blocks:
             work(block)
