@@ -181,9 +181,8 @@ class SectionShape:
         n = forces.normal[positions][:, at] * self.inv_area[at]
         m = forces.moment[positions][:, at] * self.inv_inertia[at]
         w = forces.shear[positions][:, at] * (self.inv_inertia[at] / 2)
-        sigma, tau = n + m * ends.u, w * (ends.c - ends.u * ends.u)
         # a last column that never wins, for the -1 of stations with fewer ends
-        f = np.column_stack([np.sqrt(sigma * sigma + 3 * tau * tau), np.full(len(n), -np.inf)])
+        f = np.column_stack([_von_mises(n, m, w, ends.c, ends.u, 0.0, 0.0), np.full(len(n), -np.inf)])
         stations, table = ends.stations, ends.table
         candidates = f[:, table]
         pick = candidates.argmax(axis=1)
@@ -205,7 +204,7 @@ class SectionShape:
         half = self.half[at]
         c = half * half
         rows = flat // len(self.x)
-        body = self.density * (coefficients[rows, FREE_Y] - coefficients[rows, ALPHA] * self.x[at]) * half
+        body = self.body_load(coefficients[rows, FREE_Y], coefficients[rows, ALPHA], at) * half
         plain = body == 0
         if plain.any():
             k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))
@@ -242,9 +241,19 @@ class SectionShape:
 
     def _consider(self, fibres, flat, n, m, w, c, u, beta, at, repeated: bool = False) -> None:
         """Fibre offset u at the flat indices: sigma with the body-load term, tau, von Mises."""
-        sigma = fibre_sigma(n, m, u, beta, self.half[at])
-        tau = w * (c - u * u)
-        fibres.keep_larger(flat, np.sqrt(sigma * sigma + 3 * tau * tau), u, repeated)
+        fibres.keep_larger(flat, _von_mises(n, m, w, c, u, beta, self.half[at]), u, repeated)
+
+    def body_load(self, free_y, alpha, at) -> NDArray[np.float64]:
+        """b_y = rho ((g - a_O)_y - alpha x) [N/m^3] at stations ``at``, from the load coefficients
+        (g - a_O)_y and alpha (arrays that broadcast with ``at``)."""
+        return self.density * (free_y - alpha * self.x[at])
+
+
+def _von_mises(n, m, w, c, u, beta, half):
+    """sqrt(sigma^2 + 3 tau^2) at offset u of a chord with Jourawski's tau = w (C - u^2)."""
+    sigma = fibre_sigma(n, m, u, beta, half)
+    tau = w * (c - u * u)
+    return np.sqrt(sigma * sigma + 3 * tau * tau)
 
 
 def fibre_sigma(n, m, u, beta, half):
