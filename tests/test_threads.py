@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import multiprocessing
+import os
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -91,3 +92,17 @@ def test_a_sweep_in_many_blocks_on_threads_equals_the_sweep_in_one_block(monkeyp
         np.testing.assert_allclose(a.von_mises, b.von_mises, rtol=0, atol=1e-13 * scale)
         np.testing.assert_array_equal(a.forces.moment, b.forces.moment)
         np.testing.assert_allclose(a.forces.mismatch, b.forces.mismatch, rtol=0, atol=1e-15)
+
+
+@pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="the system cannot hold a process to a core")
+def test_the_benchmark_times_the_sweep_on_one_core_and_gives_the_cores_back():
+    from linkstress.threads import cores
+    from linkstress.validation.bench_dynamics import on_one_core
+
+    before = os.sched_getaffinity(0)
+    inside = on_one_core(lambda: (cores(), os.sched_getaffinity(0)))
+    assert os.sched_getaffinity(0) == before
+    if len(before) == 1:
+        assert inside is None
+    else:
+        assert inside == (1, {min(before)})

@@ -6,11 +6,15 @@ under 5 ms, the work the original program takes 31.8 s for (mass properties at 1
 one solve; ``bench_profile --full`` measures its strip sums here); forces and section stresses for
 3,600 positions x 3 links x 200 stations under 0.2 s. The one position with section stresses as
 well is shown beside them, without a target. The sweep's blocks of positions run on every core the
-process may use (``linkstress.threads``); the figures say how many.
+process may use (``linkstress.threads``); the figures say how many, and the sweep is timed on one
+of them as well: on a shared machine their ratio, measured in the same run, shows how much of the
+second core the other tenants left (near 2 on a quiet two-core machine, near 1 when another process
+keeps a core busy).
 """
 
 from __future__ import annotations
 
+import os
 from dataclasses import replace
 from pathlib import Path
 
@@ -37,6 +41,19 @@ def fresh_mass_properties(scene) -> None:
             fresh.mass, fresh.mass_moment_of_inertia, fresh.center_of_mass
 
 
+def on_one_core(timing):
+    """``timing()`` with the process held to one of its cores (so ``linkstress.threads`` runs the
+    blocks on the calling thread), or None where there is only one or the system cannot say."""
+    if cores() == 1 or not hasattr(os, "sched_setaffinity"):
+        return None
+    allowed = os.sched_getaffinity(0)
+    os.sched_setaffinity(0, {min(allowed)})
+    try:
+        return timing()
+    finally:
+        os.sched_setaffinity(0, allowed)
+
+
 def main() -> None:
     scene = load_scene(SEED)
     links = ("crank", "coupler", "output")
@@ -50,6 +67,7 @@ def main() -> None:
     sweep = Plan(forces=True, stresses=links, stations=200, validate=(), notes=())
     result = run_analysis(sweep_scene, sweep)
     t_sweep = best_time(lambda: run_analysis(sweep_scene, sweep), repeat=5)
+    t_one_core = on_one_core(lambda: best_time(lambda: run_analysis(sweep_scene, sweep), repeat=5))
     stages = {k: 1e3 * v for k, v in result.seconds.items()}
     rows = [
         ("seed, 1 position: mass properties of 4 links", 1e3 * t_mass, ""),
@@ -65,6 +83,11 @@ def main() -> None:
         "(the seed linkage is a change point: 180 deg is a toggle)"
     )
     print(f"positions per second, whole pipeline: {3600 / t_sweep:,.0f} (on {cores()} cores)")
+    if t_one_core is not None:
+        print(
+            f"sweep on one core: {1e3 * t_one_core:.1f} ms; on {cores()} cores {1e3 * t_sweep:.1f} ms, "
+            f"{t_one_core / t_sweep:.2f} x faster in this run"
+        )
     print(
         f"original program, 1 position: 31.8 s (measured by the project); here {31.8 / t_solve:,.0f} x faster, "
         f"{31.8 / t_one:,.0f} x with the section stresses of 3 links as well"
