@@ -25,6 +25,7 @@ from linkstress.report.figures import (
 )
 from linkstress.report.records import link_columns
 from linkstress.report.text import transmission_warnings
+from linkstress.safety import link_safety_factors
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
 MAX_DRAWN_POSITIONS = 4
@@ -157,6 +158,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
                 k = int(ok[np.argmax(stress.max_von_mises[ok])])
                 sections.append(figure_tag(stress_along_figure(result, name, k), f"stresses along {name}"))
         sections.append(_pin_holes_table(result))
+        sections.append(_safety_table(result))
     if result.seconds:
         rows = [(stage, 1e3 * seconds) for stage, seconds in result.seconds.items()]
         sections += ["<h2>Timings</h2>", table_html(("stage", "time [ms]"), rows)]
@@ -206,6 +208,30 @@ def _pin_holes_table(result: AnalysisResult) -> str:
         + table_html(("link", "joint", "hole d [m]", "depth H [m]", "Kt", "net-section stress [Pa]", "Kt x nominal [Pa]"), rows)
         + f'<p class="note">{html.escape(PIN_HOLE_SOURCE)}</p>'
     )
+
+
+def _safety_table(result: AnalysisResult) -> str:
+    """Per link whose material gives a yield strength, the sweep's lowest safety factors against it."""
+    ok = result.feasible
+    rows = []
+    for name, factors in link_safety_factors(result).items():
+        if not ok.any():
+            continue
+        k = int(np.flatnonzero(ok)[np.argmin(factors.sections[ok])])
+        pin = "-" if factors.pin_holes is None else _finite(factors.pin_holes[ok].min())
+        rows.append((name, factors.yield_strength, _finite(factors.sections[k]), float(result.scene.motion.angle_deg[k]), pin))
+    if not rows:
+        return ""
+    return (
+        "<h3>Safety factors against yield</h3>"
+        + table_html(("link", "yield strength [Pa]", "lowest, sections", "at input [deg]", "lowest, pin holes (ESTIMATE)"), rows)
+        + '<p class="note">The material\'s yield_strength over the largest section von Mises (beam theory, nominal '
+        "near pin holes) and over the largest pin-hole estimate Kt x nominal.</p>"
+    )
+
+
+def _finite(value) -> float | str:
+    return float(value) if np.isfinite(value) else "- (no stress)"
 
 
 def _forces_table(result: AnalysisResult) -> str:

@@ -6,8 +6,10 @@ Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``transmission_angl
 ``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
 some station is at least a section depth from every pin hole), ``equilibrium_mismatch`` and
 ``pin_holes`` (per pin hole: Kt, the net-section stress of its pin force and the Kt x nominal
-estimate, labelled as such) where stresses were computed, and with ``stations`` the arrays along the
-link; per mechanism ``forces_n`` (Norton names) and ``driving_torque_nm`` (or ``driving_force_n``
+estimate, labelled as such) where stresses were computed, ``yield_safety_factor`` (yield strength over
+``max_von_mises_pa``) and ``pin_hole_yield_safety_factor_estimate`` (over the largest pin-hole
+estimate) where the material gives ``yield_strength`` (null where the stress is zero), and with
+``stations`` the arrays along the link; per mechanism ``forces_n`` (Norton names) and ``driving_torque_nm`` (or ``driving_force_n``
 for an actuated slider) where forces were computed. Infeasible positions carry no link or
 mechanism data. Angles in degrees in [0, 360); SI units.
 """
@@ -20,6 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
+from linkstress.safety import finite_or_none, link_safety_factors
 
 
 @dataclass(frozen=True)
@@ -71,6 +74,10 @@ def position_records(result: AnalysisResult, stations: bool = False) -> list[dic
             values["pin_holes"] = [_pin_hole_lists(h) for h in stress.pin_holes]
         if stations:
             values["stations"] = _station_lists(stress)
+    for name, factors in link_safety_factors(result).items():
+        link_values[name]["yield_safety_factor"] = finite_or_none(factors.sections)
+        if factors.pin_holes is not None:
+            link_values[name]["pin_hole_yield_safety_factor_estimate"] = finite_or_none(factors.pin_holes)
     mechanism_values = _mechanism_lists(result)
     transmission = {name: np.degrees(loop.transmission_angle).tolist() for name, loop in result.kinematics.loops.items()}
     feasible = result.feasible.tolist()

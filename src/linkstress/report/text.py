@@ -23,6 +23,7 @@ from linkstress.kinematics.linkage_class import (
     toggle_angles,
 )
 from linkstress.report.records import link_columns
+from linkstress.safety import link_safety_factors, yield_factor
 from linkstress.scene import Scene
 from linkstress.tables import format_table
 
@@ -154,10 +155,12 @@ def forces_table(result: AnalysisResult) -> str:
 
 
 def stress_table(result: AnalysisResult) -> str:
-    """Per link, the largest section von Mises over the sweep, where, and the equilibrium check."""
+    """Per link, the largest section von Mises over the sweep, where, and the equilibrium check; the
+    safety factors against yield where the material gives a yield strength."""
     rows = []
     ok = result.feasible
     angles = result.scene.motion.angle_deg
+    factors = link_safety_factors(result)
     for name, stress in result.stresses.items():
         if not ok.any():
             continue
@@ -167,15 +170,35 @@ def stress_table(result: AnalysisResult) -> str:
         away = "-" if stress.max_away_from_holes is None else float(np.where(ok, stress.max_away_from_holes, -1.0).max())
         estimates = [h.estimate[ok].max() for h in stress.pin_holes if h.estimate is not None]
         pin = float(max(estimates)) if estimates else "-"
-        rows.append((
+        row = [
             name, float(stress.max_von_mises[k]), float(angles[k]), f"({where[0]:.4g}, {where[1]:.4g})",
             away, pin, float(stress.forces.mismatch[ok].max()),
-        ))
-    headers = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m]", "away from holes [Pa]",
-               "pin hole estimate [Pa]", "equilibrium check")
-    return "\n".join([
+        ]
+        if factors:
+            strength = factors[name].yield_strength if name in factors else None
+            row += [_factor_text(strength, stress.max_von_mises[k]), "-" if pin == "-" else _factor_text(strength, pin)]
+        rows.append(tuple(row))
+    headers = ["link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m]", "away from holes [Pa]",
+               "pin hole estimate [Pa]", "equilibrium check"]
+    if factors:
+        headers += ["yield safety factor", "at pin holes (estimate)"]
+    lines = [
         "section stresses (beam theory; within one section depth of a pin hole the value is nominal)",
-        format_table(headers, rows),
+        format_table(tuple(headers), rows),
         "pin hole estimate: Kt x the net-section stress of the pin force, an ESTIMATE for a close-fitting pin "
         "(Kt from linkstress FEA of pin-loaded lugs, see dynamics/pin_holes.py); linkstress validate gives the FEA peak",
-    ])
+    ]
+    if factors:
+        lines.append(
+            "yield safety factor: the material's yield_strength over the largest stress of the sweep (section "
+            "von Mises; pin hole estimate); '-' where the material gives no yield_strength"
+        )
+    return "\n".join(lines)
+
+
+def _factor_text(strength: float | None, stress: float) -> str:
+    """The yield safety factor at ``stress`` [Pa], '-' without a yield strength."""
+    if strength is None:
+        return "-"
+    factor = float(yield_factor(strength, stress))
+    return f"{factor:.3g}" if np.isfinite(factor) else "- (no stress)"

@@ -1,0 +1,73 @@
+"""Safety factors against yield: the material's yield strength over the stress a link reaches."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from linkstress.cli import main
+from linkstress.safety import finite_or_none, yield_factor
+
+CASE = Path(__file__).resolve().parents[1] / "validation" / "cases" / "seed_ansys_fourbar"
+
+
+def seed_scene(tmp_path: Path, material: str = "", motion: str = "") -> Path:
+    """The seed ANSYS case in ``tmp_path`` with ``material`` lines added to its steel and its
+    [motion] table's lines replaced by ``motion`` when given."""
+    shutil.copy(CASE / "ansys_four_bars.dxf", tmp_path)
+    text = (CASE / "scene.toml").read_text()
+    text = text.replace("poisson_ratio = 0.3\n", "poisson_ratio = 0.3\n" + material)
+    if motion:
+        start = text.index("[motion]")
+        end = text.index("\n\n", start)
+        text = text[:start] + "[motion]\n" + motion + text[end:]
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    return path
+
+
+def analyze(scene: Path, tmp_path: Path, capsys) -> tuple[dict, str]:
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(scene), "--json", str(out)]) == 0
+    return json.loads(out.read_text(), parse_constant=pytest.fail), capsys.readouterr().out
+
+
+def test_the_factor_is_the_yield_strength_over_the_stress_and_infinite_at_no_stress():
+    factors = yield_factor(250e6, np.array([125e6, 1e6, 0.0]))
+    assert factors.tolist() == [2.0, 250.0, np.inf]
+    assert finite_or_none(factors) == [2.0, 250.0, None]
+
+
+def test_each_seed_link_reports_its_yield_strength_over_its_largest_stresses(tmp_path, capsys):
+    data, text = analyze(seed_scene(tmp_path, "yield_strength = 250e6\n"), tmp_path, capsys)
+    links = data["positions"][0]["links"]
+    for name in ("crank", "coupler", "output"):
+        link = links[name]
+        assert link["yield_safety_factor"] == pytest.approx(250e6 / link["max_von_mises_pa"], rel=1e-15)
+        largest_estimate = max(hole["estimate_pa"] for hole in link["pin_holes"])
+        assert link["pin_hole_yield_safety_factor_estimate"] == pytest.approx(250e6 / largest_estimate, rel=1e-15)
+    # the coupler's section peak is 20,472 Pa at 60 deg (test_seed_ansys_case): a factor of 12,200
+    assert links["coupler"]["yield_safety_factor"] == pytest.approx(12_212, rel=1e-3)
+    assert "yield safety factor" in text
+    assert any(line.strip().startswith("coupler") and "1.22e+04" in line for line in text.splitlines())
+
+
+def test_without_a_yield_strength_no_factor_is_reported(tmp_path, capsys):
+    data, text = analyze(seed_scene(tmp_path), tmp_path, capsys)
+    assert not any("safety" in key for key in data["positions"][0]["links"]["coupler"])
+    assert "safety factor" not in text
+
+
+def test_a_link_without_stress_has_no_factor_rather_than_an_infinite_one(tmp_path, capsys):
+    still = 'input_angle_deg = 60.0\ninput_speed_rad_s = 0.0\n'
+    scene = seed_scene(tmp_path, "yield_strength = 250e6\n", still)
+    scene.write_text(scene.read_text().replace("output = 2.0", "output = 0.0"))
+    data, text = analyze(scene, tmp_path, capsys)
+    coupler = data["positions"][0]["links"]["coupler"]
+    assert coupler["max_von_mises_pa"] == 0.0
+    assert coupler["yield_safety_factor"] is None
+    assert "- (no stress)" in text
