@@ -70,11 +70,11 @@ def machine_forces(scene: Scene, motion: MachineMotion) -> MachineForces:
     assembly = builder.assembly()
     solution = solve_forces(assembly, motion.feasible)
     feasible = motion.feasible & solution.solved
-    reasons = tuple(
-        r if r or ok else SINGULAR_REASON for r, ok in zip(motion.reasons, feasible)
-    )
+    reasons = list(motion.reasons)
+    for k in np.flatnonzero(~feasible).tolist():
+        reasons[k] = reasons[k] or SINGULAR_REASON
     return MachineForces(
-        feasible, reasons, builder.mechanisms(solution), builder.link_loads(solution), solution,
+        feasible, tuple(reasons), builder.mechanisms(solution), builder.link_loads(solution), solution,
     )
 
 

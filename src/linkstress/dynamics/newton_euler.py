@@ -186,6 +186,8 @@ def _regular(matrix: NDArray[np.float64]) -> NDArray[np.bool_]:
 
 
 def _batched_solve(matrix, rhs, solved):
+    if solved.all():  # no copy of the systems
+        return np.linalg.solve(matrix, rhs[..., None])[..., 0]
     x = np.zeros_like(rhs)
     if solved.any():
         x[solved] = np.linalg.solve(matrix[solved], rhs[solved][..., None])[..., 0]
