@@ -72,8 +72,9 @@ def test_a_sweep_in_many_blocks_on_threads_equals_the_sweep_in_one_block(monkeyp
     scene = load_scene(SEED)
     scene = replace(scene, motion=angle_motion(np.linspace(3.0, 357.0, 37), -1.0, 0.0))
     plan = Plan(forces=True, stresses=("crank", "coupler", "output"), stations=61, validate=(), notes=())
-    monkeypatch.setattr(section_stress, "POSITION_BLOCK", 4)
+    monkeypatch.setattr(section_stress, "THREADED_BLOCK", 4)
     monkeypatch.setattr(section_stress, "THREADED_PAIRS", 0)
+    monkeypatch.setattr(section_stress, "cores", lambda: 2)
     calls = []
 
     def spy(work, items, threads=True):
@@ -83,6 +84,7 @@ def test_a_sweep_in_many_blocks_on_threads_equals_the_sweep_in_one_block(monkeyp
     monkeypatch.setattr(section_stress, "in_parallel", spy)
     blocks = run_analysis(scene, plan)
     assert calls == [(30, True)]
+    monkeypatch.setattr(section_stress, "THREADED_PAIRS", 10**12)
     monkeypatch.setattr(section_stress, "POSITION_BLOCK", 1000)
     for name in plan.stresses:
         loads = blocks.forces.link_loads[name]
@@ -106,3 +108,21 @@ def test_the_benchmark_times_the_sweep_on_one_core_and_gives_the_cores_back():
         assert inside is None
     else:
         assert inside == (1, {min(before)})
+
+
+def test_on_threads_a_link_gets_at_least_a_block_per_core_and_otherwise_blocks_of_the_cap(monkeypatch):
+    monkeypatch.setattr(section_stress, "cores", lambda: 2)
+
+    class Sweep:
+        def __init__(self, count):
+            self.coefficients = np.zeros((count, 3))
+
+    def sizes(count, threaded):
+        return [b.stop - b.start for b in section_stress._Sweep.blocks(Sweep(count), threaded)]
+
+    # the seed's 3,600-position sweep: two blocks of 1,800 on two cores, eight of 450 on one
+    assert sizes(3600, True) == [1800, 1800]
+    assert sizes(3600, False) == [450] * 8
+    assert sizes(10_000, True) == [2000] * 5  # at most THREADED_BLOCK = 2048
+    assert sizes(1, True) == [1]
+    assert sizes(0, True) == sizes(0, False) == []

@@ -48,7 +48,7 @@ from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.sections import SectionTable
-from linkstress.threads import blas_alone, in_parallel
+from linkstress.threads import blas_alone, cores, in_parallel
 
 
 
@@ -152,8 +152,9 @@ def links_section_stresses(
     """``section_stresses(link, loads, stations)`` for each job: the blocks of positions of every
     link share the cores, so that no core waits at the end of one link's blocks."""
     sweeps = [_Sweep.of(*job) for job in jobs]
-    blocks = [(sweep, block) for sweep in sweeps for block in sweep.blocks()]
-    if sum(sweep.fibres.von_mises.size for sweep in sweeps) < THREADED_PAIRS:
+    threaded = cores() > 1 and sum(sweep.fibres.von_mises.size for sweep in sweeps) >= THREADED_PAIRS
+    blocks = [(sweep, block) for sweep in sweeps for block in sweep.blocks(threaded)]
+    if not threaded:
         in_parallel(_evaluate, blocks, threads=False)
     else:
         with blas_alone():
@@ -192,10 +193,15 @@ class _Sweep:
         fibres = Fibres(von_mises, u)
         return cls(link, loads, table, basis, shape, shape.fibre_basis(basis), coefficients, forces, fibres)
 
-    def blocks(self) -> list[slice]:
-        """Near-equal blocks of at most ``POSITION_BLOCK`` positions."""
+    def blocks(self, threaded: bool = False) -> list[slice]:
+        """Near-equal blocks of positions: of at most ``POSITION_BLOCK`` on one thread; on threads,
+        of at most ``THREADED_BLOCK`` and at least one per core, so that each core takes a block
+        of every link."""
         count = len(self.coefficients)
-        edges = np.linspace(0, count, -(-count // POSITION_BLOCK) + 1).round().astype(int)
+        pieces = -(-count // (THREADED_BLOCK if threaded else POSITION_BLOCK))
+        if threaded:
+            pieces = min(max(pieces, cores()), count)
+        edges = np.linspace(0, count, pieces + 1).round().astype(int)
         return [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])]
 
     def evaluate(self, p: slice) -> None:
@@ -235,8 +241,15 @@ THREADED_PAIRS = 50_000
 positions, handing work to threads costs more than it saves."""
 
 POSITION_BLOCK = 512
-"""Most positions evaluated together: (block x stations) arrays stay in cache, faster than
-whole-sweep arrays on a long sweep (this is blocking, not a loop over positions), and the blocks
-run on every core (``linkstress.threads``). On two cores, over the seed's 3,600-position sweep,
-256 took about 30 % more processor time than 512 (more calls per position) and 1,024 was no
-faster."""
+"""Most positions evaluated together on one thread: (block x stations) arrays stay in cache, faster
+than whole-sweep arrays on a long sweep (this is blocking, not a loop over positions). On one
+core, over the seed's 3,600-position sweep at 200 stations (best of five rounds alternated in one
+process): 298 ms with blocks of 512, 346 ms with 1,800 and 331 ms with one block per link."""
+
+THREADED_BLOCK = 2048
+"""Most positions evaluated together when the blocks run on threads. There a block's fixed cost
+counts more than the cache: each block makes about 600 numpy calls, and threads take turns at the
+interpreter between them. So as few blocks as give every core one of each link (``blocks``): on
+two cores, over the same sweep, blocks of 1,800 (two per link) took 187 ms at best against 209 ms
+for blocks of 512 (eight rounds alternated in one process; processor time 344 and 364 ms), and
+one block per link 216 ms (three blocks for two cores)."""
