@@ -126,3 +126,31 @@ def test_on_threads_a_link_gets_at_least_a_block_per_core_and_otherwise_blocks_o
     assert sizes(10_000, True) == [2000] * 5  # at most THREADED_BLOCK = 2048
     assert sizes(1, True) == [1]
     assert sizes(0, True) == sizes(0, False) == []
+
+
+def test_the_joint_forces_of_a_long_sweep_solved_on_every_core_equal_those_solved_on_one(monkeypatch):
+    import linkstress.dynamics.newton_euler as newton_euler
+    from linkstress.dynamics.machine_forces import machine_forces
+    from linkstress.kinematics import solve_machine
+
+    scene = load_scene(SEED)
+    scene = replace(scene, motion=angle_motion(np.linspace(0.0, 360.0, 1200, endpoint=False), -1.0, 0.0))
+    motion = solve_machine(scene.machine, scene.motion)
+    monkeypatch.setattr(newton_euler, "cores", lambda: 3)
+    calls = []
+
+    def spy(work, items, threads=True):
+        calls.append(len(items))
+        in_parallel(work, items, threads)
+
+    monkeypatch.setattr(newton_euler, "in_parallel", spy)
+    split = machine_forces(scene, motion)
+    monkeypatch.setattr(newton_euler, "THREADED_SYSTEMS", 10**9)
+    whole = machine_forces(scene, motion)
+    assert calls == [3, 1]
+    assert not split.feasible[600] and split.feasible.sum() == 1199  # 180 deg: the toggle
+    np.testing.assert_array_equal(split.feasible, whole.feasible)
+    assert split.reasons == whole.reasons
+    for name, force in whole.mechanisms["main"].forces.items():
+        np.testing.assert_array_equal(split.mechanisms["main"].forces[name], force)
+    np.testing.assert_array_equal(split.mechanisms["main"].driving_torque, whole.mechanisms["main"].driving_torque)

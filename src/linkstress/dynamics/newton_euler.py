@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.threads import cores, in_parallel
+
 GROUND = -1
 """Body index of the fixed frame."""
 
@@ -161,8 +163,7 @@ def solve_forces(assembly: Assembly, mask: NDArray[np.bool_] | None = None) -> F
     rhs = _right_hand_side(assembly, n_pos, scale)
     friction_sign = np.zeros((n_pos, len(assembly.slides)))
     matrix = _matrix(assembly, n_pos, scale, friction_sign)
-    solved = mask & _regular(matrix)
-    x = _batched_solve(matrix, rhs, solved)
+    solved, x = _solve_systems(matrix, rhs, mask)
     if any(s.friction > 0 for s in assembly.slides):
         # Friction follows the sign of the normal force: solve without, then with that sign (Norton 11.8).
         for _ in range(3):
@@ -172,9 +173,28 @@ def solve_forces(assembly: Assembly, mask: NDArray[np.bool_] | None = None) -> F
                 break
             friction_sign = new_sign
             matrix = _matrix(assembly, n_pos, scale, friction_sign)
-            solved = mask & _regular(matrix)
-            x = _batched_solve(matrix, rhs, solved)
+            solved, x = _solve_systems(matrix, rhs, mask)
     return _unpack(assembly, x, scale, friction_sign, solved)
+
+
+THREADED_SYSTEMS = 1000
+"""Positions from which the systems are factorised on every core (LAPACK lets go of the interpreter
+lock); the seed's 3,600-position sweep: 13 ms on one core, 10 ms on two."""
+
+
+def _solve_systems(matrix, rhs, mask):
+    """Where ``mask`` holds and the system is regular (``_regular``): ``solved`` (P,), and the
+    solutions ``x`` (P, n) there (zeros elsewhere); long sweeps in a block of positions per core."""
+    solved, x = np.empty(len(matrix), bool), np.zeros_like(rhs)
+
+    def solve(p: slice) -> None:
+        solved[p] = mask[p] & _regular(matrix[p])
+        x[p] = _batched_solve(matrix[p], rhs[p], solved[p])
+
+    pieces = cores() if len(matrix) >= THREADED_SYSTEMS else 1
+    edges = np.linspace(0, len(matrix), pieces + 1).round().astype(int)
+    in_parallel(solve, [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])])
+    return solved, x
 
 
 def _regular(matrix: NDArray[np.float64]) -> NDArray[np.bool_]:
