@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import subprocess
 import sys
-
+from pathlib import Path
 
 from linkstress import __version__
 from linkstress.cli import main
+
+REPO = Path(__file__).resolve().parents[1]
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess:
@@ -20,6 +22,20 @@ def test_version_prints_the_package_version():
     assert result.stdout.strip() == f"linkstress {__version__}"
 
 
+def test_the_command_line_and_an_analysis_without_a_report_leave_matplotlib_unloaded(tmp_path):
+    # matplotlib takes about half a second to import: only --html and the figures need it
+    scene = "validation/cases/seed_ansys_fourbar/scene.toml"
+    code = (
+        "import sys\n"
+        "from linkstress.cli import main\n"
+        f"assert main(['analyze', {scene!r}, '--json', {str(tmp_path / 'out.json')!r}]) == 0\n"
+        "print('matplotlib' in sys.modules)\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=REPO)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip().splitlines()[-1] == "False"
+
+
 def test_help_lists_the_commands():
     result = run_cli("--help")
     assert result.returncode == 0
@@ -27,8 +43,6 @@ def test_help_lists_the_commands():
 
 
 def test_console_script_is_installed_beside_the_interpreter():
-    from pathlib import Path
-
     script = Path(sys.executable).parent / "linkstress"
     assert script.is_file(), f"no console script at {script}: is linkstress installed in this environment?"
     result = subprocess.run([str(script), "--version"], capture_output=True, text=True)

@@ -14,7 +14,6 @@ from pathlib import Path
 
 from linkstress.analysis import plan_for, run_analysis
 from linkstress.output import check_folder, write_json, write_text
-from linkstress.report.html import analysis_html
 from linkstress.report.records import position_records
 from linkstress.report.text import report
 from linkstress.scene import load_scene
@@ -53,7 +52,11 @@ def run(args: argparse.Namespace) -> int:
     result = run_analysis(scene, plan)
     print(report(result))
     # Every output is made before any is written, so a failure leaves none half-done.
-    document = analysis_html(result) if args.html is not None else None
+    document = None
+    if args.html is not None:
+        from linkstress.report.html import analysis_html  # matplotlib: half a second to import
+
+        document = analysis_html(result)
     if args.json is not None:
         write_json(args.json, {"positions": position_records(result, stations=args.stations)})
     if document is not None:
