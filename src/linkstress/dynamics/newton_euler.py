@@ -179,7 +179,7 @@ def solve_forces(assembly: Assembly, mask: NDArray[np.bool_] | None = None) -> F
 
 THREADED_SYSTEMS = 1000
 """Positions from which the systems are factorised on every core (LAPACK lets go of the interpreter
-lock); the seed's 3,600-position sweep: 13 ms on one core, 10 ms on two."""
+lock): 3,600 systems of 9 x 9 took 13 ms on one core, 10 ms on two."""
 
 
 def _solve_systems(matrix, rhs, mask):

@@ -213,10 +213,10 @@ def _pin_holes_table(result: AnalysisResult) -> str:
 def _safety_table(result: AnalysisResult) -> str:
     """Per link whose material gives a yield strength, the sweep's lowest safety factors against it."""
     ok = result.feasible
+    if not ok.any():
+        return ""
     rows = []
     for name, factors in link_safety_factors(result).items():
-        if not ok.any():
-            continue
         k = int(np.flatnonzero(ok)[np.argmin(factors.sections[ok])])
         pin = "-" if factors.pin_holes is None else _finite(factors.pin_holes[ok].min())
         rows.append((name, factors.yield_strength, _finite(factors.sections[k]), float(result.scene.motion.angle_deg[k]), pin))

@@ -6,12 +6,12 @@ Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``transmission_angl
 ``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
 some station is at least a section depth from every pin hole), ``equilibrium_mismatch`` and
 ``pin_holes`` (per pin hole: Kt, the net-section stress of its pin force and the Kt x nominal
-estimate, labelled as such) where stresses were computed, ``yield_safety_factor`` (yield strength over
-``max_von_mises_pa``) and ``pin_hole_yield_safety_factor_estimate`` (over the largest pin-hole
+estimate, labelled as such) where stresses were computed, ``yield_safety_factor`` (yield strength
+over ``max_von_mises_pa``) and ``pin_hole_yield_safety_factor_estimate`` (over the largest pin-hole
 estimate) where the material gives ``yield_strength`` (null where the stress is zero), and with
-``stations`` the arrays along the link; per mechanism ``forces_n`` (Norton names) and ``driving_torque_nm`` (or ``driving_force_n``
-for an actuated slider) where forces were computed. Infeasible positions carry no link or
-mechanism data. Angles in degrees in [0, 360); SI units.
+``stations`` the arrays along the link; per mechanism ``forces_n`` (Norton names) and
+``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed.
+Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 """
 
 from __future__ import annotations
