@@ -71,3 +71,24 @@ def test_a_link_without_stress_has_no_factor_rather_than_an_infinite_one(tmp_pat
     assert coupler["max_von_mises_pa"] == 0.0
     assert coupler["yield_safety_factor"] is None
     assert "- (no stress)" in text
+
+
+def test_validate_gives_the_factor_against_the_fea_peak(tmp_path, capsys):
+    scene = seed_scene(tmp_path, "yield_strength = 250e6\n")
+    out = tmp_path / "validate.json"
+    assert main(["validate", str(scene), "--mesh-levels", "1", "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    links = json.loads(out.read_text(), parse_constant=pytest.fail)["links"]
+    for name, link in links.items():
+        assert link["fea_yield_safety_factor"] == pytest.approx(250e6 / link["fea_max_von_mises_pa"], rel=1e-15)
+        assert f"{name}: yield safety factor {link['fea_yield_safety_factor']:.3g} against the FEA peak" in text
+    # the coupler's FEA peak at its pins, 6.7e5 Pa (the README's seed report), against 250 MPa
+    assert links["coupler"]["fea_yield_safety_factor"] == pytest.approx(373, rel=0.01)
+
+
+def test_validate_without_a_yield_strength_gives_no_factor(tmp_path, capsys):
+    out = tmp_path / "validate.json"
+    assert main(["validate", str(seed_scene(tmp_path)), "--mesh-levels", "1", "--json", str(out)]) == 0
+    links = json.loads(out.read_text())["links"]
+    assert all(link["fea_yield_safety_factor"] is None for link in links.values())
+    assert "yield safety factor" not in capsys.readouterr().out

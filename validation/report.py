@@ -16,6 +16,7 @@ from matplotlib.tri import Triangulation
 
 from linkstress.report.figures import stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
+from linkstress.safety import finite_or_none, yield_factor
 from linkstress.sections import SectionTable
 from linkstress.tables import format_table
 from linkstress.validation.compare import LinkComparison
@@ -53,6 +54,7 @@ def link_record(result: ValidationResult, name: str) -> dict:
         "discretisation_error_pct": None if c.study is None else float(100 * c.discretisation_error.max()),
         "reaction_ratio": float(c.fea.reaction_ratio.max()),
         "pin_estimate_max_pa": pin_estimate(c),
+        "fea_yield_safety_factor": fea_safety_factor(result, name, float(c.fea_peak.max())),
         "stations_m": c.stations.tolist(),
         "nominal_stations_m": c.stations[c.away].tolist(),
         "positions": {
@@ -66,6 +68,15 @@ def link_record(result: ValidationResult, name: str) -> dict:
         },
     }
     return record
+
+
+def fea_safety_factor(result: ValidationResult, name: str, fea_peak: float) -> float | None:
+    """The link material's yield strength over the FEA peak (the stress to trust near the pins), or
+    None without a yield strength or without stress."""
+    material = result.analysis.scene.links[name].material
+    if material is None or material.yield_strength is None:
+        return None
+    return finite_or_none(yield_factor(material.yield_strength, np.array([fea_peak])))[0]
 
 
 def pin_estimate(c: LinkComparison) -> float | None:
@@ -113,6 +124,9 @@ def validation_text(result: ValidationResult) -> str:
     lines += [f"  {name}: {message}" for name, message in result.errors.items()]
     for name, c in result.comparisons.items():
         lines.append(f"  {name}: {shortfall(c)}")
+        factor = fea_safety_factor(result, name, float(c.fea_peak.max()))
+        if factor is not None:
+            lines.append(f"  {name}: yield safety factor {factor:.3g} against the FEA peak")
     failures = result.failures()
     lines.append("check: " + ("passed" if not failures else "FAILED\n  " + "\n  ".join(failures)))
     return "\n".join(lines)
