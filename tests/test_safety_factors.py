@@ -82,7 +82,7 @@ def test_validate_gives_the_factor_against_the_fea_peak(tmp_path, capsys):
     for name, link in links.items():
         assert link["fea_yield_safety_factor"] == pytest.approx(250e6 / link["fea_max_von_mises_pa"], rel=1e-15)
         assert f"{name}: yield safety factor {link['fea_yield_safety_factor']:.3g} against the FEA peak" in text
-    # the coupler's FEA peak at its pins, 6.7e5 Pa (the README's seed report), against 250 MPa
+    # the coupler's FEA peak at its pins, 6.705e5 Pa (validate's text on the seed), against 250 MPa
     assert links["coupler"]["fea_yield_safety_factor"] == pytest.approx(373, rel=0.01)
 
 
