@@ -17,6 +17,7 @@ from contextlib import AbstractContextManager
 from functools import lru_cache
 from typing import TypeVar
 
+import numpy as np
 from threadpoolctl import ThreadpoolController
 
 Block = TypeVar("Block")
@@ -32,6 +33,12 @@ def in_parallel(work: Callable[[Block], None], blocks: Sequence[Block], threads:
             work(block)
         return
     list(_pool().map(work, blocks))
+
+
+def even_blocks(count: int, pieces: int) -> list[slice]:
+    """``range(count)`` as ``pieces`` consecutive slices of near-equal length."""
+    edges = np.linspace(0, count, pieces + 1).round().astype(int)
+    return [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])]
 
 
 def blas_alone() -> AbstractContextManager:

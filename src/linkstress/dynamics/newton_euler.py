@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.threads import cores, in_parallel
+from linkstress.threads import cores, even_blocks, in_parallel
 
 GROUND = -1
 """Body index of the fixed frame."""
@@ -192,8 +192,7 @@ def _solve_systems(matrix, rhs, mask):
         x[p] = _batched_solve(matrix[p], rhs[p], solved[p])
 
     pieces = cores() if len(matrix) >= THREADED_SYSTEMS else 1
-    edges = np.linspace(0, len(matrix), pieces + 1).round().astype(int)
-    in_parallel(solve, [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])])
+    in_parallel(solve, even_blocks(len(matrix), pieces))
     return solved, x
 
 

@@ -18,7 +18,7 @@ transverse body load b_y [N/m^3] uniform through the depth, the Airy stress func
 phi = a x^2 y + b y^3 + d (x^2 y^3 - y^5 / 5) with free edges (sigma_y = tau = 0 at y = +-c) gives
 d = -b_y / (4 c^2) and, beside M y / I (same M), the self-equilibrated term
 
-    deltafibre_sigma(v) = (b_y / c^2) (v^3 - 3 c^2 v / 5),   v measured from mid-depth,
+    delta_sigma(v) = (b_y / c^2) (v^3 - 3 c^2 v / 5),   v measured from mid-depth,
 
 (+0.4 b_y c at the top fibre), while its shear stress is exactly Jourawski's. It is added on every
 single-chord section, with b_y = rho (g - a_O - alpha k x r)_y at the station (the part of the
@@ -48,8 +48,7 @@ from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.sections import SectionTable
-from linkstress.threads import blas_alone, cores, in_parallel
-
+from linkstress.threads import blas_alone, cores, even_blocks, in_parallel
 
 
 @dataclass(frozen=True)
@@ -201,8 +200,7 @@ class _Sweep:
         pieces = -(-count // (THREADED_BLOCK if threaded else POSITION_BLOCK))
         if threaded:
             pieces = min(max(pieces, cores()), count)
-        edges = np.linspace(0, count, pieces + 1).round().astype(int)
-        return [slice(lo, hi) for lo, hi in zip(edges[:-1], edges[1:])]
+        return even_blocks(count, pieces)
 
     def evaluate(self, p: slice) -> None:
         """Every fibre candidate of positions ``p``: the writes touch only those rows."""
