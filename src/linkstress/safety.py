@@ -28,6 +28,12 @@ class SafetyFactors:
     sections: NDArray[np.float64]
     pin_holes: NDArray[np.float64] | None
 
+    def lowest(self, positions) -> tuple[float, float | None]:
+        """The lowest factors over ``positions`` (a mask or indices): against the sections, and
+        against the pin holes (None where the link has no estimate); inf where no stress there."""
+        pin_holes = None if self.pin_holes is None else float(self.pin_holes[positions].min())
+        return float(self.sections[positions].min()), pin_holes
+
 
 def yield_factor(yield_strength: float, stress: NDArray[np.float64]) -> NDArray[np.float64]:
     """``yield_strength`` [Pa] over ``stress`` [Pa], inf where the stress is zero."""

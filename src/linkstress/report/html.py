@@ -217,9 +217,10 @@ def _safety_table(result: AnalysisResult) -> str:
         return ""
     rows = []
     for name, factors in link_safety_factors(result).items():
+        sections, pin_holes = factors.lowest(ok)
         k = int(np.flatnonzero(ok)[np.argmin(factors.sections[ok])])
-        pin = "-" if factors.pin_holes is None else _finite(factors.pin_holes[ok].min())
-        rows.append((name, factors.yield_strength, _finite(factors.sections[k]), float(result.scene.motion.angle_deg[k]), pin))
+        pin = "-" if pin_holes is None else _finite(pin_holes)
+        rows.append((name, factors.yield_strength, _finite(sections), float(result.scene.motion.angle_deg[k]), pin))
     if not rows:
         return ""
     return (

@@ -23,7 +23,7 @@ from linkstress.kinematics.linkage_class import (
     toggle_angles,
 )
 from linkstress.report.records import link_columns
-from linkstress.safety import link_safety_factors, yield_factor
+from linkstress.safety import link_safety_factors
 from linkstress.scene import Scene
 from linkstress.tables import format_table
 
@@ -175,8 +175,7 @@ def stress_table(result: AnalysisResult) -> str:
             away, pin, float(stress.forces.mismatch[ok].max()),
         ]
         if factors:
-            strength = factors[name].yield_strength if name in factors else None
-            row += [_factor_text(strength, stress.max_von_mises[k]), "-" if pin == "-" else _factor_text(strength, pin)]
+            row += _factor_cells(factors.get(name), ok)
         rows.append(tuple(row))
     headers = ["link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m]", "away from holes [Pa]",
                "pin hole estimate [Pa]", "equilibrium check"]
@@ -196,9 +195,13 @@ def stress_table(result: AnalysisResult) -> str:
     return "\n".join(lines)
 
 
-def _factor_text(strength: float | None, stress: float) -> str:
-    """The yield safety factor at ``stress`` [Pa], '-' without a yield strength."""
-    if strength is None:
-        return "-"
-    factor = float(yield_factor(strength, stress))
+def _factor_cells(factors, ok) -> list[str]:
+    """The sweep's lowest yield safety factors of one link, '-' without a yield strength."""
+    if factors is None:
+        return ["-", "-"]
+    sections, pin_holes = factors.lowest(ok)
+    return [_factor_text(sections), "-" if pin_holes is None else _factor_text(pin_holes)]
+
+
+def _factor_text(factor: float) -> str:
     return f"{factor:.3g}" if np.isfinite(factor) else "- (no stress)"
