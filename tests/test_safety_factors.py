@@ -92,3 +92,13 @@ def test_validate_without_a_yield_strength_gives_no_factor(tmp_path, capsys):
     links = json.loads(out.read_text())["links"]
     assert all(link["fea_yield_safety_factor"] is None for link in links.values())
     assert "yield safety factor" not in capsys.readouterr().out
+
+
+def test_the_table_gives_each_links_lowest_factor_over_the_sweep(tmp_path, capsys):
+    sweep = "input_angle_deg = [30.0, 60.0, 90.0, 120.0]\ninput_speed_rad_s = -1.0\n"
+    data, text = analyze(seed_scene(tmp_path, "yield_strength = 250e6\n", sweep), tmp_path, capsys)
+    peaks = [p["links"]["coupler"]["max_von_mises_pa"] for p in data["positions"]]
+    lowest, highest = f"{250e6 / max(peaks):.3g}", f"{250e6 / min(peaks):.3g}"
+    assert lowest != highest
+    row = next(line.split() for line in text.splitlines() if line.strip().startswith("coupler "))
+    assert row[-2] == lowest
