@@ -110,6 +110,7 @@ CASES = [
     ("[motion]", "[analysis]\nvalidate = [\"crank\"]\n[motion]",
      "analysis.validate: link 'crank' has bare joints; only links drawn in a sketch can be checked by FEA"),
     ("[motion]", "[analysis]\nstations = 1\n[motion]", "analysis.stations: must be >= 2, got 1"),
+    ("[motion]", "[analysis]\nbody_load_near_holes = 1\n[motion]", "analysis.body_load_near_holes: must be true or false, got 1"),
     ("[links.ground]", "[links.spare]\njoints = [[0.0, 0.0], [1.0, 0.0]]\n[links.ground]",
      "links.spare: no mechanism uses this link; name it in a [mechanisms] table or remove it"),
     ("[motion]", "[extra]\n[motion]", "scene.toml: extra: unknown key; allowed keys are: title, notes, units, materials, links,"),

@@ -159,6 +159,7 @@ def test_every_optional_part_of_the_schema_is_read(tmp_path):
         stations = 21
         mesh_size_m = 0.002
         element_order = 1
+        body_load_near_holes = true
     """))
     assert scene.units == "mm"
     cyl1, cyl2, cyl3 = (scene.machine.loop(n) for n in ("cyl1", "cyl2", "cyl3"))
@@ -175,6 +176,7 @@ def test_every_optional_part_of_the_schema_is_read(tmp_path):
     assert scene.loads.friction == {"cyl1": 0.1, "cyl2": 0.2}
     assert scene.analysis.forces and not scene.analysis.stresses and not scene.analysis.kinematics
     assert (scene.analysis.stations, scene.analysis.mesh_size, scene.analysis.element_order) == (21, 0.002, 1)
+    assert scene.analysis.body_load_near_holes
     assert scene.links["piston"].frame_joints == (0, 0)
     result = solve_machine(scene.machine, scene.motion)
     assert np.allclose(result.loops["cyl2"].theta2, result.loops["cyl1"].theta2 + math.pi)

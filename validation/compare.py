@@ -160,15 +160,17 @@ def compare_link(
     mesh: MeshSettings | None = None,
     levels: int = 3,
     stations: NDArray[np.float64] | None = None,
+    body_load_near_holes: bool = False,
 ) -> LinkComparison:
     """Compare link ``name`` at sweep ``positions``; ``levels`` >= 3 runs a refinement study and
-    compares with its finest mesh, 1 compares with ``mesh`` alone."""
+    compares with its finest mesh, 1 compares with ``mesh`` alone; the beam's sections take the
+    body-load term near holes too with ``body_load_near_holes``."""
     frame_joints = loads.frame_joints
     stations = comparison_stations(link, frame_joints) if stations is None else np.asarray(stations, float)
     mesh = mesh or default_mesh(link, frame_joints, stations)
     selected = loads.at(positions)
     start = time.perf_counter()
-    beam = section_stresses(link, selected, stations)
+    beam = section_stresses(link, selected, stations, body_load_near_holes)
     beam_seconds = time.perf_counter() - start
     start = time.perf_counter()
     away = ~beam.near_hole

@@ -93,7 +93,8 @@ def validate_scene(
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
     order = scene.analysis.element_order if scene.analysis is not None else 2
     tasks = [
-        (name, scene.links[name].profile, analysis.forces.link_loads[name], chosen, levels, size, order)
+        (name, scene.links[name].profile, analysis.forces.link_loads[name], chosen, levels, size, order,
+         plan.body_load_near_holes)
         for name in plan.validate
     ]
     if jobs > 1 and len(tasks) > 1:
@@ -109,7 +110,7 @@ def validate_scene(
 
 def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
     """One link's comparison, or the reason it could not run (top level: runs in a worker process)."""
-    name, link, loads, chosen, levels, size, order = task
+    name, link, loads, chosen, levels, size, order, body_load_near_holes = task
     start = time.perf_counter()
     if not len(chosen):
         return name, None, "no feasible position to compare", 0.0
@@ -118,7 +119,8 @@ def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
         mesh = replace(default_mesh(link, loads.frame_joints, stations, size), order=order)
         if order == 1 and size is None:
             mesh = mesh.refined(LINEAR_REFINEMENT)
-        return name, compare_link(name, link, loads, chosen, mesh, levels, stations), "", time.perf_counter() - start
+        comparison = compare_link(name, link, loads, chosen, mesh, levels, stations, body_load_near_holes)
+        return name, comparison, "", time.perf_counter() - start
     except FEAError as error:
         return name, None, str(error), time.perf_counter() - start
 

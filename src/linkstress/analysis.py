@@ -28,13 +28,15 @@ DEFAULT_STATIONS = 101
 @dataclass(frozen=True)
 class Plan:
     """The stages to run: ``forces``; section stresses for ``stresses`` (link names) at ``stations``
-    per link; FEA for ``validate``; ``notes`` say why a stage or link is left out."""
+    per link, with the body-load term near holes too when ``body_load_near_holes``; FEA for
+    ``validate``; ``notes`` say why a stage or link is left out."""
 
     forces: bool
     stresses: tuple[str, ...]
     stations: int
     validate: tuple[str, ...]
     notes: tuple[str, ...]
+    body_load_near_holes: bool = False
 
     def describe(self) -> str:
         lines = ["plan:", "  kinematics: every position"]
@@ -42,6 +44,7 @@ class Plan:
         lines.append(
             f"  section stresses: {', '.join(self.stresses) if self.stresses else 'none'}"
             + (f" ({self.stations} stations each)" if self.stresses else "")
+            + (", body-load term near holes too" if self.stresses and self.body_load_near_holes else "")
         )
         lines.append(f"  FEA check: {', '.join(self.validate) if self.validate else 'none'}")
         lines += [f"  note: {note}" for note in self.notes]
@@ -79,7 +82,8 @@ def plan_for(scene: Scene) -> Plan:
     for name in moving:
         if name not in stressable and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
-    return Plan(forces, stresses, stations, validate, tuple(notes))
+    near_holes = asked is not None and asked.body_load_near_holes
+    return Plan(forces, stresses, stations, validate, tuple(notes), near_holes)
 
 
 @dataclass(frozen=True)
@@ -132,6 +136,6 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
         for name in plan.stresses:
             profile, loads = scene.links[name].profile, forces.link_loads[name]
             jobs.append((profile, loads, default_stations(profile, loads.frame_joints, plan.stations)))
-        stresses = dict(zip(plan.stresses, links_section_stresses(jobs)))
+        stresses = dict(zip(plan.stresses, links_section_stresses(jobs, plan.body_load_near_holes)))
         seconds["stresses"] = time.perf_counter() - start
     return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds)

@@ -63,7 +63,9 @@ class _HoleEdges:
 @dataclass(frozen=True)
 class SectionShape:
     """What the fibre search needs of the sections, independent of the loads: per station, and the
-    chords of split sections, and the chord ends at holes (station, offset u, C)."""
+    chords of split sections, and the chord ends at holes (station, offset u, C). ``half``: a single
+    chord's half-depth c (zero elsewhere); ``inverse_square_half``, ``corrected_half`` and ``lever``:
+    1 / c^2, c and 0.4 rho c on the single chords that get the body-load term (zero elsewhere)."""
 
     x: NDArray[np.float64]
     inv_area: NDArray[np.float64]
@@ -72,6 +74,7 @@ class SectionShape:
     reach: NDArray[np.float64]
     half: NDArray[np.float64]
     inverse_square_half: NDArray[np.float64]
+    corrected_half: NDArray[np.float64]
     lever: NDArray[np.float64]
     shear_gain: NDArray[np.float64]
     density: float
@@ -79,11 +82,14 @@ class SectionShape:
     hole_ends: _HoleEdges
 
     @classmethod
-    def of(cls, table: SectionTable, density: float) -> "SectionShape":
+    def of(cls, table: SectionTable, density: float, body_term: NDArray[np.bool_]) -> "SectionShape":
+        """The shape of ``table``'s sections; the single chords of the stations ``body_term`` (S,)
+        get the body-load term."""
         solid = (table.area > 0) & (table.second_moment > 0)
         yna = table.neutral_axis
         half = (table.top - table.bottom) / 2
         single = solid & (table.n_chords == 1) & (half > 0)
+        corrected = single & body_term
         inv_inertia = np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0)
         count = table.n_chords[:, None]
         at, k = np.nonzero((solid[:, None] & (count > 1)) & (count > np.arange(table.lower.shape[1])))
@@ -97,9 +103,10 @@ class SectionShape:
             middle=(table.top + table.bottom) / 2 - yna,
             reach=half,
             half=np.where(single, half, 0.0),
-            inverse_square_half=np.where(single, 1.0 / np.where(single, half * half, 1.0), 0.0),
+            inverse_square_half=np.where(corrected, 1.0 / np.where(corrected, half * half, 1.0), 0.0),
+            corrected_half=np.where(corrected, half, 0.0),
             # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
-            lever=np.where(single, 0.4 * density * half, 0.0),
+            lever=np.where(corrected, 0.4 * density * half, 0.0),
             # (8/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
             shear_gain=np.where(single, (8 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
@@ -110,8 +117,8 @@ class SectionShape:
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
         """Per unit load coefficient, (Q, S) each: the mean and half the difference of sigma at the
         top and bottom fibres, N / A + M u / I and the body-load term +-0.4 b_y c,
-        b_y = rho ((g - a_O)_y - alpha x); and 0.1925 b_y c on single chords (zero elsewhere), for
-        ``interior_candidates``."""
+        b_y = rho ((g - a_O)_y - alpha x); and 0.1925 b_y c on the single chords that take the term
+        (zero elsewhere), for ``interior_candidates``."""
         along = basis.normal * self.inv_area
         mean = along + basis.moment * (self.inv_inertia * self.middle)
         spread = basis.moment * (self.inv_inertia * self.reach)
@@ -196,15 +203,16 @@ class SectionShape:
 
         In s = u / c: sigma = n + (m - 0.6 beta c^2) c s + beta c^3 s^3 with beta c^3 = b_y c, and
         3 tau^2 = 3 w^2 c^4 (1 - s^2)^2 (``single_chord_peak``). Where there is no body load (a crank
-        turning steadily about a fixed pivot, without gravity) sigma is linear and the maximum is in
-        closed form, as on split sections (``cubic_peak``)."""
+        turning steadily about a fixed pivot, without gravity) or the section takes no body-load term
+        (near a hole) sigma is linear and the maximum is in closed form, as on split sections
+        (``cubic_peak``)."""
         if not len(flat):
             return
         n, m, w, at = self._reduced(forces, flat)
         half = self.half[at]
         c = half * half
         rows = flat // len(self.x)
-        body = self.body_load(coefficients[rows, FREE_Y], coefficients[rows, ALPHA], at) * half
+        body = self.body_load(coefficients[rows, FREE_Y], coefficients[rows, ALPHA], at) * self.corrected_half[at]
         plain = body == 0
         if plain.any():
             k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))

@@ -21,12 +21,21 @@ d = -b_y / (4 c^2) and, beside M y / I (same M), the self-equilibrated term
     delta_sigma(v) = (b_y / c^2) (v^3 - 3 c^2 v / 5),   v measured from mid-depth,
 
 (+0.4 b_y c at the top fibre), while its shear stress is exactly Jourawski's. It is added on every
-single-chord section, with b_y = rho (g - a_O - alpha k x r)_y at the station (the part of the
-d'Alembert load uniform through the depth); sigma is then a cubic in u and the chord's interior
-maxima are found by ``fibre_peaks.single_chord_peak``. On the stubby seed bars the term is 2-4 % of
-the nominal stress and takes the beam-versus-FEA difference there from up to 3.8 % to under 0.6 %;
-near a link's free ends, where N and M fade, it is most of the stress. Sections split by holes get
-no correction (their values are nominal anyway).
+single-chord section a section depth from every hole, with b_y = rho (g - a_O - alpha k x r)_y at
+the station (the part of the d'Alembert load uniform through the depth); sigma is then a cubic in u
+and the chord's interior maxima are found by ``fibre_peaks.single_chord_peak``. On the stubby seed
+bars the term is 2-4 % of the nominal stress and takes the beam-versus-FEA difference there from up
+to 3.8 % to under 0.6 %.
+
+Near a hole (``near_holes``) the values are nominal: elementary beam theory, the stress a Kt
+multiplies. The correction refines beam theory where it holds, so there it is left out, as on
+sections split by holes, unless asked for (``body_load_near_holes``). It is also where it costs
+most: the near-hole stations of an inertia-loaded link (its rounded ends, where N and M fade and
+the body load makes most of the stress) are nearly all the chord searches of a sweep. Measured on
+the seed: the 3,600-position sweep takes about 1.45 times as long with it; against FEA (12
+positions, one mesh) the median near-hole difference is 1.4 % (output) and 7.6 % (coupler) with it,
+2.7 % and 7.7 % without, and the largest 21 % and 62 % either way (pin bearing stress, which no beam
+value carries).
 
 Every stress is linear in the load coefficients, so N, V, M and the outer fibres' sigma over a
 sweep are products of the (P, Q) coefficients with (Q, S) bases made once per link, evaluated in
@@ -133,8 +142,10 @@ def section_stresses(
     link: LinkProfile,
     loads: LinkLoadCase,
     stations: NDArray[np.float64],
+    body_load_near_holes: bool = False,
 ) -> SectionStresses:
-    """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position.
+    """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position;
+    with ``body_load_near_holes``, the body-load term on the single-chord sections near holes too.
 
     Candidates for the largest von Mises of a section (``fibre_candidates``): its outer fibres (free
     edges, tau = 0), the ends of chords at holes, and each chord's interior maximum where shear
@@ -142,15 +153,16 @@ def section_stresses(
     and the outer fibres' sigma are each one product of those with a basis made once per link.
     Blocks of positions run on every core, BLAS on one thread (``linkstress.threads``).
     """
-    return links_section_stresses([(link, loads, stations)])[0]
+    return links_section_stresses([(link, loads, stations)], body_load_near_holes)[0]
 
 
 def links_section_stresses(
     jobs: Sequence[tuple[LinkProfile, LinkLoadCase, NDArray[np.float64]]],
+    body_load_near_holes: bool = False,
 ) -> list[SectionStresses]:
-    """``section_stresses(link, loads, stations)`` for each job: the blocks of positions of every
-    link share the cores, so that no core waits at the end of one link's blocks."""
-    sweeps = [_Sweep.of(*job) for job in jobs]
+    """``section_stresses(link, loads, stations, body_load_near_holes)`` for each job: the blocks of
+    positions of every link share the cores, so that no core waits at the end of one link's blocks."""
+    sweeps = [_Sweep.of(*job, body_load_near_holes) for job in jobs]
     threaded = cores() > 1 and sum(sweep.fibres.von_mises.size for sweep in sweeps) >= THREADED_PAIRS
     blocks = [(sweep, block) for sweep in sweeps for block in sweep.blocks(threaded)]
     if not threaded:
@@ -173,6 +185,7 @@ class _Sweep:
     link: LinkProfile
     loads: LinkLoadCase
     table: SectionTable
+    near_hole: NDArray[np.bool_]
     basis: ForceBasis
     shape: SectionShape
     fibre_bases: tuple[NDArray[np.float64], ...]
@@ -181,16 +194,19 @@ class _Sweep:
     fibres: Fibres
 
     @classmethod
-    def of(cls, link: LinkProfile, loads: LinkLoadCase, stations: NDArray[np.float64]) -> "_Sweep":
+    def of(
+        cls, link: LinkProfile, loads: LinkLoadCase, stations: NDArray[np.float64], body_load_near_holes: bool = False,
+    ) -> "_Sweep":
         table = link.sections(stations, *loads.frame_joints)
         basis = force_basis(link, loads, table)
-        shape = SectionShape.of(table, link.density)
+        near_hole = near_holes(link, loads.frame_joints, table)
+        shape = SectionShape.of(table, link.density, np.ones_like(near_hole) if body_load_near_holes else ~near_hole)
         coefficients = load_coefficients(loads)
         size = (len(coefficients), len(table.x))
         normal, shear, moment, von_mises, u = (np.empty(size) for _ in range(5))
         forces = InternalForces(table.x, normal, shear, moment, np.empty(size[0]))
         fibres = Fibres(von_mises, u)
-        return cls(link, loads, table, basis, shape, shape.fibre_basis(basis), coefficients, forces, fibres)
+        return cls(link, loads, table, near_hole, basis, shape, shape.fibre_basis(basis), coefficients, forces, fibres)
 
     def blocks(self, threaded: bool = False) -> list[slice]:
         """Near-equal blocks of positions: of at most ``POSITION_BLOCK`` on one thread; on threads,
@@ -225,11 +241,9 @@ class _Sweep:
         block.u += self.table.neutral_axis  # now the fibre's y
 
     def result(self) -> SectionStresses:
-        frame_joints = self.loads.frame_joints
         fibres = self.fibres
         return SectionStresses(
-            self.table, self.forces, fibres.von_mises, fibres.u,
-            near_holes(self.link, frame_joints, self.table), pin_hole_estimates(self.link, self.loads),
+            self.table, self.forces, fibres.von_mises, fibres.u, self.near_hole, pin_hole_estimates(self.link, self.loads),
             self.shape, self.coefficients[:, [FREE_Y, ALPHA]],
         )
 

@@ -8,7 +8,8 @@ link name or its slider-crank's mechanism name.
 
 [analysis]: ``kinematics``, ``forces``, ``stresses`` (booleans, default false once the table
 exists), ``stations`` (>= 2), ``validate`` (link names with profiles), ``mesh_size_m`` (> 0),
-``element_order`` (1 or 2, default 2).
+``element_order`` (1 or 2, default 2), ``body_load_near_holes`` (boolean, default false: sections
+within a depth of a hole get nominal beam values, without the body-load term).
 """
 
 from __future__ import annotations
@@ -20,7 +21,9 @@ from linkstress.scene.keys import Table
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
 
 LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
-ANALYSIS_KEYS = ("kinematics", "forces", "stresses", "stations", "validate", "mesh_size_m", "element_order")
+ANALYSIS_KEYS = (
+    "kinematics", "forces", "stresses", "stations", "validate", "mesh_size_m", "element_order", "body_load_near_holes",
+)
 
 
 def read_loads(table: Table | None, machine: Machine, links: dict[str, SceneLink]) -> Loads:
@@ -90,6 +93,7 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
         validate=validate,
         mesh_size=table.number("mesh_size_m", positive=True, unit="m"),
         element_order=order,
+        body_load_near_holes=table.boolean("body_load_near_holes", False),
     )
 
 

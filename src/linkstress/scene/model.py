@@ -114,7 +114,8 @@ class Analysis:
     """What to compute when the scene has an [analysis] table (absent: everything the data allows).
 
     stations: number of section stations per link (None: the engine's default); validate: links to
-    check by FEA; mesh_size [m] (None: the engine's default); element_order 1 or 2.
+    check by FEA; mesh_size [m] (None: the engine's default); element_order 1 or 2;
+    body_load_near_holes: the body-load term on sections near holes too (default: nominal values there).
     """
 
     kinematics: bool = False
@@ -124,6 +125,7 @@ class Analysis:
     validate: tuple[str, ...] = ()
     mesh_size: float | None = None
     element_order: int = 2
+    body_load_near_holes: bool = False
 
 
 @dataclass(frozen=True)
