@@ -1,10 +1,10 @@
 """Where a section's largest von Mises can be: the candidate fibres and how each is evaluated.
 
 A section's candidates (``section_stress`` derives the stresses): its outer fibres (free edges,
-tau = 0), each single chord's interior maximum with the body-load term (``fibre_peaks``), each split
-chord's interior maximum (closed form) and the chord ends at holes. ``SectionShape`` holds what they
-need of the sections, independent of the loads; ``Fibres`` keeps, per (position, station), the
-largest von Mises found so far and its fibre.
+tau = 0), each single chord's interior maximum (with the body-load term a section depth from every
+hole: ``fibre_peaks``), each split chord's interior maximum (closed form) and the chord ends at
+holes. ``SectionShape`` holds what they need of the sections, independent of the loads; ``Fibres``
+keeps, per (position, station), the largest von Mises found so far and its fibre.
 """
 
 from __future__ import annotations

@@ -85,8 +85,8 @@ class SectionStresses:
 
     @property
     def sigma(self) -> NDArray[np.float64]:
-        """(P, S) [Pa]: sigma at the critical fibre, N / A + M u / I and, on single chords, the
-        body-load term."""
+        """(P, S) [Pa]: sigma at the critical fibre, N / A + M u / I and, on the single chords that
+        take it, the body-load term."""
         shape, forces = self.shape, self.forces
         u = self.fibre_y - self.sections.neutral_axis
         beta = shape.body_load(self.body_load[:, :1], self.body_load[:, 1:], slice(None)) * shape.inverse_square_half
