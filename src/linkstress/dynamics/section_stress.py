@@ -32,7 +32,7 @@ multiplies. The correction refines beam theory where it holds, so there it is le
 sections split by holes, unless asked for (``body_load_near_holes``). It is also where it costs
 most: the near-hole stations of an inertia-loaded link (its rounded ends, where N and M fade and
 the body load makes most of the stress) are nearly all the chord searches of a sweep. Measured on
-the seed: the 3,600-position sweep takes about 1.45 times as long with it; against FEA (12
+the seed: the 3,600-position sweep takes 1.3-1.7 times as long with it; against FEA (12
 positions, one mesh) the median near-hole difference is 1.4 % (output) and 7.6 % (coupler) with it,
 2.7 % and 7.7 % without, and the largest 21 % and 62 % either way (pin bearing stress, which no beam
 value carries).
