@@ -82,8 +82,8 @@ def plan_for(scene: Scene) -> Plan:
     for name in moving:
         if name not in stressable and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
-    near_holes = asked is not None and asked.body_load_near_holes
-    return Plan(forces, stresses, stations, validate, tuple(notes), near_holes)
+    body_load_near_holes = asked is not None and asked.body_load_near_holes
+    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes)
 
 
 @dataclass(frozen=True)
