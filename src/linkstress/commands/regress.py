@@ -29,7 +29,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("cases", nargs="?", type=Path, metavar="CASES_DIR",
                         help="folder of cases, or one case folder (default: the shipped validation/cases)")
-    parser.add_argument("--update", action="store_true", help="rewrite each case's reference from this run")
+    parser.add_argument("--update", action="store_true", help="rewrite each case's reference from this run (stored numbers it reproduces to rounding are kept)")
     parser.add_argument("--jobs", type=int, default=1, metavar="N", help="run N cases in parallel processes")
     parser.add_argument("--verbose", action="store_true", help="list every check, not only each case's closest call")
     parser.set_defaults(run=run)
