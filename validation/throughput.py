@@ -1,8 +1,9 @@
 """Throughput over sweeps (positions per second, stage by stage) and the FEA's peak memory.
 
 - Kinematics (``solve_machine``), joint forces (``machine_forces``) and section stresses
-  (``section_stresses`` of every profiled link at the analysis' default station count) over a full
-  turn of the input, each timed alone (best of several runs).
+  (``links_section_stresses`` of every profiled link at the analysis' default station count, the
+  links sharing the cores and BLAS on one thread, as ``analyze`` runs them) over a full turn of the
+  input, each timed alone (best of several runs).
 - The FEA over a sweep: one mesh and one factorisation, every position a right-hand side.
 - Peak memory of one FEA solve, measured in a fresh process (``python -m
   linkstress.validation.throughput --memory ...``): the resident set after the imports and the
@@ -25,12 +26,13 @@ import numpy as np
 
 from linkstress.analysis import DEFAULT_STATIONS, plan_for, run_analysis
 from linkstress.dynamics.machine_forces import machine_forces
-from linkstress.dynamics.section_stress import default_stations, section_stresses
+from linkstress.dynamics.section_stress import default_stations, links_section_stresses
 from linkstress.kinematics import solve_machine
 from linkstress.kinematics.motion import angle_motion
 from linkstress.scene import load_scene
 from linkstress.validation.compare import comparison_stations, default_mesh
 from linkstress.validation.link_fea import solve_link
+from linkstress.threads import blas_alone
 from linkstress.validation.timing import best_run
 
 
@@ -79,10 +81,14 @@ def sweep_rates(scene_path: Path, positions: int, repeat: int) -> list[StageRate
     forces_s, forces = best_run(lambda: machine_forces(scene, motion), repeat)
     profiles = {name: scene.links[name].profile for name in plan.stresses}
 
+    jobs = [
+        (link, forces.link_loads[name], default_stations(link, forces.link_loads[name].frame_joints, DEFAULT_STATIONS))
+        for name, link in profiles.items()
+    ]
+
     def stresses():
-        for name, link in profiles.items():
-            loads = forces.link_loads[name]
-            section_stresses(link, loads, default_stations(link, loads.frame_joints, DEFAULT_STATIONS))
+        with blas_alone():
+            links_section_stresses(jobs)
 
     stresses_s, _ = best_run(stresses, repeat)
     links = len(profiles)
