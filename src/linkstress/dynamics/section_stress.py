@@ -256,7 +256,9 @@ POSITION_BLOCK = 512
 """Most positions evaluated together on one thread: (block x stations) arrays stay in cache, faster
 than whole-sweep arrays on a long sweep (this is blocking, not a loop over positions). On one
 core, over the seed's 3,600-position sweep at 200 stations (best of five rounds alternated in one
-process): 298 ms with blocks of 512, 346 ms with 1,800 and 331 ms with one block per link."""
+process): 298 ms with blocks of 512, 346 ms with 1,800 and 331 ms with one block per link.
+Re-checked once the sections near holes went nominal (stresses alone, eight rounds): best 184 ms
+with 512, 187 with 256, 172 with 1,024, 206 with 1,800; medians 201, 198, 208 and 252."""
 
 THREADED_BLOCK = 2048
 """Most positions evaluated together when the blocks run on threads. There a block's fixed cost
@@ -266,4 +268,5 @@ two cores, over the same sweep, blocks of 1,800 (two per link) took 187 ms at be
 for blocks of 512 (eight rounds alternated in one process; processor time 344 and 364 ms), and
 one block per link 216 ms (three blocks for two cores). The price is memory for the blocks' working
 arrays: the process's peak over that sweep was 288 MB against 213 MB with blocks of 512 (its
-results take 86 MB)."""
+results take 86 MB). Re-checked once the sections near holes went nominal (stresses alone on two
+cores, six rounds): 133-153 ms with 2,048, 134-174 ms with 1,024, 145-185 ms with 512."""
