@@ -64,8 +64,8 @@ class _HoleEdges:
 class SectionShape:
     """What the fibre search needs of the sections, independent of the loads: per station, and the
     chords of split sections, and the chord ends at holes (station, offset u, C). ``half``: a single
-    chord's half-depth c (zero elsewhere); ``inverse_square_half``, ``corrected_half`` and ``lever``:
-    1 / c^2, c and 0.4 rho c on the single chords that get the body-load term (zero elsewhere)."""
+    chord's half-depth c (zero elsewhere); ``corrected_half``: c on the single chords that get the
+    body-load term (zero elsewhere)."""
 
     x: NDArray[np.float64]
     inv_area: NDArray[np.float64]
@@ -73,9 +73,7 @@ class SectionShape:
     middle: NDArray[np.float64]
     reach: NDArray[np.float64]
     half: NDArray[np.float64]
-    inverse_square_half: NDArray[np.float64]
     corrected_half: NDArray[np.float64]
-    lever: NDArray[np.float64]
     shear_gain: NDArray[np.float64]
     density: float
     split: _Chords
@@ -89,7 +87,6 @@ class SectionShape:
         yna = table.neutral_axis
         half = (table.top - table.bottom) / 2
         single = solid & (table.n_chords == 1) & (half > 0)
-        corrected = single & body_term
         inv_inertia = np.where(solid, 1.0 / np.where(solid, table.second_moment, 1.0), 0.0)
         count = table.n_chords[:, None]
         at, k = np.nonzero((solid[:, None] & (count > 1)) & (count > np.arange(table.lower.shape[1])))
@@ -103,10 +100,7 @@ class SectionShape:
             middle=(table.top + table.bottom) / 2 - yna,
             reach=half,
             half=np.where(single, half, 0.0),
-            inverse_square_half=np.where(corrected, 1.0 / np.where(corrected, half * half, 1.0), 0.0),
-            corrected_half=np.where(corrected, half, 0.0),
-            # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
-            lever=np.where(corrected, 0.4 * density * half, 0.0),
+            corrected_half=np.where(single & body_term, half, 0.0),
             # (8/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
             shear_gain=np.where(single, (8 / 9) * inv_inertia**2 * half**4, 0.0),
             density=density,
@@ -122,12 +116,20 @@ class SectionShape:
         along = basis.normal * self.inv_area
         mean = along + basis.moment * (self.inv_inertia * self.middle)
         spread = basis.moment * (self.inv_inertia * self.reach)
-        spread[FREE_Y] += self.lever
-        spread[ALPHA] -= self.x * self.lever
+        # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
+        lever = 0.4 * self.density * self.corrected_half
+        spread[FREE_Y] += lever
+        spread[ALPHA] -= self.x * lever
         body = np.zeros_like(mean)
-        body[FREE_Y] = self.lever * (BODY_TERM / 0.4)
-        body[ALPHA] = -self.x * self.lever * (BODY_TERM / 0.4)
+        body[FREE_Y] = lever * (BODY_TERM / 0.4)
+        body[ALPHA] = -self.x * lever * (BODY_TERM / 0.4)
         return mean, spread, body
+
+    def inverse_square_half(self) -> NDArray[np.float64]:
+        """(S,) 1 / c^2 on the single chords that get the body-load term, zero elsewhere: b_y times
+        it is the term's beta (``fibre_sigma``)."""
+        c = self.corrected_half
+        return np.divide(1.0, c * c, out=np.zeros_like(c), where=c > 0)
 
     def outer_fibres(self, mean, spread, fibres: "Fibres"):
         """The larger of the top and bottom fibres' |sigma| = |mean +- spread| (P, S) (free edges,
@@ -189,7 +191,7 @@ class SectionShape:
         m = forces.moment[positions][:, at] * self.inv_inertia[at]
         w = forces.shear[positions][:, at] * (self.inv_inertia[at] / 2)
         # a last column that never wins, for the -1 of stations with fewer ends
-        f = np.column_stack([_von_mises(n, m, w, ends.c, ends.u, 0.0, 0.0), np.full(len(n), -np.inf)])
+        f = np.column_stack([_von_mises(n, m, w, ends.c, ends.u), np.full(len(n), -np.inf)])
         stations, table = ends.stations, ends.table
         candidates = f[:, table]
         pick = candidates.argmax(axis=1)
@@ -217,9 +219,9 @@ class SectionShape:
         if plain.any():
             k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))
             u = np.clip(cubic_peak(n[k], m[k], w[k], c[k]), -half[k], half[k])
-            self._consider(fibres, flat[k], n[k], m[k], w[k], c[k], u, 0.0, at[k])
+            fibres.keep_larger(flat[k], _von_mises(n[k], m[k], w[k], c[k], u), u)
             loaded = np.flatnonzero(~plain)
-            n, m, w, at, half, c, body, flat = (v[loaded] for v in (n, m, w, at, half, c, body, flat))
+            n, m, w, half, c, body, flat = (v[loaded] for v in (n, m, w, half, c, body, flat))
             if not len(flat):
                 return
         reached = fibres.von_mises.reshape(-1)[flat]
@@ -230,11 +232,11 @@ class SectionShape:
         """Interior maxima of the split sections' chords ``chord`` at flat indices ``flat``."""
         if not len(flat):
             return
-        n, m, w, at = self._reduced(forces, flat)
+        n, m, w, _ = self._reduced(forces, flat)
         split = self.split
         c = split.c[chord]
         u = np.clip(cubic_peak(n, m, w, c), split.ua[chord], split.ub[chord])
-        self._consider(fibres, flat, n, m, w, c, u, 0.0, at, repeated=True)
+        fibres.keep_larger(flat, _von_mises(n, m, w, c, u), u, repeated=True)
 
     def _reduced(self, forces: InternalForces, flat):
         """n = N / A, m = M / I, w = V / 2I at flat (position, station) indices, and the stations."""
@@ -247,19 +249,16 @@ class SectionShape:
             at,
         )
 
-    def _consider(self, fibres, flat, n, m, w, c, u, beta, at, repeated: bool = False) -> None:
-        """Fibre offset u at the flat indices: sigma with the body-load term, tau, von Mises."""
-        fibres.keep_larger(flat, _von_mises(n, m, w, c, u, beta, self.half[at]), u, repeated)
-
     def body_load(self, free_y, alpha, at) -> NDArray[np.float64]:
         """b_y = rho ((g - a_O)_y - alpha x) [N/m^3] at stations ``at``, from the load coefficients
         (g - a_O)_y and alpha (arrays that broadcast with ``at``)."""
         return self.density * (free_y - alpha * self.x[at])
 
 
-def _von_mises(n, m, w, c, u, beta, half):
-    """sqrt(sigma^2 + 3 tau^2) at offset u of a chord with Jourawski's tau = w (C - u^2)."""
-    sigma = fibre_sigma(n, m, u, beta, half)
+def _von_mises(n, m, w, c, u):
+    """sqrt(sigma^2 + 3 tau^2) at offset u of a chord without the body-load term: sigma = n + m u and
+    Jourawski's tau = w (C - u^2) (single chords with the term take ``fibre_peaks``' g instead)."""
+    sigma = n + m * u
     tau = w * (c - u * u)
     return np.sqrt(sigma * sigma + 3 * tau * tau)
 

@@ -89,7 +89,7 @@ class SectionStresses:
         take it, the body-load term."""
         shape, forces = self.shape, self.forces
         u = self.fibre_y - self.sections.neutral_axis
-        beta = shape.body_load(self.body_load[:, :1], self.body_load[:, 1:], slice(None)) * shape.inverse_square_half
+        beta = shape.body_load(self.body_load[:, :1], self.body_load[:, 1:], slice(None)) * shape.inverse_square_half()
         return fibre_sigma(forces.normal * shape.inv_area, forces.moment * shape.inv_inertia, u, beta, shape.half)
 
     @property
