@@ -29,7 +29,9 @@ outline is on it: a flattened arc runs up to a sagitta inside the drawn curve.""
 
 @dataclass(frozen=True)
 class PointForce:
-    """A force applied at a fixed point of the link: ``at`` (2,) [m] and ``force`` (P, 2) [N], member frame."""
+    """A force applied at a fixed point of the link: ``at`` (2,) [m] and ``force`` (P, 2) [N], member frame.
+
+    In material it acts at ``at``; in a hole it is the load of a pin in that hole."""
 
     at: NDArray[np.float64]
     force: NDArray[np.float64]

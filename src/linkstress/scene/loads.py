@@ -4,8 +4,9 @@
 ``LINK = value`` [N m, counter-clockwise] or ``LINK = {value = 2.0, at_joint = 1}`` (default joint:
 the origin of the link's member frame); ``[[loads.forces]]`` with ``link``, ``at_m`` (member frame)
 and ``force_n`` (ground frame), at a point of the link's material or in one of its holes (a pin's
-load: in a hole it bears on the hole as a pin force); ``[loads.friction]`` with ``SLIDER = mu``, SLIDER being a slider's
-link name or its slider-crank's mechanism name.
+load: in a hole it bears on the hole as a pin force; off a drawn link's outline it is an error);
+``[loads.friction]`` with ``SLIDER = mu``, SLIDER being a slider's link name or its slider-crank's
+mechanism name.
 
 [analysis]: ``kinematics``, ``forces``, ``stresses`` (booleans, default false once the table
 exists), ``stations`` (>= 2), ``validate`` (link names with profiles), ``mesh_size_m`` (> 0),
