@@ -211,19 +211,24 @@ def test_a_sketched_bell_crank_named_bare_as_output_exits_2_naming_its_sorted_jo
     ) in message
 
 
-def write_crank_sketch(path) -> None:
-    """The base scene's crank drawn in mm: a 40 x 16 bar, joints (0, 0) and (20, 0) in 6 mm pin holes."""
+def write_crank_sketch(path, upright: bool = False) -> None:
+    """The base scene's crank drawn in mm: a 40 x 16 bar, joints (0, 0) and (20, 0) in 6 mm pin holes
+    (``upright``: turned 90 degrees counter-clockwise, joints (0, 0) and (0, 20))."""
+    def turn(x, y):
+        return (-y, x) if upright else (x, y)
+
     doc = ezdxf.new("R2013", units=4)
     msp = doc.modelspace()
-    msp.add_lwpolyline([(-10, -8), (30, -8), (30, 8), (-10, 8)], close=True, dxfattribs={"layer": "crank"})
+    corners = [turn(*c) for c in ((-10, -8), (30, -8), (30, 8), (-10, 8))]
+    msp.add_lwpolyline(corners, close=True, dxfattribs={"layer": "crank"})
     for x in (0, 20):
-        msp.add_circle((x, 0), 3, dxfattribs={"layer": "crank"})
-        msp.add_point((x, 0), dxfattribs={"layer": "crank"})
+        msp.add_circle(turn(x, 0), 3, dxfattribs={"layer": "crank"})
+        msp.add_point(turn(x, 0), dxfattribs={"layer": "crank"})
     doc.saveas(path)
 
 
-def crank_force_scene(tmp_path, at_m: str):
-    write_crank_sketch(tmp_path / "crank.dxf")
+def crank_force_scene(tmp_path, at_m: str, upright: bool = False):
+    write_crank_sketch(tmp_path / "crank.dxf", upright)
     text = BASE.replace(
         '[links.crank]\njoints = [[0.0, 0.0], [0.02, 0.0]]', '[links.crank]\nsketch = "crank.dxf"\nlayer = "crank"',
     ) + f'\n[[loads.forces]]\nlink = "crank"\nat_m = {at_m}\nforce_n = [0.0, -50.0]\n'
@@ -232,9 +237,11 @@ def crank_force_scene(tmp_path, at_m: str):
     return path
 
 
-def test_a_force_10_mm_outside_its_link_exits_2_with_the_distance_and_writes_nothing(tmp_path, capsys):
-    # The bar's top edge is at y = 8 mm in the crank's member frame (origin at joint 0, +x to joint 1).
-    path = crank_force_scene(tmp_path, "[0.01, 0.018]")
+@pytest.mark.parametrize("upright", [False, True], ids=["drawn along x", "drawn along y"])
+def test_a_force_10_mm_outside_its_link_exits_2_with_the_distance_and_writes_nothing(tmp_path, capsys, upright):
+    # The bar's top edge is at y = 8 mm in the crank's member frame (origin at joint 0, +x to joint 1),
+    # however the sketch turns it.
+    path = crank_force_scene(tmp_path, "[0.01, 0.018]", upright)
     out = tmp_path / "out.json"
     assert main(["analyze", str(path), "--json", str(out)]) == 2
     message = capsys.readouterr().err
@@ -252,6 +259,7 @@ def test_a_force_10_mm_outside_its_link_exits_2_with_the_distance_and_writes_not
     ("[0.021, -0.002]", "in joint 1's pin hole, off its centre"),
     ("[0.01, 0.0]", "in material"),
 ])
-def test_a_force_on_its_link_is_read(tmp_path, at_m, where):
-    scene = load_scene(crank_force_scene(tmp_path, at_m))
+@pytest.mark.parametrize("upright", [False, True], ids=["drawn along x", "drawn along y"])
+def test_a_force_on_its_link_is_read(tmp_path, at_m, where, upright):
+    scene = load_scene(crank_force_scene(tmp_path, at_m, upright))
     assert scene.loads.forces[0].link == "crank", where
