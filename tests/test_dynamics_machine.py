@@ -101,7 +101,7 @@ SIX_BAR = """
     crank = "crank"
     coupler = {link = "coupler", joints = [0, 1]}
     output = {link = "rocker", joints = [0, 1]}
-    ground = "ground"
+    ground = {link = "ground", joints = [0, 1]}
     [mechanisms.second]
     type = "four-bar"
     driven_by = "main.output"

@@ -7,7 +7,7 @@ import pytest
 
 from linkstress.builders import straight_bar
 from linkstress.dynamics.pin_holes import BEARING_FACTOR, KT_TABLE, pin_hole_estimates, pin_hole_kt
-from linkstress.loads import LinkLoadCase
+from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.validation.pin_hole_kt import lug_kt
 
@@ -45,3 +45,15 @@ def test_estimates_on_a_link_use_its_depth_hole_and_pin_force():
     assert first.nominal[0] == pytest.approx(1000 / (0.07 * 0.01), rel=1e-3)
     assert first.estimate[0] == pytest.approx(3.347 * first.nominal[0], rel=1e-3)
     assert "estimate" in first.source
+
+
+def test_a_force_given_in_a_joints_hole_is_borne_by_that_pin_in_the_estimate():
+    # The same bar, its pin at joint 1 loaded by [[loads.forces]] 1 kN at the hole (off its centre by
+    # 5 mm) instead of a pin force: the estimate at joint 1 is the same 1.4286 MPa net-section stress.
+    bar = straight_bar(0.5, 0.1, 0.1, 0.01, STRUCTURAL_STEEL, hole_diameter=0.03)
+    loads = LinkLoadCase((0, 1), np.array([[[-1000.0, 0.0], [0.0, 0.0]]]), np.zeros((1, 2)), np.zeros(1),
+                         np.zeros(1), np.zeros((1, 2)), np.zeros((1, 2)),
+                         (PointForce(np.array([0.505, 0.0]), np.array([[1000.0, 0.0]])),))
+    first, second = pin_hole_estimates(bar, loads)
+    assert second.nominal[0] == pytest.approx(1000 / (0.07 * 0.01), rel=1e-3)
+    assert first.nominal[0] == pytest.approx(second.nominal[0], rel=1e-12)

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import textwrap
 
+import ezdxf
 import pytest
 
+from linkstress.cli import main
 from linkstress.errors import SceneError
 from linkstress.scene import load_scene
 
@@ -152,3 +154,112 @@ def test_a_sketch_link_needs_a_thickness(tmp_path):
     )
     with pytest.raises(SceneError, match="links.crank.thickness: missing; a sketch link needs its plate thickness"):
         load(tmp_path, text)
+
+
+BELL = "joints = [[0.0, 0.0], [0.05, 0.0], [0.0, 0.04]]"
+"""A bell crank's three joints: 0 the pivot, 1 and 2 its arms' pins."""
+
+
+@pytest.mark.parametrize("role, joints", [
+    ("crank", "joints = [[0.0, 0.0], [0.02, 0.0]]"),
+    ("coupler", "joints = [[0.0, 0.0], [0.07, 0.0]]"),
+    ("output", "joints = [[0.0, 0.0], [0.05, 0.0]]"),
+])
+def test_a_link_with_three_joints_named_bare_in_a_role_is_refused_listing_its_joints(tmp_path, capsys, role, joints):
+    # Bare, the name meant joints 0 -> 1: of a bell crank, whichever two pins happen to come first.
+    text = BASE.replace(joints, BELL, 1)
+    path = tmp_path / "scene.toml"
+    path.write_text(textwrap.dedent(text))
+    assert main(["analyze", str(path)]) == 2
+    message = capsys.readouterr().err
+    assert (
+        f"scene.toml: mechanisms.main.{role}: link '{role}' has 3 joints "
+        "(0 at (0, 0) m, 1 at (0.05, 0) m, 2 at (0, 0.04) m;"
+    ) in message
+    assert f'give them: {role} = {{link = "{role}", joints = [i, j]}}' in message
+    fixed = text.replace(f'{role} = "{role}"', f'{role} = {{link = "{role}", joints = [0, 2]}}', 1)
+    assert load(tmp_path, fixed).machine.loops[0].roles[role].joints == (0, 2)
+
+
+def write_bell_sketch(path) -> None:
+    """A bell crank drawn in mm: pivot O4 at (0, 0), arm pins B at (60, 50) and C at (40, -60).
+    Joints are numbered by x, then y: 0 O4, 1 C, 2 B, so "joints 0 -> 1" is O4 -> C, not O4 -> B."""
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-10, -10), (30, -70), (50, -70), (70, 60), (50, 60), (-10, 10)], close=True,
+                       dxfattribs={"layer": "bell"})
+    for point in ((0, 0), (60, 50), (40, -60)):
+        msp.add_point(point, dxfattribs={"layer": "bell"})
+    doc.saveas(path)
+
+
+def test_a_sketched_bell_crank_named_bare_as_output_exits_2_naming_its_sorted_joints(tmp_path, capsys):
+    write_bell_sketch(tmp_path / "bell.dxf")
+    text = BASE.replace(
+        '[links.output]\njoints = [[0.0, 0.0], [0.05, 0.0]]',
+        '[links.output]\nsketch = "bell.dxf"\nlayer = "bell"\nthickness = 0.005',
+    )
+    path = tmp_path / "scene.toml"
+    path.write_text(textwrap.dedent(text))
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(path), "--json", str(out)]) == 2
+    message = capsys.readouterr().err
+    assert message.count("\n") == 1 and not out.exists()
+    assert (
+        "mechanisms.main.output: link 'output' has 3 joints (0 at (0, 0) m, 1 at (0.04, -0.06) m, "
+        "2 at (0.06, 0.05) m; numbered as given: a sketch's by x, then y)"
+    ) in message
+
+
+def write_crank_sketch(path, upright: bool = False) -> None:
+    """The base scene's crank drawn in mm: a 40 x 16 bar, joints (0, 0) and (20, 0) in 6 mm pin holes
+    (``upright``: turned 90 degrees counter-clockwise, joints (0, 0) and (0, 20))."""
+    def turn(x, y):
+        return (-y, x) if upright else (x, y)
+
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    corners = [turn(*c) for c in ((-10, -8), (30, -8), (30, 8), (-10, 8))]
+    msp.add_lwpolyline(corners, close=True, dxfattribs={"layer": "crank"})
+    for x in (0, 20):
+        msp.add_circle(turn(x, 0), 3, dxfattribs={"layer": "crank"})
+        msp.add_point(turn(x, 0), dxfattribs={"layer": "crank"})
+    doc.saveas(path)
+
+
+def crank_force_scene(tmp_path, at_m: str, upright: bool = False):
+    write_crank_sketch(tmp_path / "crank.dxf", upright)
+    text = BASE.replace(
+        '[links.crank]\njoints = [[0.0, 0.0], [0.02, 0.0]]', '[links.crank]\nsketch = "crank.dxf"\nlayer = "crank"',
+    ) + f'\n[[loads.forces]]\nlink = "crank"\nat_m = {at_m}\nforce_n = [0.0, -50.0]\n'
+    path = tmp_path / "scene.toml"
+    path.write_text(textwrap.dedent(text))
+    return path
+
+
+@pytest.mark.parametrize("upright", [False, True], ids=["drawn along x", "drawn along y"])
+def test_a_force_10_mm_outside_its_link_exits_2_with_the_distance_and_writes_nothing(tmp_path, capsys, upright):
+    # The bar's top edge is at y = 8 mm in the crank's member frame (origin at joint 0, +x to joint 1),
+    # however the sketch turns it.
+    path = crank_force_scene(tmp_path, "[0.01, 0.018]", upright)
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(path), "--json", str(out)]) == 2
+    message = capsys.readouterr().err
+    assert message.count("\n") == 1 and not out.exists()
+    assert message.startswith(
+        "linkstress: error: scene.toml: loads.forces[0].at_m: [0.01, 0.018] m is 0.01 m outside the outline of "
+        "link 'crank' (member frame: origin at joint 0, +x toward joint 1);"
+    )
+    assert "put at_m in its material, or in a pin hole" in message
+
+
+@pytest.mark.parametrize("at_m, where", [
+    ("[0.01, 0.008]", "on the top edge"),
+    ("[0.02, 0.0]", "at the centre of joint 1's pin hole"),
+    ("[0.021, -0.002]", "in joint 1's pin hole, off its centre"),
+    ("[0.01, 0.0]", "in material"),
+])
+@pytest.mark.parametrize("upright", [False, True], ids=["drawn along x", "drawn along y"])
+def test_a_force_on_its_link_is_read(tmp_path, at_m, where, upright):
+    scene = load_scene(crank_force_scene(tmp_path, at_m, upright))
+    assert scene.loads.forces[0].link == "crank", where

@@ -115,9 +115,9 @@ def test_every_optional_part_of_the_schema_is_read(tmp_path):
 
         [mechanisms.cyl1]
         type = "slider-crank"
-        crank = "crank"
+        crank = {link = "crank", joints = [0, 1]}
         coupler = "rod"
-        ground = "block"
+        ground = {link = "block", joints = [0, 1]}
         slider = {link = "piston", joints = [0]}
         offset_m = 0.005
         branch = "crossed"
@@ -126,7 +126,7 @@ def test_every_optional_part_of_the_schema_is_read(tmp_path):
         type = "slider-crank"
         crank = {link = "crank", joints = [0, 2]}
         coupler = "rod2"
-        ground = "block"
+        ground = {link = "block", joints = [0, 1]}
         slider_angle_deg = 90.0
         driven_by = "cyl1.crank"
 

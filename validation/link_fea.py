@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.validation.errors import FEAError
-from linkstress.validation.link_loads import check_load_case, link_loads
+from linkstress.validation.link_loads import check_load_case, link_loads, point_force_hole
 from linkstress.validation.mesh import MeshSettings, PlaneMesh, mesh_region
 from linkstress.validation.plane_stress import (
     PlaneStressModel,
@@ -166,7 +166,11 @@ def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> Li
         )
     check_load_case(link, loads)
     start = time.perf_counter()
-    refine = [np.asarray(p.at, float) for p in loads.point_forces]
+    # A force in a hole bears on the hole, which is refined already; one in material needs its patch.
+    refine = [
+        np.asarray(p.at, float) for p in loads.point_forces
+        if point_force_hole(link, loads.frame_joints, p.at) is None
+    ]
     plane = mesh_region(link.local_outline(*loads.frame_joints), mesh, refine, name=f"link {link.name!r}")
     meshed = time.perf_counter()
     model = plane_stress_model(plane, material.youngs_modulus, material.poisson_ratio, link.thickness)

@@ -12,9 +12,14 @@ Member frame of the load case; P positions; every function returns forces (dofs,
   closed hole, so the couple adds no net force.
 - d'Alembert body force rho (g - a(r)) of the rigid-body motion: affine in r, so it is three
   integrals of the shape functions (of 1, x and y), combined per position.
-- Point force F at p: a load density over the elements within a patch radius of p, affine and
-  with zero first moment about p, so that its nodal resultant is F and its moment about the
-  origin is p x F, exactly.
+- Point force F at p in material: a load density over the elements within a patch radius of p,
+  affine and with zero first moment about p, so that its nodal resultant is F and its moment about
+  the origin is p x F, exactly.
+- Point force F at p in a hole (a pin's load given as a force, at a joint's hole or any other): the
+  pin force F on that hole as above, bearing about the hole's centre c (its joint, if a joint sits
+  in it), plus the couple (p - c) x F as tangential traction when p is off the centre, so that
+  resultant and moment are those of F at p, exactly. (Spread over the elements next to an empty
+  hole, such a force had no converging peak.)
 """
 
 from __future__ import annotations
@@ -22,9 +27,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 import scipy.sparse as sp
+from shapely.geometry import Polygon
 from skfem import Basis
 
-from linkstress.loads import LinkLoadCase
+from linkstress.loads import LinkLoadCase, hole_at
 from linkstress.profile import LinkProfile
 from linkstress.validation.errors import FEAError
 from linkstress.validation.plane_stress import PlaneStressModel, quadrature_weights, vector_loads
@@ -187,8 +193,35 @@ def link_loads(
         if np.any(couple != 0):
             forces += shaft_couple_loads(model, facets, joints[j], couple)
     for point in loads.point_forces:
-        forces += patch_loads(model, point.at, np.asarray(point.force, float), patch_radius)
+        force = np.asarray(point.force, float)
+        pin = point_force_hole(link, loads.frame_joints, point.at)
+        if pin is None:
+            forces += patch_loads(model, point.at, force, patch_radius)
+            continue
+        hole, centre = pin
+        facets = model.plane.holes[hole]
+        forces += bearing_loads(model, facets, centre, force)
+        offset = np.asarray(point.at, float) - centre
+        couple = offset[0] * force[:, 1] - offset[1] * force[:, 0]
+        if np.any(couple != 0):
+            forces += shaft_couple_loads(model, facets, centre, couple)
     return forces
+
+
+def point_force_hole(
+    link: LinkProfile, frame_joints: tuple[int, int], at: NDArray[np.float64]
+) -> tuple[int, NDArray[np.float64]] | None:
+    """The hole (its index in the outline's interiors) holding a point force at ``at`` (2,) [m, member
+    frame] and the centre (2,) [m] its pin bears about: the joint in that hole, else the hole's
+    centroid; None for a point in material."""
+    outline = link.local_outline(*frame_joints)
+    hole = hole_at(outline, at)
+    if hole is None:
+        return None
+    joints = [j for j, h in enumerate(link.joint_holes) if h == hole]
+    if joints:
+        return hole, link.frame(*frame_joints).to_local(link.joints[joints[0]])
+    return hole, np.array(Polygon(outline.interiors[hole]).centroid.coords[0])
 
 
 def check_load_case(link: LinkProfile, loads: LinkLoadCase) -> None:

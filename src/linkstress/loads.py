@@ -6,6 +6,9 @@ instant. P positions, J joints (the link profile's joints, in its order).
 
 The d'Alembert load per unit volume at a point r of the link is rho (g - a(r)) with
 a(r) = a_O + alpha k x r - omega^2 r: the rigid-body acceleration of that material point.
+
+A point force acts where it is given: in the link's material, or in one of its holes, where it is
+the load of a pin in that hole (``hole_at``). Anywhere else is off the link (``distance_outside``).
 """
 
 from __future__ import annotations
@@ -13,14 +16,22 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from numpy.typing import NDArray
+import shapely
+from numpy.typing import ArrayLike, NDArray
+from shapely.geometry import Polygon
 
 from linkstress.profile import LinkProfile
+
+OUTLINE_TOLERANCE = 1e-3
+"""A point within this fraction of the outline's size (its bounding-box diagonal) outside the
+outline is on it: a flattened arc runs up to a sagitta inside the drawn curve."""
 
 
 @dataclass(frozen=True)
 class PointForce:
-    """A force applied at a fixed point of the link: ``at`` (2,) [m] and ``force`` (P, 2) [N], member frame."""
+    """A force applied at a fixed point of the link: ``at`` (2,) [m] and ``force`` (P, 2) [N], member frame.
+
+    In material it acts at ``at``; in a hole it is the load of a pin in that hole."""
 
     at: NDArray[np.float64]
     force: NDArray[np.float64]
@@ -102,3 +113,21 @@ class LinkLoadCase:
 def _cross(r: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64]:
     """z-component of r x f over the last axis."""
     return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+
+
+def hole_at(outline: Polygon, point: ArrayLike) -> int | None:
+    """The index of the hole of ``outline`` (shapely interior order) whose area covers ``point``
+    (2,) [m, the outline's frame], edge included; None for a point in material or off the link."""
+    where = shapely.Point(np.asarray(point, float))
+    for k, ring in enumerate(outline.interiors):
+        if Polygon(ring).covers(where):
+            return k
+    return None
+
+
+def distance_outside(outline: Polygon, point: ArrayLike) -> float:
+    """How far [m] ``point`` (2,) [m, the outline's frame] lies outside the outer boundary of
+    ``outline``, 0 inside it (in material or in a hole) or within OUTLINE_TOLERANCE of it."""
+    gap = Polygon(outline.exterior).distance(shapely.Point(np.asarray(point, float)))
+    x0, y0, x1, y1 = outline.bounds
+    return gap if gap > OUTLINE_TOLERANCE * float(np.hypot(x1 - x0, y1 - y0)) else 0.0

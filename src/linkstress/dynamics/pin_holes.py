@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.loads import LinkLoadCase
+from linkstress.loads import LinkLoadCase, hole_at
 from linkstress.profile import LinkProfile
 from linkstress.sections import cut_extent
 
@@ -66,7 +66,8 @@ class PinHoleEstimate:
 
 
 def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleEstimate, ...]:
-    """The estimate at every joint of ``link`` that is the centre of a pin hole."""
+    """The estimate at every joint of ``link`` that is the centre of a pin hole, of the force its pin
+    bears: the pin force plus any point force given in that hole (a pin's load given as a force)."""
     holed = [(j, hole) for j, hole in enumerate(link.joint_holes) if hole is not None]
     if not holed:
         return ()
@@ -74,13 +75,26 @@ def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleE
     # The section through each pin's centre spans the lug's full depth H (its top and bottom fibres).
     bottom, top = cut_extent(link.boundary(*loads.frame_joints), joints[[j for j, _ in holed], 0])
     areas = link.holes[1]
+    borne = _borne_forces(link, loads)
     estimates = []
     for k, (j, hole) in enumerate(holed):
         diameter = 2 * float(np.sqrt(areas[hole] / np.pi))
         depth = float(top[k] - bottom[k])
         net = max(depth - diameter, 1e-300) * link.thickness
-        nominal = np.hypot(*loads.pin_forces[:, j].T) / net
+        nominal = np.hypot(*(loads.pin_forces[:, j] + borne.get(hole, 0.0)).T) / net
         kt = pin_hole_kt(diameter / depth) if depth > 0 else None
         estimates.append(PinHoleEstimate(j, diameter, depth, kt, nominal, None if kt is None else kt * nominal))
     return tuple(estimates)
 
+
+
+def _borne_forces(link: LinkProfile, loads: LinkLoadCase) -> dict[int, NDArray[np.float64]]:
+    """Per hole (its index in the outline), the sum (P, 2) [N, member frame] of the point forces
+    given inside it."""
+    outline = link.local_outline(*loads.frame_joints)
+    borne: dict[int, NDArray[np.float64]] = {}
+    for point in loads.point_forces:
+        hole = hole_at(outline, point.at)
+        if hole is not None:
+            borne[hole] = borne.get(hole, 0.0) + np.asarray(point.force, float)
+    return borne

@@ -3,8 +3,10 @@
 [loads]: ``gravity_m_s2 = [gx, gy]`` (ground frame; default none); ``[loads.couples]`` with
 ``LINK = value`` [N m, counter-clockwise] or ``LINK = {value = 2.0, at_joint = 1}`` (default joint:
 the origin of the link's member frame); ``[[loads.forces]]`` with ``link``, ``at_m`` (member frame)
-and ``force_n`` (ground frame); ``[loads.friction]`` with ``SLIDER = mu``, SLIDER being a slider's
-link name or its slider-crank's mechanism name.
+and ``force_n`` (ground frame), at a point of the link's material or in one of its holes (a pin's
+load: in a hole it bears on the hole as a pin force; off a drawn link's outline it is an error);
+``[loads.friction]`` with ``SLIDER = mu``, SLIDER being a slider's link name or its slider-crank's
+mechanism name.
 
 [analysis]: ``kinematics``, ``forces``, ``stresses`` (booleans, default false once the table
 exists), ``stations`` (>= 2), ``validate`` (link names with profiles), ``mesh_size_m`` (> 0),
@@ -15,8 +17,10 @@ within a depth of a hole get nominal beam values, without the body-load term).
 from __future__ import annotations
 
 import numpy as np
+import shapely
 
 from linkstress.kinematics.machine import Machine
+from linkstress.loads import distance_outside
 from linkstress.scene.keys import Table
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
 
@@ -63,7 +67,9 @@ def read_loads(table: Table | None, machine: Machine, links: dict[str, SceneLink
             link = spec.string("link")
             if link not in moving:
                 raise spec.error("link", f"no moving link named {link!r}; moving links are: {', '.join(moving)}")
-            forces.append(PointLoad(link, spec.point("at_m", "m"), spec.point("force_n", "N")))
+            at = spec.point("at_m", "m")
+            _check_on_link(spec, links[link], at)
+            forces.append(PointLoad(link, at, spec.point("force_n", "N")))
     return Loads(gravity, tuple(couples), tuple(forces), _friction(table.table("friction"), machine))
 
 
@@ -106,6 +112,24 @@ def _moving_link(table: Table, name: str, moving: list[str], what: str) -> str:
     if name not in moving:
         raise table.error(name, f"no moving link named {name!r} for {what}; moving links are: {', '.join(moving)}")
     return name
+
+
+def _check_on_link(spec: Table, link: SceneLink, at: np.ndarray) -> None:
+    """A point force ``at`` (2,) [m, member frame] must act on the link: in its material or in one
+    of its holes. Links with bare joints have no outline to check against."""
+    if link.profile is None:
+        return
+    outline = shapely.transform(link.profile.outline, link.to_member)
+    gap = distance_outside(outline, at)
+    if gap > 0:
+        i, j = link.frame_joints
+        raise spec.error(
+            "at_m",
+            f"[{at[0]:.6g}, {at[1]:.6g}] m is {gap:.6g} m outside the outline of link {link.name!r} "
+            f"(member frame: origin at joint {i}, +x toward joint {j}); a force must act on the link: put "
+            "at_m in its material, or in a pin hole for the load of a pin (at the hole's centre for a pin "
+            "force), or give the force to the link it acts on",
+        )
 
 
 def _friction(table: Table | None, machine: Machine) -> dict[str, float]:

@@ -1,7 +1,9 @@
 """The [mechanisms.NAME] tables: loops, their roles, branch and how they are driven.
 
 A role is a link name (its joints 0 -> 1; a slider's joint 0) or ``{link = "NAME", joints = [i, j]}``
-(a slider: ``joints = [k]``; ``[k, j]`` with j != k is refused by the machine). ``branch`` is "open" (default) or "crossed". Slider-cranks take
+(a slider: ``joints = [k]``; ``[k, j]`` with j != k is refused by the machine). A link with three or
+more joints must be named with its joints: a sketch's joints are numbered by x then y, so "0 -> 1"
+of a bell crank is whichever two pins happen to come first. ``branch`` is "open" (default) or "crossed". Slider-cranks take
 ``offset_m`` (the slider line's signed distance from O2, positive to the left of its direction) and
 ``slider_angle_deg`` (its direction from the ground frame's +x; default: the ground link's axis).
 A loop other than the main one has ``driven_by = "LOOP.crank"`` or ``"LOOP.output"`` and, when its
@@ -12,6 +14,12 @@ from __future__ import annotations
 
 import math
 
+from collections.abc import Mapping
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.errors import SceneError
 from linkstress.kinematics.fourbar import BRANCHES
 from linkstress.kinematics.machine import KINDS, Drive, Loop, Role
 from linkstress.scene.keys import Table
@@ -28,15 +36,18 @@ MECHANISM_KEYS = (
 )
 
 
-def read_mechanisms(table: Table) -> list[Loop]:
-    """Every [mechanisms.NAME] as a kinematic ``Loop`` (the machine checks links and the drive graph)."""
-    loops = [_read_loop(table.table(name), name) for name in table.data]
+def read_mechanisms(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> list[Loop]:
+    """Every [mechanisms.NAME] as a kinematic ``Loop`` (the machine checks links and the drive graph).
+
+    ``drawn``: each link's joints (n, 2) [m] as drawn, to refuse a bare name for a link with three
+    or more joints."""
+    loops = [_read_loop(table.table(name), name, drawn) for name in table.data]
     if not loops:
         raise table.error(None, "no mechanisms; add a [mechanisms.main] table with type = \"four-bar\"")
     return loops
 
 
-def _read_loop(entry: Table, name: str) -> Loop:
+def _read_loop(entry: Table, name: str, drawn: Mapping[str, NDArray[np.float64]]) -> Loop:
     entry.allow(MECHANISM_KEYS)
     entry.require("type", "type = \"four-bar\" or type = \"slider-crank\"")
     kind = entry.string("type", choices=KINDS)
@@ -51,7 +62,7 @@ def _read_loop(entry: Table, name: str) -> Loop:
         if role in REQUIRED[kind]:
             entry.require(role, f"the {role}'s link name, e.g. {role} = \"{role}\"")
         if entry.has(role):
-            roles[role] = _read_role(entry, role)
+            roles[role] = _read_role(entry, role, drawn)
     phase = entry.number("phase_deg", 0.0, unit="deg")
     drive = None
     if entry.has("driven_by"):
@@ -74,9 +85,11 @@ def _read_loop(entry: Table, name: str) -> Loop:
     )
 
 
-def _read_role(entry: Table, role: str) -> Role:
+def _read_role(entry: Table, role: str, drawn: Mapping[str, NDArray[np.float64]]) -> Role:
     value = entry.data[role]
     if isinstance(value, str) and value:
+        if len(drawn.get(value, ())) >= 3:
+            raise _ambiguous(entry, role, value, drawn[value])
         return Role(value, (0, 0) if role == "slider" else (0, 1))
     if not isinstance(value, dict):
         raise entry.error(role, f"must be a link name or {{link = \"NAME\", joints = [i, j]}}, got {value!r}")
@@ -92,3 +105,15 @@ def _read_role(entry: Table, role: str) -> Role:
             raise spec.error("joints", f"must be {shape}: joint indices (0-based) of link {link!r}, got {raw!r}")
         joints = (raw[0], raw[-1])
     return Role(link, joints)
+
+
+def _ambiguous(entry: Table, role: str, link: str, points: NDArray[np.float64]) -> SceneError:
+    """The error for a bare name of a link with three or more joints: which two does the role use?"""
+    listed = ", ".join(f"{k} at ({x:.6g}, {y:.6g}) m" for k, (x, y) in enumerate(points))
+    shape = "[k]" if role == "slider" else "[i, j]"
+    return entry.error(
+        role,
+        f"link {link!r} has {len(points)} joints ({listed}; numbered as given: a sketch's by x, then y), "
+        f"so its name alone does not say which this {role} uses; give them: "
+        f"{role} = {{link = \"{link}\", joints = {shape}}}",
+    )

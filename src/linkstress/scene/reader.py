@@ -58,7 +58,7 @@ def _scene(top: Table, path: Path) -> Scene:
     units = top.string("units")
     materials = read_materials(top.table("materials"))
     sources = read_links(top.table("links", required=True), materials, units, path.parent)
-    loops = read_mechanisms(top.table("mechanisms", required=True))
+    loops = read_mechanisms(top.table("mechanisms", required=True), {name: s.joints for name, s in sources.items()})
     machine = Machine({name: s.joints for name, s in sources.items()}, tuple(loops))
     unused = [name for name in sources if name not in machine.link_frames]
     if unused:
