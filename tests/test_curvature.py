@@ -11,6 +11,7 @@ from shapely.geometry import LineString, Point, Polygon
 
 from linkstress.builders import stadium, straight_bar
 from linkstress.curvature import CURVED, is_curved, link_curvature, neutral_axis_wander
+from linkstress.dynamics.section_stress import default_stations, near_holes
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
 from linkstress.scene import load_scene
@@ -79,6 +80,19 @@ def test_a_taper_along_one_straight_edge_tilts_the_neutral_axis_but_is_not_curve
     assert depths(symmetric) == pytest.approx(0.0, abs=1e-12)
 
 
+def test_the_tip_of_a_lug_beyond_its_pin_does_not_make_a_bar_curved():
+    # The right end is cut on a slant from (230, -15) to (260, +15) mm: beyond the pin at 200 mm the
+    # cuts shrink to nothing while their centroid climbs to the top edge. validate judges a link on
+    # cuts over its whole extent, as here; the engine on cuts between the joints.
+    slanted = plate([(-0.02, -0.015), (0.23, -0.015), (0.26, 0.015), (-0.02, 0.015)])
+    table = slanted.sections(default_stations(slanted, (0, 1), 101))
+    near = near_holes(slanted, (0, 1), table)
+    tip = (table.x > 0.23) & ~near
+    assert np.ptp(table.neutral_axis[tip]) > 0.005 and (table.top - table.bottom)[tip].min() < 0.002
+    assert neutral_axis_wander(table, near)[0] == pytest.approx(0.0, abs=1e-12)
+    assert not is_curved(table, near)
+
+
 @pytest.mark.parametrize("width", [0.012, 0.03, 0.08])
 def test_stadium_links_are_not_curved(width):
     assert not link_curvature(stadium(SPAN, width, 0.008, STRUCTURAL_STEEL, hole_diameter=width / 3), (0, 1)).curved
@@ -115,6 +129,17 @@ def test_the_shipped_cases_curved_links_are_found(case, curved):
     frames = {"rocker": (1, 2)}  # the six-bar's ternary rocker, as analyze takes it: pivot 1 -> B (2)
     found = {name: link_curvature(scene.links[name].profile, frames.get(name, (0, 1))).curved for name in curved}
     assert found == curved
+
+
+def test_validate_judges_the_shipped_banana_on_its_cuts_as_the_engine_does():
+    # validate's cuts (101 over the extent) and the engine's (201 between the joints) see the same
+    # bar: 0.43 and 0.46 section depths.
+    scene = load_scene(CASES / "banana_coupler" / "scene.toml")
+    coupler = scene.links["coupler"].profile
+    table = coupler.sections(default_stations(coupler, (0, 1), 101))
+    wander, depth = neutral_axis_wander(table, near_holes(coupler, (0, 1), table))
+    assert wander / depth == pytest.approx(0.433, abs=2e-3)
+    assert link_curvature(coupler, (0, 1)).depths == pytest.approx(0.458, abs=2e-3)
 
 
 def test_validate_uses_the_engines_criterion():

@@ -6,7 +6,8 @@ curvature's shift of the neutral axis (Winkler-Bach): on the shipped banana coup
 the straight-beam maximum is 10-18 % below the FEA. The sign of a curved bar is its neutral axis
 (the centroid of each cut) bending away from a straight line. Measured as the spread of the neutral
 axis about its least-squares line, over the cuts that are one solid chord a section depth from every
-hole: a hole moves the centroid of a straight bar too, and a straight taper tilts the neutral axis
+hole and between the outermost holes: a hole moves the centroid of a straight bar too, the tip
+of a lug beyond its pin is no part of the bar, and a straight taper tilts the neutral axis
 without bending it. A link is curved when that spread exceeds ``CURVED`` of its smallest depth there.
 """
 
@@ -47,9 +48,13 @@ class Curvature:
 
 def neutral_axis_wander(table: SectionTable, near_hole: NDArray[np.bool_]) -> tuple[float, float] | None:
     """The spread [m] of the neutral axis about its least-squares line and the smallest section depth
-    [m], over the single-chord stations not ``near_hole``; None with fewer than three such stations
-    (two always lie on a line)."""
+    [m], over the single-chord stations not ``near_hole`` and between the outermost near-hole ones
+    (beyond a pin is the end of its lug, whose rounded tip says nothing of the bar's axis); None
+    with fewer than three such stations (two always lie on a line)."""
     plain = (table.n_chords == 1) & ~near_hole
+    if near_hole.any():
+        holes = np.flatnonzero(near_hole)
+        plain[: holes[0]] = plain[holes[-1] + 1 :] = False
     if plain.sum() < 3:
         return None
     x, y = table.x[plain], table.neutral_axis[plain]
