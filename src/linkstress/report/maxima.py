@@ -33,9 +33,10 @@ class SweepFigure:
     at: NDArray[np.float64]
     joint: int | None = None
 
-    def describe(self, unit: str) -> str:
-        """One line: the value, its input angle and its location with its frame."""
-        value = f"{self.value:.6g}{unit}" if np.isfinite(self.value) else "- (no stress)"
+    def describe(self, unit: str, digits: int = 6) -> str:
+        """One line: the value (``digits`` significant, then ``unit``), its input angle and its
+        location with its frame."""
+        value = f"{self.value:.{digits}g}{unit}" if np.isfinite(self.value) else "- (no stress)"
         hole = "" if self.joint is None else f"the pin hole at joint {self.joint}, centre "
         return (
             f"{self.what} {value} at input {self.input_angle_deg:.6g} deg, {hole}at "

@@ -219,12 +219,13 @@ def stress_table(result: AnalysisResult) -> str:
 
 
 def figure_lines(figures: LinkFigures) -> list[str]:
-    """One line per figure of a link: value, input angle, location and frame."""
+    """One line per figure of a link: value (stresses as in the table, factors to 3 digits), input
+    angle, location and frame."""
     listed = [
-        (figures.max_von_mises, " Pa"), (figures.away_from_holes, " Pa"), (figures.pin_hole, " Pa"),
-        (figures.section_factor, ""), (figures.pin_hole_factor, ""),
+        (figures.max_von_mises, " Pa", 6), (figures.away_from_holes, " Pa", 6), (figures.pin_hole, " Pa", 6),
+        (figures.section_factor, "", 3), (figures.pin_hole_factor, "", 3),
     ]
-    return [figure.describe(unit) for figure, unit in listed if figure is not None]
+    return [figure.describe(unit, digits) for figure, unit, digits in listed if figure is not None]
 
 
 def _factor_cells(factors, ok) -> list[str]:
