@@ -10,14 +10,13 @@ import html
 
 import matplotlib.pyplot as plt
 import numpy as np
-from numpy.typing import NDArray
 from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 
+from linkstress.curvature import is_curved, neutral_axis_wander
 from linkstress.report.figures import stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
 from linkstress.safety import finite_or_none, yield_factor
-from linkstress.sections import SectionTable
 from linkstress.tables import format_table
 from linkstress.validation.compare import LinkComparison
 from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT, ValidationResult
@@ -165,33 +164,13 @@ def shortfall(c: LinkComparison) -> str:
     return "; ".join(parts)
 
 
-CURVED = 0.1
-"""A link whose neutral axis wanders more than this fraction of its depth off the member axis."""
-
-
-def neutral_axis_wander(table: SectionTable, near_hole: NDArray[np.bool_]) -> tuple[float, float] | None:
-    """How far the neutral axis wanders across the member axis [m], and the smallest section depth
-    [m], over the solid stations clear of holes (a hole moves the neutral axis of a straight bar
-    too); None with fewer than two such stations."""
-    plain = (table.n_chords == 1) & ~near_hole
-    if plain.sum() < 2:
-        return None
-    return float(np.ptp(table.neutral_axis[plain])), float((table.top - table.bottom)[plain].min())
-
-
-def is_curved(table: SectionTable, near_hole: NDArray[np.bool_]) -> bool:
-    """A link whose neutral axis wanders more than CURVED section depths: straight sections fall short."""
-    wander = neutral_axis_wander(table, near_hole)
-    return wander is not None and wander[0] > CURVED * wander[1]
-
-
 def curvature_note(c: LinkComparison) -> str:
     """Why straight-beam sections fall short on a curved link, or "" for a straight one."""
     if not is_curved(c.beam.sections, c.beam.near_hole):
         return ""
     wander, depth = neutral_axis_wander(c.beam.sections, c.beam.near_hole)
     return (
-        f"the link is curved (its neutral axis wanders {wander:.3g} m across the member axis, "
+        f"the link is curved (its neutral axis wanders {wander:.3g} m off a straight line, "
         f"{wander / depth:.2g} section depths): straight-beam sections cut the curved bar at an angle and "
         "sigma = N/A + M y/I misses the curvature's shift of the neutral axis (Winkler-Bach), so the FEA is "
         "the value to trust there"

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.curvature import Curvature, link_curvature
 from linkstress.dynamics.machine_forces import MachineForces, machine_forces
 from linkstress.dynamics.section_stress import SectionStresses, default_stations, links_section_stresses
 from linkstress.errors import SceneError
@@ -89,7 +90,8 @@ def plan_for(scene: Scene) -> Plan:
 @dataclass(frozen=True)
 class AnalysisResult:
     """Everything computed for a scene over its P positions; ``feasible`` (P,) where every stage
-    that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage."""
+    that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage; ``curvature`` of
+    every link with section stresses, decided once from its geometry (None: all near-hole region)."""
 
     scene: Scene
     plan: Plan
@@ -97,6 +99,12 @@ class AnalysisResult:
     forces: MachineForces | None
     stresses: dict[str, SectionStresses]
     seconds: dict[str, float] = field(default_factory=dict)
+    curvature: dict[str, Curvature | None] = field(default_factory=dict)
+
+    def curved(self, name: str) -> bool:
+        """Whether link ``name`` is curved, so that its straight-beam section values fall short."""
+        curvature = self.curvature.get(name)
+        return curvature is not None and curvature.curved
 
     @property
     def feasible(self) -> NDArray[np.bool_]:
@@ -127,6 +135,7 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
     seconds["kinematics"] = time.perf_counter() - start
     forces = None
     stresses: dict[str, SectionStresses] = {}
+    curvature: dict[str, Curvature | None] = {}
     if plan.forces:
         start = time.perf_counter()
         forces = machine_forces(scene, kinematics)
@@ -137,5 +146,6 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
             profile, loads = scene.links[name].profile, forces.link_loads[name]
             jobs.append((profile, loads, default_stations(profile, loads.frame_joints, plan.stations)))
         stresses = dict(zip(plan.stresses, links_section_stresses(jobs, plan.body_load_near_holes)))
+        curvature = {name: link_curvature(scene.links[name].profile, forces.link_loads[name].frame_joints) for name in plan.stresses}
         seconds["stresses"] = time.perf_counter() - start
-    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds)
+    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds, curvature)

@@ -23,8 +23,9 @@ from linkstress.report.figures import (
     stress_along_figure,
     sweep_figure,
 )
+from linkstress.report.maxima import link_figures, worst_position
 from linkstress.report.records import link_columns
-from linkstress.report.text import transmission_warnings
+from linkstress.report.text import curved_warnings, figure_lines, transmission_warnings
 from linkstress.safety import link_safety_factors
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
@@ -132,7 +133,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
         f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} positions, '
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
         *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
-        *(f"<p><b>{html.escape(line)}</b></p>" for line in transmission_warnings(result)),
+        *(f"<p><b>{html.escape(line)}</b></p>" for line in curved_warnings(result) + transmission_warnings(result)),
         "<h2>Loads applied</h2>", loads_html(result),
         "<h2>Mechanism</h2>",
     ]
@@ -152,10 +153,10 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
             "at the same fibre. Within one section depth of a pin hole the value is nominal; the FEA "
             "check (linkstress validate) gives the peak there.</p>"
         )
+        sections.append(_stress_table(result))
         for name, stress in result.stresses.items():
-            ok = np.flatnonzero(feasible)
-            if len(ok):
-                k = int(ok[np.argmax(stress.max_von_mises[ok])])
+            if feasible.any():
+                k = worst_position(stress.max_von_mises, feasible)
                 sections.append(figure_tag(stress_along_figure(result, name, k), f"stresses along {name}"))
         sections.append(_pin_holes_table(result))
         sections.append(_safety_table(result))
@@ -190,44 +191,94 @@ def _accelerations_table(result: AnalysisResult) -> str:
     )
 
 
+def _stress_table(result: AnalysisResult) -> str:
+    """Per link, the sweep's largest section von Mises, away from holes and pin-hole estimate, and
+    under the table the input angle and ground-frame point of each."""
+    factors = link_safety_factors(result)
+    rows, where = [], []
+    for name in result.stresses:
+        figures = link_figures(result, name, factors.get(name))
+        if figures is None:
+            continue
+        peak = figures.max_von_mises
+        rows.append((
+            name, peak.value, peak.input_angle_deg, f"({peak.at[0]:.4g}, {peak.at[1]:.4g})",
+            "-" if figures.away_from_holes is None else figures.away_from_holes.value,
+            "-" if figures.pin_hole is None else figures.pin_hole.value,
+            "yes" if result.curved(name) else "no",
+        ))
+        lines = figure_lines(figures)
+        if name in factors and factors[name].withheld is not None:
+            lines.append(f"yield safety factor {factors[name].withheld}")
+        where += [f"{name}: {line}" for line in lines]
+    if not rows:
+        return ""
+    headers = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
+               "pin hole estimate [Pa]", "curved")
+    items = "".join(f"<li>{html.escape(line)}</li>" for line in where)
+    return (
+        "<h3>Largest stresses over the sweep</h3>" + table_html(headers, rows)
+        + '<p class="note">Where each figure comes from (its input angle; its point in the ground frame at that '
+        f"input):</p><ul class=\"note\">{items}</ul>"
+    )
+
+
 def _pin_holes_table(result: AnalysisResult) -> str:
-    """Kt x nominal at every pin hole, largest over the feasible positions: an estimate, said so."""
+    """Kt x nominal at every pin hole, largest over the feasible positions and the input angle it
+    comes from: an estimate, said so."""
     ok = result.feasible
     rows = []
     for name, stress in result.stresses.items():
         for hole in stress.pin_holes:
             if not ok.any():
                 continue
-            estimate = "beyond the Kt table" if hole.estimate is None else float(hole.estimate[ok].max())
+            if hole.estimate is None:
+                k = worst_position(hole.nominal, ok)
+                estimate = "beyond the Kt table"
+            else:
+                k = worst_position(hole.estimate, ok)
+                estimate = float(hole.estimate[k])
             rows.append((name, hole.joint, hole.diameter, hole.depth, "-" if hole.kt is None else hole.kt,
-                         float(hole.nominal[ok].max()), estimate))
+                         float(hole.nominal[k]), estimate, float(result.scene.motion.angle_deg[k])))
     if not rows:
         return ""
+    headers = ("link", "joint", "hole d [m]", "depth H [m]", "Kt", "net-section stress [Pa]", "Kt x nominal [Pa]",
+               "at input [deg]")
     return (
         "<h3>Pin holes: peak stress ESTIMATES</h3>"
-        + table_html(("link", "joint", "hole d [m]", "depth H [m]", "Kt", "net-section stress [Pa]", "Kt x nominal [Pa]"), rows)
-        + f'<p class="note">{html.escape(PIN_HOLE_SOURCE)}</p>'
+        + table_html(headers, rows)
+        + f'<p class="note">{html.escape(PIN_HOLE_SOURCE)}. Each row: the largest over the sweep, at the input '
+        "angle given.</p>"
     )
 
 
 def _safety_table(result: AnalysisResult) -> str:
-    """Per link whose material gives a yield strength, the sweep's lowest safety factors against it."""
-    ok = result.feasible
-    if not ok.any():
-        return ""
+    """Per link whose material gives a yield strength, the sweep's lowest safety factors against it,
+    each with the input angle it comes from (and the joint of the pin hole)."""
     rows = []
     for name, factors in link_safety_factors(result).items():
-        sections, pin_holes = factors.lowest(ok)
-        k = int(np.flatnonzero(ok)[np.argmin(factors.sections[ok])])
-        pin = "-" if pin_holes is None else _finite(pin_holes)
-        rows.append((name, factors.yield_strength, _finite(sections), float(result.scene.motion.angle_deg[k]), pin))
+        figures = link_figures(result, name, factors)
+        if figures is None:
+            return ""
+        section, pin = figures.section_factor, figures.pin_hole_factor
+        rows.append((
+            name, factors.yield_strength,
+            factors.withheld if section is None else _finite(section.value),
+            "-" if section is None else section.input_angle_deg,
+            "-" if pin is None else _finite(pin.value),
+            "-" if pin is None else pin.input_angle_deg,
+            "-" if pin is None else pin.joint,
+        ))
     if not rows:
         return ""
+    headers = ("link", "yield strength [Pa]", "lowest, sections", "at input [deg]", "lowest, pin holes (ESTIMATE)",
+               "at input [deg]", "at the pin hole of joint")
     return (
         "<h3>Safety factors against yield</h3>"
-        + table_html(("link", "yield strength [Pa]", "lowest, sections", "at input [deg]", "lowest, pin holes (ESTIMATE)"), rows)
+        + table_html(headers, rows)
         + '<p class="note">The material\'s yield_strength over the largest section von Mises (beam theory, nominal '
-        "near pin holes) and over the largest pin-hole estimate Kt x nominal.</p>"
+        "near pin holes) and over the largest pin-hole estimate Kt x nominal, each at the input angle given; a "
+        "curved link's straight-beam value gives no factor (linkstress validate gives the FEA peak's).</p>"
     )
 
 

@@ -3,11 +3,14 @@
 Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``transmission_angle_deg`` per loop
 (feasible positions); per link ``angle_deg``,
 ``omega_rad_s``, ``alpha_rad_s2``, ``acc_G_m_s2`` (where the centre of mass is known),
+``curved`` (the link's neutral axis bends off a straight line, ``linkstress.curvature``: its
+straight-beam values fall short),
 ``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
 some station is at least a section depth from every pin hole), ``equilibrium_mismatch`` and
 ``pin_holes`` (per pin hole: Kt, the net-section stress of its pin force and the Kt x nominal
 estimate, labelled as such) where stresses were computed, ``yield_safety_factor`` (yield strength
-over ``max_von_mises_pa``) and ``pin_hole_yield_safety_factor_estimate`` (over the largest pin-hole
+over ``max_von_mises_pa``; null on a curved link, with ``yield_safety_factor_note`` saying why) and
+``pin_hole_yield_safety_factor_estimate`` (over the largest pin-hole
 estimate) where the material gives ``yield_strength`` (null where the stress is zero), and with
 ``stations`` the arrays along the link; per mechanism ``forces_n`` (Norton names) and
 ``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed.
@@ -65,6 +68,7 @@ def position_records(result: AnalysisResult, stations: bool = False) -> list[dic
             link_values[name] = values
     for name, stress in result.stresses.items():
         values = link_values.setdefault(name, {})
+        values["curved"] = result.curved(name)
         values["max_von_mises_pa"] = stress.max_von_mises.tolist()
         values["max_at_m"] = result.max_location(name).tolist()
         if stress.max_away_from_holes is not None:
@@ -75,7 +79,11 @@ def position_records(result: AnalysisResult, stations: bool = False) -> list[dic
         if stations:
             values["stations"] = _station_lists(stress)
     for name, factors in link_safety_factors(result).items():
-        link_values[name]["yield_safety_factor"] = finite_or_none(factors.sections)
+        if factors.sections is None:
+            link_values[name]["yield_safety_factor"] = None
+            link_values[name]["yield_safety_factor_note"] = factors.withheld
+        else:
+            link_values[name]["yield_safety_factor"] = finite_or_none(factors.sections)
         if factors.pin_holes is not None:
             link_values[name]["pin_hole_yield_safety_factor_estimate"] = finite_or_none(factors.pin_holes)
     mechanism_values = _mechanism_lists(result)

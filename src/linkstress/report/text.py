@@ -22,6 +22,7 @@ from linkstress.kinematics.linkage_class import (
     stroke,
     toggle_angles,
 )
+from linkstress.report.maxima import LinkFigures, link_figures
 from linkstress.report.records import link_columns
 from linkstress.safety import link_safety_factors
 from linkstress.scene import Scene
@@ -43,6 +44,7 @@ def report(result: AnalysisResult) -> str:
         parts.append(forces_table(result))
     if result.stresses:
         parts.append(stress_table(result))
+    parts += curved_warnings(result)
     parts += transmission_warnings(result)
     bad = [(a, r) for a, r, ok in zip(scene.motion.angle_deg.tolist(), result.reasons, feasible) if not ok]
     if bad:
@@ -115,6 +117,22 @@ def transmission_warnings(result: AnalysisResult) -> list[str]:
     return lines
 
 
+def curved_warnings(result: AnalysisResult) -> list[str]:
+    """A warning per curved link: how curved, why its section values fall short, what to do."""
+    lines = []
+    for name, curvature in result.curvature.items():
+        if curvature is None or not curvature.curved:
+            continue
+        material = result.scene.links[name].material
+        factor = "" if material is None or material.yield_strength is None else ", so no yield safety factor is given from them"
+        lines.append(
+            f"warning: link {name} is curved (its neutral axis wanders {curvature.depths:.2g} section depths, "
+            f"{curvature.wander:.3g} m, off a straight line): its straight-beam section values are unconservative "
+            f"on a curved bar by about 10-20 %{factor}; run linkstress validate {result.scene.path.name} for the FEA value"
+        )
+    return lines
+
+
 def shown_positions(result: AnalysisResult) -> tuple[np.ndarray, str]:
     """Feasible positions to tabulate (at most MAX_ROWS, evenly spaced) and a note when thinned."""
     ok = np.flatnonzero(result.feasible)
@@ -156,37 +174,42 @@ def forces_table(result: AnalysisResult) -> str:
 
 def stress_table(result: AnalysisResult) -> str:
     """Per link, the largest section von Mises over the sweep, where, and the equilibrium check; the
-    safety factors against yield where the material gives a yield strength."""
+    safety factors against yield where the material gives a yield strength; under the table, the
+    input angle and the location of every figure."""
     rows = []
     ok = result.feasible
-    angles = result.scene.motion.angle_deg
     factors = link_safety_factors(result)
+    where = []
     for name, stress in result.stresses.items():
-        if not ok.any():
+        figures = link_figures(result, name, factors.get(name))
+        if figures is None:
             continue
-        peak = np.where(ok, stress.max_von_mises, -1.0)
-        k = int(peak.argmax())
-        where = result.max_location(name)[k]
-        away = "-" if stress.max_away_from_holes is None else float(np.where(ok, stress.max_away_from_holes, -1.0).max())
-        estimates = [h.estimate[ok].max() for h in stress.pin_holes if h.estimate is not None]
-        pin = float(max(estimates)) if estimates else "-"
+        peak = figures.max_von_mises
         row = [
-            name, float(stress.max_von_mises[k]), float(angles[k]), f"({where[0]:.4g}, {where[1]:.4g})",
-            away, pin, float(stress.forces.mismatch[ok].max()),
+            name, peak.value, peak.input_angle_deg, f"({peak.at[0]:.4g}, {peak.at[1]:.4g})",
+            "-" if figures.away_from_holes is None else figures.away_from_holes.value,
+            "-" if figures.pin_hole is None else figures.pin_hole.value, float(stress.forces.mismatch[ok].max()),
         ]
         if factors:
             row += _factor_cells(factors.get(name), ok)
         rows.append(tuple(row))
-    headers = ["link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m]", "away from holes [Pa]",
+        where += [f"  {name}: {line}" for line in figure_lines(figures)]
+        if name in factors and factors[name].withheld is not None:
+            where.append(f"  {name}: yield safety factor {factors[name].withheld}")
+    headers = ["link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
                "pin hole estimate [Pa]", "equilibrium check"]
     if factors:
         headers += ["yield safety factor", "at pin holes (estimate)"]
     lines = [
         "section stresses (beam theory; within one section depth of a pin hole the value is nominal)",
         format_table(tuple(headers), rows),
-        "pin hole estimate: Kt x the net-section stress of the pin force, an ESTIMATE for a close-fitting pin "
-        "(Kt from linkstress FEA of pin-loaded lugs, see dynamics/pin_holes.py); linkstress validate gives the FEA peak",
     ]
+    if where:
+        lines += ["where each figure comes from (its input angle; its point in the ground frame at that input):", *where]
+    lines.append(
+        "pin hole estimate: Kt x the net-section stress of the pin force, an ESTIMATE for a close-fitting pin "
+        "(Kt from linkstress FEA of pin-loaded lugs, see dynamics/pin_holes.py); linkstress validate gives the FEA peak"
+    )
     if factors:
         lines.append(
             "yield safety factor: the material's yield_strength over the largest stress of the sweep (section "
@@ -195,12 +218,25 @@ def stress_table(result: AnalysisResult) -> str:
     return "\n".join(lines)
 
 
+def figure_lines(figures: LinkFigures) -> list[str]:
+    """One line per figure of a link: value (stresses as in the table, factors to 3 digits), input
+    angle, location and frame."""
+    listed = [
+        (figures.max_von_mises, " Pa", 6), (figures.away_from_holes, " Pa", 6), (figures.pin_hole, " Pa", 6),
+        (figures.section_factor, "", 3), (figures.pin_hole_factor, "", 3),
+    ]
+    return [figure.describe(unit, digits) for figure, unit, digits in listed if figure is not None]
+
+
 def _factor_cells(factors, ok) -> list[str]:
     """The sweep's lowest yield safety factors of one link, '-' without a yield strength."""
     if factors is None:
         return ["-", "-"]
     sections, pin_holes = factors.lowest(ok)
-    return [_factor_text(sections), "-" if pin_holes is None else _factor_text(pin_holes)]
+    return [
+        factors.withheld if sections is None else _factor_text(sections),
+        "-" if pin_holes is None else _factor_text(pin_holes),
+    ]
 
 
 def _factor_text(factor: float) -> str:
