@@ -257,8 +257,8 @@ def choose_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int
         )
     x = np.unique(np.round(midpoints[cut], 12))
     note = (
-        f"the link is short for its holes: no station between the joints is {HOLE_CLEARANCE:g} hole radii "
-        f"from every hole, so the resultants are compared at the midpoint(s) between joints x = "
+        f"the link is short for its holes: no station between the joints is more than {HOLE_CLEARANCE:g} hole "
+        f"radii from every hole, so the resultants are compared at the midpoint(s) between joints x = "
         f"{', '.join(f'{v:.4g}' for v in x)} m (member frame), {clearance[count:][cut].min():.3g} radii from the "
         "nearest hole, where the pins' local stresses are steep"
     )

@@ -197,13 +197,14 @@ HEADERS = ("link", "beam max [Pa]", "at [deg]", "FEA peak [Pa]", "at [deg]", "re
            "peak [%]", "dofs", "converged")
 
 
-def table_rows(result: ValidationResult) -> list[tuple]:
-    """The summary table: each maximum beside its input angle, errors worst over the positions."""
+def table_rows(result: ValidationResult, reasons: bool = False) -> list[tuple]:
+    """The summary table: each maximum beside its input angle, errors worst over the positions; a
+    link whose FEA failed says so (with the reason when ``reasons``)."""
     rows = []
     for name in result.analysis.plan.validate:
         r = link_record(result, name)
         if "error" in r:
-            rows.append((name, "FEA failed: " + r["error"], "", "", "", "", "", "", "", ""))
+            rows.append((name, "FEA failed" + (": " + r["error"] if reasons else ""), "", "", "", "", "", "", "", ""))
             continue
         rows.append((
             name, r["beam_max_von_mises_pa"], r["beam_max_input_angle_deg"], r["fea_max_von_mises_pa"],
@@ -401,7 +402,7 @@ def fea_contour_figure(c: LinkComparison, k: int, angle_deg: float) -> Figure:
 def validation_html(result: ValidationResult) -> str:
     sections = analysis_sections(result.analysis)
     sections.insert(-2, "<h2>Beam against FEA</h2>")
-    body = [f'<p class="note">{html.escape(NOTE)}</p>', table_html(HEADERS, table_rows(result))]
+    body = [f'<p class="note">{html.escape(NOTE)}</p>', table_html(HEADERS, table_rows(result, reasons=True))]
     verdict, *failures = check_line(result).split("\n")
     body.append(f"<p><b>{html.escape(verdict)}</b></p>")
     body += [f"<p>{html.escape(line.strip())}</p>" for line in failures]
