@@ -1,7 +1,15 @@
 """Reports of a validation: DESIGN.md's ``validate`` JSON, terminal text, and HTML sections.
 
 Errors are percentages; a link's scalar values are the worst over the compared positions, with the
-per-position values beside them.
+per-position values beside them. Each maximum is given with the input angle [deg] and the place
+[m, member frame] where it is, in the JSON, the table and the text alike.
+
+``"converged"`` is true only when every compared quantity converged over the refinement study:
+the section resultants, the nominal stresses (where a nominal station exists) and the FEA peak,
+each judged by its change between the two finest meshes against its own limit (``"convergence"``
+gives each); null with one mesh, where nothing was checked. The yield safety factor against the
+FEA peak is given only for a converged peak: with one mesh or an unconverged peak it is null and
+``"fea_yield_safety_factor_reason"`` says why.
 """
 
 from __future__ import annotations
