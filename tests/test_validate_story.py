@@ -192,13 +192,17 @@ def test_a_short_crank_runs_the_refinement_study_on_resultants_and_peak(tmp_path
     assert "nominal not compared" in capsys.readouterr().out
 
 
-def test_a_crank_whose_holes_leave_no_cut_between_them_gets_an_error_entry_naming_it(tmp_path, capsys):
-    # 16 mm between 12 mm holes: the midpoint is 1.33 radii from each centre, 2 mm from each rim.
+def test_a_crank_with_a_narrow_ligament_between_its_holes_still_compares_resultants_and_peaks(tmp_path):
+    # 16 mm between 12 mm holes: the midpoint cut misses both (1.33 radii from each centre, 2 mm
+    # from each rim). Measured: resultants within 0.04 % of statics, changing 0.08 % over the last
+    # refinement.
     scene = write_four_bar(tmp_path, 0.016, 0.02, 0.012)
-    code, data = run_validate(scene, tmp_path / "v.json", "--mesh-levels", "1")
-    assert code == 1
-    assert data["links"]["crank"]["error"].startswith("link 'crank': no cut between its joints misses the pin holes")
-    assert "Traceback" not in capsys.readouterr().err
+    code, data = run_validate(scene, tmp_path / "v.json", "--positions", "1")
+    crank = data["links"]["crank"]
+    assert code == 0
+    assert crank["stations_m"] == pytest.approx([0.008]) and "1.33 radii" in crank["stations_note"]
+    assert crank["resultant_error_pct"] < 1.0 and crank["convergence"]["resultants"]["converged"] is True
+    assert crank["convergence"]["peak"]["converged"] is True and crank["nominal_error_pct"] is None
 
 
 # --- one story: the bell crank ------------------------------------------------------------------------

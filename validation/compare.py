@@ -57,9 +57,11 @@ HOLE_CLEARANCE = 5.0
 """A comparison station stays this many hole radii from a hole's centre: closer, the stress a pin
 puts into the hole's rim (a driving torque on a small pin above all) is too steep for the cut's
 integral to converge at practical mesh sizes."""
-CUT_CLEARANCE = 1.5
-"""On a link too short for HOLE_CLEARANCE, a midpoint cut is kept when it stays this many hole radii
-from every hole's centre: half a radius of material between the cut and the rim, for the mesh."""
+CUT_CLEARANCE = 1.0
+"""On a link too short for HOLE_CLEARANCE, a midpoint cut is kept when it stays more than this many
+hole radii from every hole's centre: when it misses the holes. (A ligament too narrow for the mesh
+is the mesher's to report, naming the holes.) Measured on a 16 mm crank with 12 mm holes: its cut
+1.33 radii from both changed 0.08 % over the last refinement and met statics within 0.04 %."""
 HOLE_NEIGHBOURHOOD = 2.0
 """The FEA peak at a pin hole: the largest von Mises within this many hole radii of its centre (the
 rim and one radius of material around it), where the Kt x nominal estimate places its peak."""
@@ -236,8 +238,8 @@ def comparison_stations(link: LinkProfile, frame_joints: tuple[int, int], count:
 
 def choose_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> ComparisonStations:
     """``comparison_stations`` with a note when the link is too short for stations HOLE_CLEARANCE
-    radii from every hole: then the midpoints between consecutive joints that stay CUT_CLEARANCE
-    radii from every hole. Raises FEAError naming the link when no midpoint cut misses the holes."""
+    radii from every hole: then the midpoints between consecutive joints whose cuts miss every hole
+    (CUT_CLEARANCE). Raises FEAError naming the link when no midpoint cut misses the holes."""
     frame = link.frame(*frame_joints)
     joints_x = np.sort(frame.to_local(link.joints)[:, 0])
     lo, hi = joints_x[0], joints_x[-1]
