@@ -241,8 +241,9 @@ def check_line(result: ValidationResult) -> str:
     line = f"check: {verdict} ({checked})"
     unconverged = result.unconverged()
     if unconverged:
-        line += ("; not part of this check, and no safety factor is taken from a peak that is not converged: "
-                 + "; ".join(unconverged))
+        line += "; reported beside this check, not part of it: " + "; ".join(unconverged)
+        if any(": peak NOT converged" in u for u in unconverged):
+            line += " (no safety factor is taken from a peak that is not converged)"
     elif result.comparisons and all(c.study is None for c in result.comparisons.values()):
         line += "; convergence not checked (one mesh)"
     if failures:
