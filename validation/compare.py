@@ -79,14 +79,24 @@ class ComparisonStations:
 @dataclass(frozen=True)
 class Convergence:
     """How much one compared quantity changed between the two finest meshes of a refinement study:
-    ``change`` (Pc,) [-] per compared position, relative (see each quantity), and its ``limit`` [-]."""
+    ``change`` (Pc,) [-] per compared position, relative (see each quantity), and its ``limit`` [-];
+    ``previous`` (Pc,) [-] the change over the refinement before, where it is judged too (the peak)."""
 
     change: NDArray[np.float64]
     limit: float
+    previous: NDArray[np.float64] | None = None
 
     @property
     def converged(self) -> bool:
-        return bool((self.change <= self.limit).all())
+        within = bool((self.change <= self.limit).all())
+        return within and (self.previous is None or bool((self.previous <= self.limit).all()))
+
+    def words(self) -> str:
+        """The change(s) against the limit, in percent."""
+        text = f"changed {100 * self.change.max():.3g} % over the last refinement"
+        if self.previous is not None:
+            text += f" and {100 * self.previous.max():.3g} % over the one before"
+        return f"{text}, limit {100 * self.limit:g} %"
 
 
 @dataclass(frozen=True)
@@ -137,14 +147,16 @@ class LinkComparison:
     def convergence(self) -> dict[str, Convergence | None] | None:
         """Change over the last refinement of ``resultants`` (the measure of ``resultant_error``),
         ``nominal`` (over the largest nominal value; None without a nominal station) and ``peak``
-        (over the finest peak), each against its limit; None with a single mesh (nothing checked)."""
+        (over the finer peak, judged over the refinement before too), each against its limit; None
+        with a single mesh (nothing checked)."""
         if self.study is None:
             return None
         s = self.study
         depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
         resultants = Convergence(resultant_error(s.resultants[-1], s.resultants[-2], depth), RESULTANT_CONVERGED_CHANGE)
         nominal = Convergence(s.change, CONVERGED_CHANGE) if self.away.any() else None
-        return {"resultants": resultants, "nominal": nominal, "peak": Convergence(s.peak_change, PEAK_CONVERGED_CHANGE)}
+        peak = Convergence(s.peak_change, PEAK_CONVERGED_CHANGE, s.peak_changes[-2])
+        return {"resultants": resultants, "nominal": nominal, "peak": peak}
 
     @property
     def converged(self) -> bool | None:

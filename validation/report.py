@@ -6,8 +6,8 @@ per-position values beside them. Each maximum is given with the input angle [deg
 
 ``"converged"`` is true only when every compared quantity converged over the refinement study:
 the section resultants, the nominal stresses (where a nominal station exists) and the FEA peak,
-each judged by its change between the two finest meshes against its own limit (``"convergence"``
-gives each); null with one mesh, where nothing was checked. The yield safety factor against the
+each judged by its change between the two finest meshes against its own limit (the peak over the
+refinement before too; ``"convergence"`` gives each); null with one mesh, where nothing was checked. The yield safety factor against the
 FEA peak is given only for a converged peak: with one mesh or an unconverged peak it is null and
 ``"fea_yield_safety_factor_reason"`` says why.
 """
@@ -125,7 +125,8 @@ def fea_peak(c: LinkComparison, angles: NDArray[np.float64]) -> Maximum:
 
 def convergence_record(c: LinkComparison) -> dict:
     """Per compared quantity (``resultants``, ``nominal``, ``peak``): ``change_pct`` over the last
-    refinement (worst over the positions), ``limit_pct``, ``converged`` and ``status`` ("converged",
+    refinement (worst over the positions), ``previous_change_pct`` over the one before where it is
+    judged too (the peak; else null), ``limit_pct``, ``converged`` and ``status`` ("converged",
     "NOT converged", "not checked" with one mesh, "not compared" for nominal on a link without a
     nominal station)."""
     limits = {"resultants": RESULTANT_CONVERGED_CHANGE, "nominal": CONVERGED_CHANGE, "peak": PEAK_CONVERGED_CHANGE}
@@ -137,6 +138,7 @@ def convergence_record(c: LinkComparison) -> dict:
             "converged" if q.converged else "NOT converged")
         record[quantity] = {
             "change_pct": None if q is None else float(100 * q.change.max()),
+            "previous_change_pct": None if q is None or q.previous is None else float(100 * q.previous.max()),
             "limit_pct": 100 * limit,
             "converged": None if q is None else q.converged,
             "status": status,
@@ -157,8 +159,7 @@ def fea_safety_factor(result: ValidationResult, name: str, c: LinkComparison) ->
                       "refinement study (--mesh-levels 3) for a safety factor")
     peak = convergence["peak"]
     if not peak.converged:
-        return None, (f"the FEA peak is NOT converged: it changed {100 * peak.change.max():.3g} % over the last "
-                      f"refinement (limit {100 * peak.limit:g} %), so no safety factor is taken from it")
+        return None, f"the FEA peak is NOT converged ({peak.words()}), so no safety factor is taken from it"
     factor = finite_or_none(yield_factor(material.yield_strength, np.array([float(c.fea_peak.max())])))[0]
     return factor, None if factor is not None else "no stress"
 
@@ -347,7 +348,8 @@ def convergence_words(record: dict) -> str:
         if q["change_pct"] is None:
             parts.append(f"{quantity} {q['status']}")
         else:
-            parts.append(f"{quantity} {q['status']} ({q['change_pct']:.3g} %, limit {q['limit_pct']:g} %)")
+            before = "" if q["previous_change_pct"] is None else f", {q['previous_change_pct']:.3g} % the refinement before"
+            parts.append(f"{quantity} {q['status']} ({q['change_pct']:.3g} %{before}, limit {q['limit_pct']:g} %)")
     return "change over the last refinement: " + ", ".join(parts)
 
 

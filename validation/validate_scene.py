@@ -76,10 +76,7 @@ class ValidationResult:
         for name, c in self.comparisons.items():
             for quantity, q in (c.convergence or {}).items():
                 if q is not None and not q.converged:
-                    lines.append(
-                        f"{name}: {quantity} NOT converged (changed {100 * q.change.max():.3g} % over the last "
-                        f"refinement, limit {100 * q.limit:g} %)"
-                    )
+                    lines.append(f"{name}: {quantity} NOT converged ({q.words()})")
         return lines
 
 
