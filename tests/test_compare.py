@@ -5,7 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from linkstress.validation.compare import relative, resultant_error
+from shapely.geometry import Point, Polygon
+
+from linkstress.builders import straight_bar
+from linkstress.profile import LinkProfile
+from linkstress.validation.compare import choose_stations, comparison_stations, relative, resultant_error
+from linkstress.validation.errors import FEAError
 
 
 def stack(n, v, m):
@@ -28,3 +33,28 @@ def test_a_tiny_moment_is_judged_against_what_the_forces_do_over_the_depth():
 
 def test_relative_is_zero_where_nothing_is_loaded():
     np.testing.assert_array_equal(relative(np.array([1.0, 2.0]), np.array([0.0, 4.0])), [0.0, 0.5])
+
+
+def test_a_link_long_for_its_holes_keeps_its_stations_five_radii_clear():
+    # 1 m between 20 mm holes: cell centres from 0.1 m on (5 radii = 50 mm), no note.
+    chosen = choose_stations(straight_bar(1.0, 0.1, 0.05, 0.01, hole_diameter=0.02), (0, 1))
+    assert chosen.note == ""
+    assert chosen.x.min() > 0.05 and chosen.x.max() < 0.95 and 0.5 in chosen.x
+    np.testing.assert_array_equal(comparison_stations(straight_bar(1.0, 0.1, 0.05, 0.01, hole_diameter=0.02), (0, 1)), chosen.x)
+
+
+def test_a_60_mm_crank_with_13_mm_holes_is_compared_at_its_midpoint_and_says_so():
+    # Every station between the pins is at most 30 mm = 4.6 radii from one of them. (With 12 mm
+    # holes the midpoint is 5 radii from both: kept or not by the outline's flattening of the hole.)
+    chosen = choose_stations(straight_bar(0.06, 0.04, 0.02, 0.005, hole_diameter=0.013), (0, 1))
+    np.testing.assert_allclose(chosen.x, [0.03])
+    assert "short for its holes" in chosen.note and "x = 0.03 m" in chosen.note and "4.62 radii" in chosen.note
+
+
+def test_a_link_whose_big_hole_spans_the_midpoint_has_no_cut_and_the_error_names_it():
+    # Joints 20 mm apart: a 30 mm hole at the first spans x = -15..15 mm, past the midpoint at 10 mm.
+    shell = Polygon([(-0.03, -0.03), (0.03, -0.03), (0.03, 0.03), (-0.03, 0.03)])
+    holes = [Point(0.0, 0.0).buffer(0.015, 64).exterior.coords, Point(0.02, 0.0).buffer(0.002, 64).exterior.coords]
+    link = LinkProfile(Polygon(shell.exterior.coords, holes), np.array([[0.0, 0.0], [0.02, 0.0]]), 0.005, None, "lug")
+    with pytest.raises(FEAError, match="link 'lug': no cut between its joints misses the pin holes"):
+        choose_stations(link, (0, 1))

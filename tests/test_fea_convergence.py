@@ -63,6 +63,21 @@ def test_the_seed_crank_converges_to_half_a_percent_in_three_levels():
     assert study.converged and study.change[0] < 0.005
     assert study.relative_error[0] < 0.01
     assert study.finest.dofs == study.dofs[-1]
+    # The peak (at the torqued pin O2) and the resultants at the three meshed cuts are followed too.
+    assert study.peaks.shape == (3, 1) and study.resultants.shape == (3, 3, 1, 3)
+    np.testing.assert_array_equal(study.peaks[-1], study.finest.von_mises_peak)
+    assert study.peak_change[0] == pytest.approx(abs(study.peaks[2, 0] - study.peaks[1, 0]) / study.peaks[2, 0])
+    assert study.peak_change[0] < 0.05
+
+
+def test_a_study_without_nominal_points_follows_peak_and_resultants_alone():
+    # A link too short for a nominal station: the study still runs and says it had no nominal point.
+    study = convergence_study(
+        seed_crank(), seed_position(), MeshSettings(0.12, 0.004, (0.5,)), np.zeros((0, 2)), ratio=1.5
+    )
+    assert not study.has_nominal and study.values.shape == (3, 1, 0)
+    assert study.change[0] == 0.0 and study.resultants.shape == (3, 3, 1, 1)
+    assert study.peak_change[0] < 0.05
 
 
 def test_a_study_needs_three_levels():

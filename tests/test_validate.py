@@ -53,6 +53,22 @@ def test_seed_resultants_within_half_a_percent_and_nominal_within_3_percent_of_c
         assert record["mesh_levels"] == 3 and record["dofs"] > 5000
 
 
+def test_seed_convergence_json_gives_each_quantitys_change_over_the_last_refinement(seed):
+    # Measured on the seed (three meshes, each 1.5 x finer): resultants 0.04-1.1 % (the crank's cut
+    # five hole radii from the torqued O2), nominal 0.01-0.02 %, peaks 0.04-0.31 %.
+    _, data, _ = seed
+    for name, record in data["links"].items():
+        convergence = record["convergence"]
+        assert set(convergence) == {"resultants", "nominal", "peak"}, name
+        for quantity, q in convergence.items():
+            assert q["status"] == "converged" and q["converged"] is True, (name, quantity)
+            assert 0 <= q["change_pct"] < q["limit_pct"], (name, quantity)
+        assert [convergence[q]["limit_pct"] for q in ("resultants", "nominal", "peak")] == [2.0, 0.5, 5.0]
+        assert convergence["peak"]["change_pct"] < 0.5 and convergence["nominal"]["change_pct"] < 0.05
+        assert record["stations_note"] is None and record["nominal_note"] is None
+    assert data["not_converged"] == []
+
+
 def test_seed_peak_is_at_the_pins_far_above_the_nominal_stress(seed):
     # The FEA peak sits on a pin hole's rim (O2 carries T12 through a 20 mm pin), which beam theory
     # cannot see: the peak error is large and reported, not judged.

@@ -5,7 +5,9 @@ with the reason; the others still finish.
 A link fails the check when its FEA support reactions are not ~0 (the kinetics' loads are not in
 equilibrium) or its section resultants differ from the beam's by more than RESULTANT_LIMIT (the
 two engines disagree on the loads). Stress differences are reported, not judged: they measure
-beam theory, and the report says where it falls short.
+beam theory, and the report says where it falls short. Nor does convergence fail the check: a
+peak that has not converged is named beside the check's verdict (``unconverged``) and gives no
+safety factor.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from tqdm import tqdm
 
 from linkstress.analysis import AnalysisResult, Plan, run_analysis
 from linkstress.scene import Scene
-from linkstress.validation.compare import LinkComparison, compare_link, comparison_stations, default_mesh
+from linkstress.validation.compare import LinkComparison, choose_stations, compare_link, default_mesh
 from linkstress.validation.errors import FEAError
 
 REACTION_LIMIT = 1e-4
@@ -65,6 +67,16 @@ class ValidationResult:
                     f"{name}: section resultants differ by {100 * c.resultant_error.max():.3g} % between beam "
                     f"and FEA (limit {100 * RESULTANT_LIMIT:g} %)"
                 )
+        return lines
+
+    def unconverged(self) -> list[str]:
+        """The quantities of each link that did not converge over its refinement study, one line
+        each (empty with one mesh level, where nothing was checked)."""
+        lines = []
+        for name, c in self.comparisons.items():
+            for quantity, q in (c.convergence or {}).items():
+                if q is not None and not q.converged:
+                    lines.append(f"{name}: {quantity} NOT converged ({q.words()})")
         return lines
 
 
@@ -115,11 +127,13 @@ def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
     if not len(chosen):
         return name, None, "no feasible position to compare", 0.0
     try:
-        stations = comparison_stations(link, loads.frame_joints)
-        mesh = replace(default_mesh(link, loads.frame_joints, stations, size), order=order)
+        stations = choose_stations(link, loads.frame_joints)
+        mesh = replace(default_mesh(link, loads.frame_joints, stations.x, size), order=order)
         if order == 1 and size is None:
             mesh = mesh.refined(LINEAR_REFINEMENT)
-        comparison = compare_link(name, link, loads, chosen, mesh, levels, stations, body_load_near_holes)
+        comparison = compare_link(
+            name, link, loads, chosen, mesh, levels, stations.x, body_load_near_holes, stations.note,
+        )
         return name, comparison, "", time.perf_counter() - start
     except FEAError as error:
         return name, None, str(error), time.perf_counter() - start
