@@ -13,11 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkstress.kinematics.crossings import CHANGE_POINT_TOLERANCE
 from linkstress.kinematics.fourbar import FourBar
 from linkstress.kinematics.slider_crank import SliderCrank
-
-CHANGE_POINT_TOLERANCE = 1e-9
-"""S + L and P + Q closer than this fraction of the perimeter make a change-point linkage."""
 
 # Norton, Design of Machinery, table 2-4 (Barker's classification), by type number.
 BARKER_TYPES = {
