@@ -106,8 +106,8 @@ def describe(mechanism: str, kind: str, crossing: Crossing, before_deg: float, a
     head = f"mechanism {mechanism}: {crossing.kind} {where} crossed between input {before_deg:.6g} and {after_deg:.6g} deg: "
     if crossing.kind == KIND_TOGGLE:
         return head + (
-            "the loop cannot assemble just past a toggle, so the crank cannot turn from the row before to "
-            f"this one; rows from here follow {root}, reached only by reassembling the linkage"
+            "the loop cannot assemble just past a toggle, so the crank cannot turn this way from the row "
+            f"before to this one (it stops and reverses at the toggle); rows from here follow {root}"
         )
     modes = f" ({crossing.modes})" if crossing.modes else ""
     mode = f"the {crossing.mode} mode" if crossing.mode else "the other assembly mode than the rows before"

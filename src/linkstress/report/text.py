@@ -44,6 +44,7 @@ def report(result: AnalysisResult) -> str:
     if result.stresses:
         parts.append(stress_table(result))
     parts += transmission_warnings(result)
+    parts += crossing_warnings(result)
     bad = [(a, r) for a, r, ok in zip(scene.motion.angle_deg.tolist(), result.reasons, feasible) if not ok]
     if bad:
         parts.append("infeasible positions:\n" + "\n".join(f"  {a:.6g} deg: {r}" for a, r in bad))
@@ -113,6 +114,16 @@ def transmission_warnings(result: AnalysisResult) -> list[str]:
                 "loses accuracy there; check those positions with linkstress validate"
             )
     return lines
+
+
+def crossing_warnings(result: AnalysisResult) -> list[str]:
+    """One block with a warning per step that passed a loop's toggle or change point between
+    feasible positions (at most MAX_ROWS, then a count; --json has each on its position)."""
+    crossings = result.kinematics.crossings
+    lines = [f"warning: {message}" for _, message in crossings[:MAX_ROWS]]
+    if len(crossings) > MAX_ROWS:
+        lines.append(f"warning: {len(crossings) - MAX_ROWS} more crossings of toggles or change points; --json has every one")
+    return ["\n".join(lines)] if lines else []
 
 
 def shown_positions(result: AnalysisResult) -> tuple[np.ndarray, str]:
