@@ -10,7 +10,8 @@ mu being the angle at B between the coupler and the output, cos(mu) = (b^2 + c^2
 ``open`` is Norton's minus root of eq. 4.10 (the half-angle solution for theta4); it is sigma = +1,
 B to the left of the directed line A -> O4, at every position and for every linkage (a
 hypothesis test checks this against eq. 4.10 itself); ``crossed`` is sigma = -1. A fixed sigma is a
-continuous branch: the two roots only meet where sin(mu) = 0, the toggles, which a sweep reports.
+continuous branch: the two roots only meet where sin(mu) = 0, the toggles, which a sweep reports;
+a step between two samples that passes one is a crossing (``crossings``), also reported.
 
 Velocities and accelerations solve the loop's relative-motion equations (Norton eqs. 6.18 and 7.12
 in vector form): v_A + omega3 k x (B - A) = omega4 k x (B - O4), and the same for accelerations.
