@@ -43,25 +43,6 @@ class BranchPoint:
     kind: str
 
 
-def crossed_steps(
-    theta2: NDArray[np.float64], steps: NDArray[np.float64], valid: NDArray[np.bool_], point: float
-) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
-    """Steps k -> k + 1 that pass crank angle ``point`` [rad] strictly, between valid samples.
-
-    theta2 (P,) [rad]: crank angles; steps (P - 1,) [rad]: how far the crank turns from each sample
-    to the next (counter-clockwise positive). Returns the indices k + 1 of the rows after such steps
-    and, for each, the representative of ``point`` inside the step nearest its start."""
-    start = theta2[:-1]
-    lo = np.minimum(start, start + steps)
-    hi = np.maximum(start, start + steps)
-    first = point + TURN * (np.floor((lo - point) / TURN) + 1.0)  # lowest representative above lo
-    rows = np.flatnonzero((first < hi) & valid[:-1] & valid[1:])
-    up = steps[rows] >= 0
-    last = first[rows] + TURN * np.floor((hi[rows] - first[rows]) / TURN)
-    last = np.where(last >= hi[rows], last - TURN, last)
-    return rows + 1, np.where(up, first[rows], last)
-
-
 def find_crossings(
     points: tuple[BranchPoint, ...],
     theta2: NDArray[np.float64],
@@ -71,14 +52,34 @@ def find_crossings(
     mode_side: NDArray[np.float64] | None = None,
     mode_names: tuple[str, str] | None = None,
 ) -> tuple[Crossing, ...]:
-    """Every crossing of ``points`` by the sweep, ordered by row.
+    """Every step k -> k + 1 between two ``valid`` samples that passes one of ``points`` strictly,
+    ordered by row.
 
-    ``mode_side`` (P,): where > 0 a row is in ``mode_names[0]``, else in ``mode_names[1]``."""
+    theta2 (P,) [rad]: crank angles; steps (P - 1,) [rad]: how far the crank turns from each sample
+    to the next (counter-clockwise positive); ``branch``: the root the loop follows. ``mode_side``
+    (P,): where > 0 a row is in ``mode_names[0]``, else in ``mode_names[1]``."""
+    lo = np.minimum(steps, 0.0)
+    lo += theta2[:-1]
+    hi = np.abs(steps)
+    hi += lo
+    pairs = valid[:-1] & valid[1:]
+    first = np.empty_like(lo)  # reused: fresh (P,) temporaries per point cost more than the arithmetic
+    over = np.empty(lo.shape, bool)
     found = []
     for point in points:
-        rows, angles = crossed_steps(theta2, steps, valid, point.angle)
+        np.subtract(lo, point.angle, out=first)
+        first /= TURN
+        np.floor(first, out=first)
+        first += 1.0
+        first *= TURN
+        first += point.angle  # the point's lowest representative above lo
+        np.less(first, hi, out=over)
+        over &= pairs
+        steps_over = np.flatnonzero(over)
+        last = point.angle + TURN * (np.ceil((hi[steps_over] - point.angle) / TURN) - 1.0)
+        angles = np.where(steps[steps_over] >= 0, first[steps_over], last)
         named = point.kind == KIND_CHANGE_POINT and mode_names is not None
-        for row, angle in zip(rows.tolist(), angles.tolist()):
+        for row, angle in zip((steps_over + 1).tolist(), angles.tolist()):
             mode = (mode_names[0] if mode_side[row] > 0 else mode_names[1]) if named else ""
             found.append(Crossing(row, angle, point.kind, branch, mode, " or ".join(mode_names) if named else ""))
     return tuple(sorted(found, key=lambda crossing: (crossing.position, crossing.angle)))
