@@ -212,6 +212,37 @@ def test_a_driven_loop_is_not_flagged_where_its_driver_does_not_assemble():
     assert not gap.crossings and not gap.loops["second"].crossings
 
 
+def test_a_loop_driven_by_a_rocker_swinging_through_180_deg_is_flagged_where_its_crank_passes_it():
+    # Main crank-rocker (crank 0.02, coupler 0.14, rocker 0.07, ground 0.1 m at 110 deg): its rocker
+    # swings between about 150 and 202 deg, so its angle (atan2) wraps from -180 to 180 deg. The
+    # parallelogram it drives (phase 0) has a change point at crank 180 deg: crossed once per swing.
+    links = {
+        "ground": [[0.0, 0.0], [0.1 * math.cos(math.radians(110)), 0.1 * math.sin(math.radians(110))],
+                   [0.3, 0.0], [0.38, 0.0]],
+        "crank": [[0.0, 0.0], [0.02, 0.0]],
+        "coupler": [[0.0, 0.0], [0.14, 0.0]],
+        "rocker": [[0.0, 0.0], [0.07, 0.0]],
+        "crank2": [[0.0, 0.0], [0.03, 0.0]],
+        "link2": [[0.0, 0.0], [0.08, 0.0]],
+        "out2": [[0.0, 0.0], [0.03, 0.0]],
+    }
+    loops = (
+        Loop("main", "four-bar", Role("crank"), Role("coupler"), Role("ground", (0, 1)), output=Role("rocker")),
+        Loop("second", "four-bar", Role("crank2"), Role("link2"), Role("ground", (2, 3)), output=Role("out2"),
+             driven_by=Drive("main", "output")),
+    )
+    result = solve_machine(Machine(links, loops), angle_motion(np.arange(0.0, 360.0, 5.0), 1.0))
+    # Where the rocker passes 180 deg, independently: its unwrapped angle changes turn about 180 deg.
+    swing = np.unwrap(result.loops["main"].theta4)
+    passes = np.flatnonzero(np.diff(np.floor((swing - math.pi) / (2 * math.pi)))) + 1
+    assert passes.tolist() == [11, 45]
+    assert [c.position for c in result.loops["second"].crossings] == [11, 45]
+    assert set(flagged(result)) == {55.0, 225.0}
+    assert flagged(result)[55.0][0].startswith(
+        "mechanism second: change point (its crank at 180 deg) crossed between input 50 and 55 deg"
+    )
+
+
 def test_an_output_angle_steps_the_short_way_round():
     # From 179 deg-ish to -179 deg-ish is +0.2 rad, not -2 pi + 0.2; then on by +0.4 rad.
     assert wrapped_steps(np.array([math.pi - 0.1, -math.pi + 0.1, -math.pi + 0.5])) == pytest.approx([0.2, 0.4])
