@@ -69,6 +69,10 @@ def test_a_parallelogram_swept_over_its_change_point_is_flagged_on_the_row_after
     assert "rows from here follow the open root (B left of A -> O4), which is the antiparallelogram mode" in message
     (crossing,) = result.loops["main"].crossings
     assert (crossing.position, crossing.kind, crossing.angle) == (10, "change point", pytest.approx(math.pi))
+    # What the message advises: the crossed root past the change point is the parallelogram again.
+    assert message.endswith('analyze the rows from here with mechanisms.main.branch = "crossed"')
+    past = solve_machine(four_bar_machine(*PARALLELOGRAM, branch="crossed"), angle_motion(np.arange(180.5, 191.0, 1.0), 1.0))
+    assert past.loops["main"].omega4 == pytest.approx(1.0, abs=1e-9) and not past.crossings
 
 
 def test_a_parallelogram_swept_backwards_over_its_change_point_lands_in_the_parallelogram_mode():

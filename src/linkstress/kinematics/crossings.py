@@ -115,5 +115,6 @@ def describe(mechanism: str, kind: str, crossing: Crossing, before_deg: float, a
     return head + (
         f"all links align there and the linkage can leave it in either assembly mode{modes}; rows from "
         f"here follow {root}, which is {mode} (a smooth motion through the change point would continue "
-        f"on the {other} root): angular velocities and joint forces jump across this step"
+        f"on the {other} root): angular velocities and joint forces jump across this step; to follow "
+        f"the smooth motion instead, analyze the rows from here with mechanisms.{mechanism}.branch = \"{other}\""
     )
