@@ -37,7 +37,7 @@ TURN = 2.0 * math.pi
 @dataclass(frozen=True)
 class BranchPoint:
     """A crank angle [rad] (ground frame) where the loop's two roots meet; ``kind`` is
-    ``KIND_CHANGE_POINT`` (the loop assembles on both sides) or ``KIND_TOGGLE`` (it does on one side only)."""
+    ``KIND_CHANGE_POINT`` (the loop assembles on both sides) or ``KIND_TOGGLE`` (on one side only)."""
 
     angle: float
     kind: str
@@ -92,7 +92,10 @@ def wrapped_steps(angle: NDArray[np.float64]) -> NDArray[np.float64]:
 
 ROOT_SIDES = {
     "four-bar": {"open": "B left of A -> O4", "crossed": "B right of A -> O4"},
-    "slider-crank": {"open": "slider ahead of the crank pin along the line", "crossed": "slider behind the crank pin along the line"},
+    "slider-crank": {
+        "open": "slider ahead of the crank pin along the line",
+        "crossed": "slider behind the crank pin along the line",
+    },
 }
 
 
@@ -104,7 +107,8 @@ def describe(mechanism: str, kind: str, crossing: Crossing, before_deg: float, a
     where = f"at input {point:.6g} deg" if main else f"(its crank at {point % 360.0:.6g} deg)"
     other = "crossed" if crossing.root == "open" else "open"
     root = f"the {crossing.root} root ({ROOT_SIDES[kind][crossing.root]})"
-    head = f"mechanism {mechanism}: {crossing.kind} {where} crossed between input {before_deg:.6g} and {after_deg:.6g} deg: "
+    between = f"between input {before_deg:.6g} and {after_deg:.6g} deg"
+    head = f"mechanism {mechanism}: {crossing.kind} {where} crossed {between}: "
     if crossing.kind == KIND_TOGGLE:
         return head + (
             "the loop cannot assemble just past a toggle, so the crank cannot turn this way from the row "

@@ -122,7 +122,8 @@ def crossing_warnings(result: AnalysisResult) -> list[str]:
     crossings = result.kinematics.crossings
     lines = [f"warning: {message}" for _, message in crossings[:MAX_ROWS]]
     if len(crossings) > MAX_ROWS:
-        lines.append(f"warning: {len(crossings) - MAX_ROWS} more crossings of toggles or change points; --json has every one")
+        more = len(crossings) - MAX_ROWS
+        lines.append(f"warning: {more} more crossings of toggles or change points; --json has every one")
     return ["\n".join(lines)] if lines else []
 
 
