@@ -84,6 +84,22 @@ def test_a_parallelogram_swept_backwards_over_its_change_point_lands_in_the_para
     assert result.loops["main"].omega4[11] == pytest.approx(1.0, abs=1e-9)  # 179.5 deg
 
 
+def test_the_seeds_change_point_four_bar_swept_over_180_deg_is_flagged_with_the_other_mode():
+    # The seed four-bar (crank 1, coupler 1.5, output 1.5, ground 2 m: 1 + 2 = 1.5 + 1.5, Barker
+    # III-2) has unnamed modes. omega4 / omega2 jumps 0.805 -> -0.138 over the step; the crossed
+    # root past it continues the smooth 0.805, as the message says.
+    machine = four_bar_machine(1.0, 1.5, 1.5, 2.0)
+    result = solve_machine(machine, angle_motion([178.5, 179.5, 180.5, 181.5], 1.0))
+    omega4 = result.loops["main"].omega4
+    assert omega4[1] == pytest.approx(0.8047, abs=1e-4) and omega4[2] == pytest.approx(-0.1381, abs=1e-4)
+    assert set(flagged(result)) == {180.5}
+    (message,) = flagged(result)[180.5]
+    assert "either assembly mode; rows from here follow the open root" in message
+    assert "which is the other assembly mode than the rows before" in message
+    smooth = solve_machine(four_bar_machine(1.0, 1.5, 1.5, 2.0, "crossed"), angle_motion([180.5], 1.0))
+    assert smooth.loops["main"].omega4[0] == pytest.approx(omega4[1], abs=1e-3)
+
+
 @pytest.mark.parametrize(
     "lengths, modes, mode_after",
     [
