@@ -1,7 +1,7 @@
 """JSON records of an analysis: DESIGN.md's ``analyze`` shape, extended, never renamed.
 
-Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``warnings`` (a list of messages,
-empty almost everywhere: the step into this position passed a loop's toggle or change point, see
+Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``warnings`` (only where the step into
+this position passed a loop's toggle or change point: one message each, see
 ``kinematics.crossings``), ``transmission_angle_deg`` per loop (feasible positions); per link ``angle_deg``,
 ``omega_rad_s``, ``alpha_rad_s2``, ``acc_G_m_s2`` (where the centre of mass is known),
 ``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
@@ -85,10 +85,10 @@ def position_records(result: AnalysisResult, stations: bool = False) -> list[dic
     warnings = result.kinematics.warnings
     records = []
     for k, angle in enumerate(result.scene.motion.angle_deg.tolist()):
-        record = {
-            "input_angle_deg": angle, "feasible": feasible[k], "reason": result.reasons[k],
-            "warnings": list(warnings[k]), "links": {},
-        }
+        record = {"input_angle_deg": angle, "feasible": feasible[k], "reason": result.reasons[k]}
+        if warnings[k]:
+            record["warnings"] = list(warnings[k])
+        record["links"] = {}
         if feasible[k]:
             record["links"] = {name: _at(values, k) for name, values in link_values.items()}
             record["transmission_angle_deg"] = {name: angles[k] for name, angles in transmission.items()}
