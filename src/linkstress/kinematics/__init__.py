@@ -4,6 +4,7 @@
   one loop, closed form, one call for a whole sweep of crank angles.
 - ``machine.Machine``: loops chained by a power graph; ``solve.solve_machine`` sweeps it.
 - ``linkage_class``: Grashof class, Barker type, toggles, limit positions, feasible input ranges.
+- ``crossings``: steps of a sweep that pass a loop's toggle or change point (``Crossing``).
 - ``motion.InputMotion``: the main crank's angles, speeds and accelerations; ``expression`` parses
   functions of time safely.
 """
@@ -12,11 +13,12 @@ from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.fourbar import FourBar, solve_fourbar
 from linkstress.kinematics.machine import Drive, Loop, Machine, Role
 from linkstress.kinematics.motion import InputMotion, angle_motion, timed_motion
-from linkstress.kinematics.results import JointMotion, LinkMotion, LoopMotion, MachineMotion
+from linkstress.kinematics.results import Crossing, JointMotion, LinkMotion, LoopMotion, MachineMotion
 from linkstress.kinematics.slider_crank import SliderCrank, solve_slider_crank
 from linkstress.kinematics.solve import solve_machine
 
 __all__ = [
+    "Crossing",
     "Drive",
     "FourBar",
     "InputMotion",

@@ -10,7 +10,8 @@ mu being the angle at B between the coupler and the output, cos(mu) = (b^2 + c^2
 ``open`` is Norton's minus root of eq. 4.10 (the half-angle solution for theta4); it is sigma = +1,
 B to the left of the directed line A -> O4, at every position and for every linkage (a
 hypothesis test checks this against eq. 4.10 itself); ``crossed`` is sigma = -1. A fixed sigma is a
-continuous branch: the two roots only meet where sin(mu) = 0, the toggles, which a sweep reports.
+continuous branch: the two roots only meet where sin(mu) = 0, the toggles, which a sweep reports;
+a step between two samples that passes one is a crossing (``crossings``), also reported.
 
 Velocities and accelerations solve the loop's relative-motion equations (Norton eqs. 6.18 and 7.12
 in vector form): v_A + omega3 k x (B - A) = omega4 k x (B - O4), and the same for accelerations.
@@ -25,6 +26,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from linkstress.kinematics.crossings import (
+    CHANGE_POINT_TOLERANCE,
+    KIND_CHANGE_POINT,
+    KIND_TOGGLE,
+    BranchPoint,
+    find_crossings,
+)
 from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.results import JointMotion, LinkMotion, LoopMotion, fixed_link, stack_xy
 
@@ -98,12 +106,15 @@ def solve_fourbar(
     omega2: ArrayLike = 0.0,
     alpha2: ArrayLike = 0.0,
     frame_joints: Mapping[str, tuple[int, int]] | None = None,
+    steps: ArrayLike | None = None,
 ) -> LoopMotion:
     """Angles, angular velocities and accelerations of every link, and joint motions, for a sweep.
 
     theta2 (P,) [rad]: crank angle O2 -> A, counter-clockwise from the ground frame's +x;
     omega2 [rad/s] and alpha2 [rad/s^2] scalars or (P,). ``frame_joints`` names each role's joint
-    pair for the returned ``LinkMotion``s (default (0, 1) for every role).
+    pair for the returned ``LinkMotion``s (default (0, 1) for every role). ``steps`` (P - 1,) [rad]:
+    how far the crank turns from each position to the next, for the crossings of toggles and change
+    points (default: the differences of theta2).
     """
     theta2 = np.atleast_1d(np.asarray(theta2, float))
     n = theta2.shape[0]
@@ -172,10 +183,56 @@ def solve_fourbar(
         "B": JointMotion(pos_b, vel_b, acc_b),
         "O4": JointMotion(o4, zero2, zero2),
     }
+    crossings = ()
+    points = branch_points(linkage)
+    if points and n > 1:
+        side = sigma * (sin2 * math.cos(linkage.ground_angle) - cos2 * math.sin(linkage.ground_angle))
+        crossings = find_crossings(
+            points, theta2, np.diff(theta2) if steps is None else np.asarray(steps, float),
+            status == FEASIBLE, linkage.branch, side, mode_names(linkage),
+        )
     return LoopMotion(
         "four-bar", theta2, theta3, theta4, w2, omega3, omega4, al2, alpha3, alpha4,
-        joints, links, status, REASONS,
+        joints, links, status, REASONS, crossings=crossings,
     )
+
+
+def branch_points(linkage: FourBar) -> tuple[BranchPoint, ...]:
+    """Crank angles [rad] where |A O4| = b + c or |b - c| (law of cosines in the crank angle
+    phi = theta2 - theta1). Where a + d = b + c (at phi = pi) or |a - d| = |b - c| (at phi = 0) to
+    ``CHANGE_POINT_TOLERANCE`` of the perimeter, the distance only touches its limit: a change point."""
+    a, b, c, d = linkage.lengths
+    tol = CHANGE_POINT_TOLERANCE * (a + b + c + d)
+    theta1 = linkage.ground_angle
+    points = []
+    for target, reach, phi_touch in ((b + c, a + d, math.pi), (abs(b - c), abs(a - d), 0.0)):
+        if abs(reach - target) <= tol:
+            points.append(BranchPoint(theta1 + phi_touch, KIND_CHANGE_POINT))
+            continue
+        cos_phi = (a * a + d * d - target * target) / (2 * a * d)
+        if -1.0 < cos_phi < 1.0:
+            phi = math.acos(cos_phi)
+            points += [BranchPoint(theta1 + phi, KIND_TOGGLE), BranchPoint(theta1 - phi, KIND_TOGGLE)]
+    return tuple(points)
+
+
+def mode_names(linkage: FourBar) -> tuple[str, str] | None:
+    """Names of a double change-point four-bar's two assembly modes: the first where
+    sigma sin(phi) > 0, the second elsewhere (None for other linkages).
+
+    The two roots B are mirror images across the line A -> O4, and root sigma lies on side sigma.
+    With a = c, b = d the parallelogram's B (A + O4 - O2) lies on side sin(phi); with a = d, b = c
+    O2 lies on side -sin(phi) and B on the far side makes a convex kite; with a = b, c = d one root
+    is B = O2 itself (the output stands still), which lies on side -sin(phi)."""
+    a, b, c, d = linkage.lengths
+    tol = CHANGE_POINT_TOLERANCE * (a + b + c + d)
+    if abs(a - c) <= tol and abs(b - d) <= tol:
+        return "parallelogram", "antiparallelogram"
+    if abs(a - d) <= tol and abs(b - c) <= tol:
+        return "kite (convex)", "dart (concave)"
+    if abs(a - b) <= tol and abs(c - d) <= tol:
+        return "kite", "folded (B held at O2, output still)"
+    return None
 
 
 def _status(one_minus_cos, one_plus_cos, cos2, sin2, theta1: float):

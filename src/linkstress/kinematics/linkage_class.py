@@ -13,11 +13,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkstress.kinematics.crossings import CHANGE_POINT_TOLERANCE
 from linkstress.kinematics.fourbar import FourBar
+from linkstress.kinematics.fourbar import branch_points as fourbar_branch_points
 from linkstress.kinematics.slider_crank import SliderCrank
-
-CHANGE_POINT_TOLERANCE = 1e-9
-"""S + L and P + Q closer than this fraction of the perimeter make a change-point linkage."""
+from linkstress.kinematics.slider_crank import branch_points as slider_branch_points
 
 # Norton, Design of Machinery, table 2-4 (Barker's classification), by type number.
 BARKER_TYPES = {
@@ -83,11 +83,9 @@ def classify(linkage: FourBar) -> LinkageClass:
 
 def toggle_angles(linkage: FourBar) -> tuple[float, ...]:
     """Input angles [rad] where coupler and output are aligned (|A O4| = b + c or |b - c|), sorted
-    in [theta1 - pi, theta1 + pi). At these the crank cannot drive the output (transmission angle 0)."""
-    a, b, c, d = linkage.lengths
-    theta1 = linkage.ground_angle
-    angles = [theta1 + phi for target in (b + c, abs(b - c)) for phi in _angles_at_distance(a, d, target)]
-    return _sorted_around(angles, theta1)
+    in [theta1 - pi, theta1 + pi). At these the crank cannot drive the output (transmission angle 0).
+    A change point (a + d = b + c or |a - d| = |b - c| to ``CHANGE_POINT_TOLERANCE``) is one of them."""
+    return _sorted_around([point.angle for point in fourbar_branch_points(linkage)], linkage.ground_angle)
 
 
 def feasible_input_ranges(linkage: FourBar) -> tuple[tuple[float, float], ...]:
@@ -136,14 +134,9 @@ def output_limits(linkage: FourBar) -> tuple[LimitPosition, ...]:
 
 
 def slider_toggle_angles(linkage: SliderCrank) -> tuple[float, ...]:
-    """Input angles [rad] where the rod is perpendicular to the slider line: e - a sin(phi) = +-b."""
-    a, b, e = linkage.crank, linkage.rod, linkage.offset
-    angles = []
-    for sin_phi in ((e - b) / a, (e + b) / a):
-        if -1.0 <= sin_phi <= 1.0:
-            phi = math.asin(sin_phi)
-            angles += [phi, math.pi - phi]
-    return _sorted_around([linkage.slider_angle + p for p in angles], linkage.slider_angle)
+    """Input angles [rad] where the rod is perpendicular to the slider line: e - a sin(phi) = +-b
+    (a change point where |e -+ b| = a to ``CHANGE_POINT_TOLERANCE``)."""
+    return _sorted_around([point.angle for point in slider_branch_points(linkage)], linkage.slider_angle)
 
 
 def slider_feasible_input_ranges(linkage: SliderCrank) -> tuple[tuple[float, float], ...]:
@@ -199,14 +192,6 @@ def _angle_at_distance(a: float, d: float, target: float, default: float) -> flo
     if not -1.0 < cos_phi < 1.0:
         return default
     return math.acos(cos_phi)
-
-
-def _angles_at_distance(a: float, d: float, target: float) -> list[float]:
-    cos_phi = (a * a + d * d - target * target) / (2 * a * d)
-    if not -1.0 <= cos_phi <= 1.0:
-        return []
-    phi = math.acos(cos_phi)
-    return [phi, -phi] if 0 < phi < math.pi else [phi]
 
 
 def _mirror_intervals(phi_lo: float, phi_hi: float, theta1: float) -> tuple[tuple[float, float], ...]:

@@ -77,6 +77,22 @@ class JointMotion:
 
 
 @dataclass(frozen=True)
+class Crossing:
+    """A step from position ``position - 1`` to ``position`` that passes branch point ``kind`` at
+    crank angle ``angle`` [rad] (the 2 pi representative inside the step). ``root`` is the branch
+    ("open" or "crossed") the rows from ``position`` follow; at a change point with named assembly
+    modes, ``modes`` names both ("parallelogram or antiparallelogram") and ``mode`` the one those
+    rows are in, else both are ""."""
+
+    position: int
+    angle: float
+    kind: str
+    root: str
+    mode: str = ""
+    modes: str = ""
+
+
+@dataclass(frozen=True)
 class LoopMotion:
     """One loop (four-bar or slider-crank) over P positions.
 
@@ -86,6 +102,8 @@ class LoopMotion:
     distance along its line from the foot of the perpendicular from O2, with its velocity and
     acceleration (None for a four-bar). ``status`` (P,) indexes ``reason_texts`` ("" = feasible).
     ``links`` maps each role ("crank", "coupler", "output", "ground", "slider") to its motion.
+    ``crossings``: the steps between two feasible positions that pass one of the loop's toggles or
+    change points, in row order (``kinematics.crossings``).
     """
 
     kind: str
@@ -105,6 +123,7 @@ class LoopMotion:
     slider_position: FloatArray | None = None
     slider_velocity: FloatArray | None = None
     slider_acceleration: FloatArray | None = None
+    crossings: tuple[Crossing, ...] = ()
 
     @property
     def feasible(self) -> NDArray[np.bool_]:
@@ -134,6 +153,8 @@ class MachineMotion:
     crank; ``time`` (P,) [s] when the motion is a function of time, else None. ``feasible`` (P,) is
     False where any loop is infeasible, ``reasons`` says why ("" where feasible). ``links`` holds every
     link by scene name (grounds with zero motion); ``loops`` every loop by mechanism name.
+    ``crossings``: (row, message) for every step into that row that passes a loop's toggle or
+    change point between feasible positions (the row stays feasible; ``warnings`` per position).
     """
 
     input_angle: FloatArray
@@ -144,6 +165,15 @@ class MachineMotion:
     reasons: tuple[str, ...]
     links: dict[str, LinkMotion]
     loops: dict[str, LoopMotion]
+    crossings: tuple[tuple[int, str], ...] = ()
+
+    @cached_property
+    def warnings(self) -> tuple[tuple[str, ...], ...]:
+        """Per position: the messages of the crossings into that row (empty almost everywhere)."""
+        per_row: list[tuple[str, ...]] = [()] * self.input_angle.shape[0]
+        for row, message in self.crossings:
+            per_row[row] += (message,)
+        return tuple(per_row)
 
 
 def stack_xy(x: FloatArray, y: FloatArray) -> FloatArray:

@@ -22,6 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from linkstress.kinematics.crossings import (
+    CHANGE_POINT_TOLERANCE,
+    KIND_CHANGE_POINT,
+    KIND_TOGGLE,
+    BranchPoint,
+    find_crossings,
+)
 from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.fourbar import BRANCHES, TOGGLE_TOLERANCE
 from linkstress.kinematics.results import JointMotion, LinkMotion, LoopMotion, fixed_link, stack_xy
@@ -81,6 +88,7 @@ def solve_slider_crank(
     omega2: ArrayLike = 0.0,
     alpha2: ArrayLike = 0.0,
     frame_joints: Mapping[str, tuple[int, int]] | None = None,
+    steps: ArrayLike | None = None,
 ) -> LoopMotion:
     """Crank, rod and slider motion for a sweep of crank angles ``theta2`` (P,) [rad].
 
@@ -88,6 +96,8 @@ def solve_slider_crank(
     line's angle (constant) and ``slider_position`` its x [m] with velocity and acceleration. Its
     "slider" link motion is the slider body's (frame at B along the line) and its "ground" the
     fixed frame at O2 along the line (a machine reports its grounds' own drawn axes instead).
+    ``steps`` (P - 1,) [rad]: how far the crank turns from each position to the next, for the
+    crossings of toggles and change points (default: the differences of theta2).
     """
     theta2 = np.atleast_1d(np.asarray(theta2, float))
     n = theta2.shape[0]
@@ -148,7 +158,32 @@ def solve_slider_crank(
         "A": JointMotion(pos_a, vel_a, acc_a),
         "B": JointMotion(pos_b, vel_b, acc_b),
     }
+    crossings = ()
+    points = branch_points(linkage)
+    if points and n > 1:
+        crossings = find_crossings(
+            points, theta2, np.diff(theta2) if steps is None else np.asarray(steps, float),
+            status == FEASIBLE, linkage.branch,
+        )
     return LoopMotion(
         "slider-crank", theta2, theta3, line, w2, omega3, zero, al2, alpha3, zero,
-        joints, links, status, REASONS, x, x_dot, x_ddot,
+        joints, links, status, REASONS, x, x_dot, x_ddot, crossings,
     )
+
+
+def branch_points(linkage: SliderCrank) -> tuple[BranchPoint, ...]:
+    """Crank angles [rad] where the rod is perpendicular to the slider line: a sin(phi) = e -+ b,
+    phi = theta2 - slider_angle. Where |e -+ b| = a to ``CHANGE_POINT_TOLERANCE`` of a + b + |e|,
+    sin(phi) only touches +-1: a change point."""
+    a, b, e = linkage.crank, linkage.rod, linkage.offset
+    tol = CHANGE_POINT_TOLERANCE * (a + b + abs(e))
+    theta1 = linkage.slider_angle
+    points = []
+    for reach in (e - b, e + b):
+        if abs(abs(reach) - a) <= tol:
+            points.append(BranchPoint(theta1 + math.copysign(math.pi / 2, reach), KIND_CHANGE_POINT))
+            continue
+        if -a < reach < a:
+            phi = math.asin(reach / a)
+            points += [BranchPoint(theta1 + phi, KIND_TOGGLE), BranchPoint(theta1 + math.pi - phi, KIND_TOGGLE)]
+    return tuple(points)

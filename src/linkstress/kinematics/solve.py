@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
+from linkstress.kinematics.crossings import describe, wrapped_steps
 from linkstress.kinematics.fourbar import FourBar, solve_fourbar
 from linkstress.kinematics.machine import Loop, Machine
 from linkstress.kinematics.motion import InputMotion
@@ -17,15 +20,37 @@ def solve_machine(machine: Machine, motion: InputMotion) -> MachineMotion:
     A driven loop's crank angle is its driver's axis angle (theta2 or theta4) plus
     ``machine.drive_offset``; its speed and acceleration are the driver's. A position is feasible
     when every loop is; its reason is the first failing loop's, in solving order.
+
+    A step between two positions at which a loop and its drivers assemble, that passes one of the
+    loop's toggles or change points, is a crossing (``LoopMotion.crossings``); the row after it
+    stays feasible (its values are exact for the assembly mode the closed form takes) and carries
+    the crossing's message in ``MachineMotion.warnings``. A driven crank's turn per step is its
+    driver's crank's, or its driver's output's taken the short way round.
     """
     n = motion.n_positions
     loops: dict[str, LoopMotion] = {}
     links: dict[str, LinkMotion] = {}
+    steps: dict[str, np.ndarray] = {}
+    assembled: dict[str, np.ndarray] = {}
+    crossings: list[tuple[int, str]] = []
     reasons = np.full(n, "", dtype=object)
     feasible = np.ones(n, bool)
     for loop in machine.loops:
         theta2, omega2, alpha2 = _crank_input(machine, loop, loops, motion)
-        result = _solve_loop(machine, loop, theta2, omega2, alpha2)
+        steps[loop.name] = _crank_steps(loop, loops, steps, motion)
+        upstream = np.ones(n, bool) if loop.driven_by is None else assembled[loop.driven_by.loop]
+        result = _solve_loop(machine, loop, theta2, omega2, alpha2, steps[loop.name])
+        result = replace(result, crossings=tuple(
+            c for c in result.crossings if upstream[c.position - 1] and upstream[c.position]
+        ))
+        assembled[loop.name] = upstream & result.feasible
+        crossings += [
+            (c.position, describe(
+                loop.name, loop.kind, c, float(motion.angle_deg[c.position - 1]),
+                float(motion.angle_deg[c.position]), loop.driven_by is None,
+            ))
+            for c in result.crossings
+        ]
         loops[loop.name] = result
         for role_name, role in loop.roles.items():
             if role.link in links:
@@ -44,7 +69,7 @@ def solve_machine(machine: Machine, motion: InputMotion) -> MachineMotion:
             feasible &= result.status == 0
     return MachineMotion(
         motion.angle, motion.speed, motion.acceleration, motion.time, feasible,
-        tuple(reasons.tolist()), links, loops,
+        tuple(reasons.tolist()), links, loops, tuple(sorted(crossings, key=lambda c: c[0])),
     )
 
 
@@ -60,9 +85,19 @@ def _crank_input(machine: Machine, loop: Loop, solved: dict[str, LoopMotion], mo
     return angle + machine.drive_offset(loop), speed, acceleration
 
 
-def _solve_loop(machine: Machine, loop: Loop, theta2, omega2, alpha2) -> LoopMotion:
+def _crank_steps(loop: Loop, solved: dict[str, LoopMotion], steps: dict[str, np.ndarray], motion: InputMotion):
+    """The loop's crank turn [rad] from each position to the next."""
+    drive = loop.driven_by
+    if drive is None:
+        return np.diff(motion.angle)
+    if drive.role == "crank":
+        return steps[drive.loop]
+    return wrapped_steps(solved[drive.loop].theta4)
+
+
+def _solve_loop(machine: Machine, loop: Loop, theta2, omega2, alpha2, steps) -> LoopMotion:
     linkage = machine.geometry(loop)
     frames = {name: role.joints for name, role in loop.roles.items()}
     if isinstance(linkage, FourBar):
-        return solve_fourbar(linkage, theta2, omega2, alpha2, frames)
-    return solve_slider_crank(linkage, theta2, omega2, alpha2, frames)
+        return solve_fourbar(linkage, theta2, omega2, alpha2, frames, steps)
+    return solve_slider_crank(linkage, theta2, omega2, alpha2, frames, steps)

@@ -1,7 +1,8 @@
 """JSON records of an analysis: DESIGN.md's ``analyze`` shape, extended, never renamed.
 
-Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``transmission_angle_deg`` per loop
-(feasible positions); per link ``angle_deg``,
+Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``warnings`` (only where the step into
+this position passed a loop's toggle or change point: one message each, see
+``kinematics.crossings``), ``transmission_angle_deg`` per loop (feasible positions); per link ``angle_deg``,
 ``omega_rad_s``, ``alpha_rad_s2``, ``acc_G_m_s2`` (where the centre of mass is known),
 ``curved`` (the link's neutral axis bends off a straight line, ``linkstress.curvature``: its
 straight-beam values fall short),
@@ -89,9 +90,13 @@ def position_records(result: AnalysisResult, stations: bool = False) -> list[dic
     mechanism_values = _mechanism_lists(result)
     transmission = {name: np.degrees(loop.transmission_angle).tolist() for name, loop in result.kinematics.loops.items()}
     feasible = result.feasible.tolist()
+    warnings = result.kinematics.warnings
     records = []
     for k, angle in enumerate(result.scene.motion.angle_deg.tolist()):
-        record = {"input_angle_deg": angle, "feasible": feasible[k], "reason": result.reasons[k], "links": {}}
+        record = {"input_angle_deg": angle, "feasible": feasible[k], "reason": result.reasons[k]}
+        if warnings[k]:
+            record["warnings"] = list(warnings[k])
+        record["links"] = {}
         if feasible[k]:
             record["links"] = {name: _at(values, k) for name, values in link_values.items()}
             record["transmission_angle_deg"] = {name: angles[k] for name, angles in transmission.items()}

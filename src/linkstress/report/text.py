@@ -46,6 +46,7 @@ def report(result: AnalysisResult) -> str:
         parts.append(stress_table(result))
     parts += curved_warnings(result)
     parts += transmission_warnings(result)
+    parts += crossing_warnings(result)
     bad = [(a, r) for a, r, ok in zip(scene.motion.angle_deg.tolist(), result.reasons, feasible) if not ok]
     if bad:
         parts.append("infeasible positions:\n" + "\n".join(f"  {a:.6g} deg: {r}" for a, r in bad))
@@ -131,6 +132,17 @@ def curved_warnings(result: AnalysisResult) -> list[str]:
             f"on a curved bar by about 10-20 %{factor}; run linkstress validate {result.scene.path.name} for the FEA value"
         )
     return lines
+
+
+def crossing_warnings(result: AnalysisResult) -> list[str]:
+    """One block with a warning per step that passed a loop's toggle or change point between
+    feasible positions (at most MAX_ROWS, then a count; --json has each on its position)."""
+    crossings = result.kinematics.crossings
+    lines = [f"warning: {message}" for _, message in crossings[:MAX_ROWS]]
+    if len(crossings) > MAX_ROWS:
+        more = len(crossings) - MAX_ROWS
+        lines.append(f"warning: {more} more crossings of toggles or change points; --json has every one")
+    return ["\n".join(lines)] if lines else []
 
 
 def shown_positions(result: AnalysisResult) -> tuple[np.ndarray, str]:
