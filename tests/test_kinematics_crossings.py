@@ -309,6 +309,14 @@ def test_analyze_json_and_text_carry_the_crossing_on_its_row(tmp_path, capsys):
     assert f"warning: {warned[180.5][0]}" in text
 
 
+def test_the_html_report_carries_the_crossing_as_a_warning(tmp_path, capsys):
+    scene = tmp_path / "parallelogram.toml"
+    scene.write_text(textwrap.dedent(PARALLELOGRAM_SCENE.format(start=170.5, stop=190.5)))
+    page = tmp_path / "report.html"
+    assert main(["analyze", str(scene), "--html", str(page)]) == 0
+    assert "crossed between input 179.5 and 180.5 deg" in page.read_text()
+
+
 def test_analyze_json_has_no_warnings_for_a_sweep_that_stops_short(tmp_path, capsys):
     scene = tmp_path / "parallelogram.toml"
     scene.write_text(textwrap.dedent(PARALLELOGRAM_SCENE.format(start=159.5, stop=179.5)))

@@ -25,7 +25,7 @@ from linkstress.report.figures import (
 )
 from linkstress.report.maxima import link_figures, worst_position
 from linkstress.report.records import link_columns
-from linkstress.report.text import curved_warnings, figure_lines, transmission_warnings
+from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings
 from linkstress.safety import link_safety_factors
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
@@ -133,7 +133,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
         f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} positions, '
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
         *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
-        *(f"<p><b>{html.escape(line)}</b></p>" for line in curved_warnings(result) + transmission_warnings(result)),
+        *(f"<p><b>{html.escape(line)}</b></p>" for line in _warning_lines(result)),
         "<h2>Loads applied</h2>", loads_html(result),
         "<h2>Mechanism</h2>",
     ]
@@ -298,3 +298,10 @@ def _forces_table(result: AnalysisResult) -> str:
             if mech.driving_force is not None:
                 rows.append((angle, name, "P14 [N]", float(mech.driving_force[k]), ""))
     return table_html(("input [deg]", "mechanism", "force", "x [N]", "y [N]"), rows)
+
+
+def _warning_lines(result: AnalysisResult) -> list[str]:
+    """The text report's warnings, a paragraph each: curved links, low transmission angles and
+    steps that crossed a toggle or change point."""
+    blocks = curved_warnings(result) + transmission_warnings(result) + crossing_warnings(result)
+    return [line for block in blocks for line in block.splitlines()]
