@@ -80,9 +80,9 @@ def fea_safety_factor(result: ValidationResult, name: str, fea_peak: float) -> f
 
 
 def pin_estimate(c: LinkComparison) -> float | None:
-    """The largest Kt x nominal estimate at the link's pin holes over the compared positions."""
-    values = [h.estimate.max() for h in c.beam.pin_holes if h.estimate is not None]
-    return float(max(values)) if values else None
+    """The largest Kt x nominal estimate inside the Kt tables at the link's pin holes over the compared positions."""
+    values = [e for e in (h.largest(slice(None)) for h in c.beam.pin_holes) if e is not None]
+    return max(values) if values else None
 
 
 def _ground(result: ValidationResult, name: str, local: np.ndarray) -> np.ndarray:

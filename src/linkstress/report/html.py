@@ -198,7 +198,8 @@ def _pin_holes_table(result: AnalysisResult) -> str:
         for hole in stress.pin_holes:
             if not ok.any():
                 continue
-            estimate = "beyond the Kt table" if hole.estimate is None else float(hole.estimate[ok].max())
+            largest = hole.largest(ok)
+            estimate = "outside the Kt tables" if largest is None else largest
             rows.append((name, hole.joint, hole.diameter, hole.depth, "-" if hole.kt is None else hole.kt,
                          float(hole.nominal[ok].max()), estimate))
     if not rows:

@@ -168,8 +168,8 @@ def stress_table(result: AnalysisResult) -> str:
         k = int(peak.argmax())
         where = result.max_location(name)[k]
         away = "-" if stress.max_away_from_holes is None else float(np.where(ok, stress.max_away_from_holes, -1.0).max())
-        estimates = [h.estimate[ok].max() for h in stress.pin_holes if h.estimate is not None]
-        pin = float(max(estimates)) if estimates else "-"
+        estimates = [e for e in (h.largest(ok) for h in stress.pin_holes) if e is not None]
+        pin = max(estimates) if estimates else "-"
         row = [
             name, float(stress.max_von_mises[k]), float(angles[k]), f"({where[0]:.4g}, {where[1]:.4g})",
             away, pin, float(stress.forces.mismatch[ok].max()),
