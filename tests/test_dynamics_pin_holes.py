@@ -15,6 +15,8 @@ from shapely.geometry import Point, Polygon, box
 from linkstress.dynamics.pin_holes import (
     END_DISTANCES, RATIOS, ROUND_KT, SHANKS, SQUARE_KT, pin_hole_estimates, table_kt, ROUND, SQUARE,
 )
+from linkstress.builders import stadium
+from linkstress.curves import arc_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
@@ -26,7 +28,7 @@ H, SPACING, T, P = 0.04, 0.2, 0.005, 1000.0
 
 def lug(shell, d: float) -> LinkProfile:
     """``shell`` with pin holes of diameter ``d`` [m] at (0, 0) and (SPACING, 0)."""
-    holes = [Point(c).buffer(d / 2, 256).exterior.coords[::-1] for c in ((0.0, 0.0), (SPACING, 0.0))]
+    holes = [Point(c).buffer(d / 2, 64).exterior.coords[::-1] for c in ((0.0, 0.0), (SPACING, 0.0))]
     return LinkProfile(Polygon(shell.exterior.coords, holes), np.array([[0.0, 0.0], [SPACING, 0.0]]), T,
                        STRUCTURAL_STEEL, "lug")
 
@@ -37,8 +39,13 @@ def square_ended(d: float, e: float) -> LinkProfile:
 
 def round_ended(d: float, shank: float = H) -> LinkProfile:
     """Ends of radius H / 2 concentric with the holes on a shank ``shank`` [m] wide (a boss if < H)."""
-    ends = Point(0, 0).buffer(H / 2, 256).union(Point(SPACING, 0).buffer(H / 2, 256))
-    return lug(ends.union(box(0.0, -shank / 2, SPACING, shank / 2)), d)
+    if shank == H:  # the stadium: linkstress's own builder, no tangent seams for the mesher
+        return stadium(SPACING, H, T, STRUCTURAL_STEEL, hole_diameter=d, name="lug")
+    # Each end's arc runs round to where the shank's sides meet it, pi - a from the far end's axis.
+    a = math.asin(shank / H)
+    right = arc_points((SPACING, 0.0), H / 2, a - math.pi, math.pi - a, 1e-7)
+    left = arc_points((0.0, 0.0), H / 2, a, 2 * math.pi - a, 1e-7)
+    return lug(Polygon(np.vstack([right, left])), d)
 
 
 def pin_loads(*forces) -> LinkLoadCase:
