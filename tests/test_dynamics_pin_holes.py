@@ -6,6 +6,7 @@ pin holes 200 mm apart, pulled apart by 1 kN pins along the axis unless a test s
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -20,6 +21,8 @@ from linkstress.curves import arc_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
+from linkstress.report.records import _pin_hole_lists
+from linkstress.safety import finite_or_none, pin_hole_factor
 from linkstress.validation.compare import compare_link
 from linkstress.validation.pin_hole_kt import lug_kt, round_lug, square_lug
 
@@ -177,3 +180,28 @@ def test_estimate_is_within_ten_percent_of_the_fea_peak_at_the_hole(name, link):
     assert not hole.outside[0], name
     fea = fea_peak_at_hole(link, loads)
     assert hole.estimate[0] == pytest.approx(fea, rel=0.10), name
+
+
+# -- what reaches the safety factors and the JSON ---------------------------------------------
+
+
+def test_a_position_outside_the_table_has_no_estimate_in_the_safety_factor_or_the_json():
+    # Position 0 pulls along the lug (inside), position 1 pushes along the shank (outside).
+    (hole, other) = pin_hole_estimates(square_ended(0.012, 0.03), pin_loads(PULL, (P, 0.0)))
+    factors = pin_hole_factor((hole, other), 250e6)
+    assert factors[0] == pytest.approx(250e6 / max(hole.estimate[0], other.estimate[0]), rel=1e-12)
+    assert finite_or_none(factors)[1] is None
+    record = _pin_hole_lists(hole)
+    assert record["estimate_pa"][0] == pytest.approx(hole.estimate[0], rel=1e-15) and record["estimate_pa"][1] is None
+    assert record["kt_at_position"][1] is None and record["kt"] == pytest.approx(hole.kts[0], rel=1e-15)
+    assert record["kt_outside_table"] == [False, True]
+    assert record["kt_outside_reason"][0] is None and "pushing along the shank" in record["kt_outside_reason"][1]
+    assert record["end_shape"] == ["square", "square"]
+    assert "OUTSIDE the Kt tables at 1 of 2 positions" in record["basis"]
+    json.dumps(record, allow_nan=False)
+
+
+def test_a_link_outside_the_table_everywhere_has_no_pin_hole_factor():
+    (hole, other) = pin_hole_estimates(square_ended(0.032, 0.04), pin_loads(PULL, (0.0, P)))
+    assert hole.outside.all() and other.outside.all() and hole.kt is None
+    assert pin_hole_factor((hole, other), 250e6) is None

@@ -9,7 +9,8 @@ hole, as everywhere in linkstress). Two end shapes:
   w <= H (w = H is the plain round-ended lug, w < H a boss on a narrower shank).
 
 Kt is the FEA's peak von Mises over the net-section stress P / ((H - d) t), from a three-level
-refinement study; run ``python -m linkstress.validation.pin_hole_kt`` to reproduce the tables (it
+refinement study. A hole far from every edge (the open plate: d/H = 0.1, pulled or pushed, whichever
+is higher) gets one more value; run ``python -m linkstress.validation.pin_hole_kt`` to reproduce the tables (it
 prints them as the Python literals ``pin_holes.py`` holds).
 """
 
@@ -55,24 +56,26 @@ def _lug(shell: Polygon, d: float) -> LinkProfile:
     return LinkProfile(outline, np.array([[0.0, 0.0], [SPACING, 0.0]]), THICKNESS, STRUCTURAL_STEEL, "lug")
 
 
-def axial_pull() -> LinkLoadCase:
-    """+-FORCE [N] pulling the two pins apart along the lug (member frame of joints 0, 1)."""
+def axial_pull(sense: float = 1.0) -> LinkLoadCase:
+    """+-FORCE [N] pulling the two pins apart along the lug (member frame of joints 0, 1); ``sense``
+    -1 pushes them together."""
     return LinkLoadCase(
         frame_joints=(0, 1),
-        pin_forces=np.array([[[-FORCE, 0.0], [FORCE, 0.0]]]),
+        pin_forces=sense * np.array([[[-FORCE, 0.0], [FORCE, 0.0]]]),
         joint_couples=np.zeros((1, 2)),
         omega=np.zeros(1), alpha=np.zeros(1), origin_acceleration=np.zeros((1, 2)), gravity=np.zeros((1, 2)),
     )
 
 
-def lug_kt(lug: LinkProfile, levels: int = 3) -> tuple[float, float]:
+def lug_kt(lug: LinkProfile, levels: int = 3, sense: float = 1.0) -> tuple[float, float]:
     """(Kt, relative change of the hole's rim stress between the two finest meshes) of ``lug`` pulled
-    by ``axial_pull``."""
+    (``sense`` 1) or pushed (-1) by ``axial_pull``."""
     d = 2 * float(np.sqrt(lug.holes[1][0] / np.pi))
     settings = MeshSettings(size=HEIGHT / 5, hole_size=d / 16, stations=(SPACING / 2,))
-    # The peak lies on the hole's rim at +-90 degrees from the load: watch those points converge.
-    points = np.array([[0.0, d / 2], [0.0, -d / 2]])
-    study = convergence_study(lug, axial_pull(), settings, points, levels=levels)
+    # A pulled lug peaks on the hole's rim at +-90 degrees from the load, a pushed one where the pin
+    # bears: watch those points converge.
+    points = np.array([[0.0, d / 2], [0.0, -d / 2], [sense * d / 2, 0.0]])
+    study = convergence_study(lug, axial_pull(sense), settings, points, levels=levels)
     nominal = FORCE / ((HEIGHT - d) * THICKNESS)
     return float(study.finest.von_mises_peak[0] / nominal), float(study.change.max())
 
@@ -87,12 +90,20 @@ def round_table() -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(round(lug_kt(round_lug(r, w))[0], 3) for w in SHANKS) for r in RATIOS)
 
 
+def open_plate_kt() -> float:
+    """Kt of a hole with no edge within 5 d ahead of or beside the pin: the larger of the square lug
+    with d/H = 0.1, e = H pulled and pushed (the pushed one, which bears on the long shank)."""
+    lug = square_lug(RATIOS[0], 1.0)
+    return round(max(lug_kt(lug)[0], lug_kt(lug, sense=-1.0)[0]), 3)
+
+
 def main() -> None:
     for name, table in (("SQUARE_KT", square_table()), ("ROUND_KT", round_table())):
         print(f"{name} = (")
         for row in table:
             print("    (" + ", ".join(f"{kt:.3f}" for kt in row) + "),")
         print(")")
+    print(f"OPEN_KT = {open_plate_kt():.3f}")
 
 
 if __name__ == "__main__":

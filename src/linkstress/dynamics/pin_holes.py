@@ -5,29 +5,32 @@ section stresses and, separately, this estimate, labelled as such wherever it is
 
 What the pin force sees is measured from the link's outline, per direction of the force (member
 frame), on a grid of ``DIRECTIONS`` directions computed once per link and read per position by the
-force's angle (linear between the two neighbouring directions):
+force's angle (linear between the two neighbouring directions; a position is outside the tables
+when either neighbour it draws on is):
 
-- the width H across the force through the hole's centre (the chord of the outline perpendicular
-  to the force, the hole itself counted as material);
 - the end distance e from the hole's centre to the outline along the force (the material the pin
-  bears against);
-- the end shape: the outline ahead of the hole, along rays ``SHAPE_RAYS_DEG`` off the force, fitted
-  by a round end concentric with the hole (every ray e long) and by a square end (a straight end e
-  ahead between straight sides H / 2 either side); the closer fit within ``SHAPE_TOLERANCE`` wins;
-- for a round end, the width w of the shank behind it (the chord across the force e behind the centre).
+  bears against), and the distances to the outline at +-90 degrees from it, each at most
+  ``SIDE_REACH`` d (beside a small hole farther material does not change the peak);
+- the end shape, from rays ``SHAPE_RAYS_DEG`` off the force: round (every ray e long: an end
+  concentric with the hole), square (a straight end, square to the force within
+  ``SQUARE_TILTS_DEG``, between straight sides), open (no edge within SIDE_REACH d anywhere in the
+  half-plane ahead of the pin) or other;
+- the width H across the force through the hole's centre: the sum of the two side distances, and
+  for a round end its diameter 2 e; for a round end also the shank width w behind it (the chord
+  across the force e behind the centre, at most 2 e).
 
 The nominal stress is the net-section stress P / ((H - d) t) of the pin force P over the two
 ligaments beside the hole. Kt comes from linkstress's own plane-stress FEA of pin-loaded lugs
-(``python -m linkstress.validation.pin_hole_kt`` reproduces both tables): square ends over d/H and
-e/H, round ends (e = H / 2) over d/H and w/H; each value from a three-level refinement study, the
-peak von Mises over P / ((H - d) t). Kt is linear in log d/H and linear in e/H or w/H between table
-points; below the smallest table hole Kt follows the bearing asymptote Kt (d/H) / (1 - d/H) =
-constant of that row. Whatever the tables do not cover (d/H above 0.7, a square end's e/H outside
-0.5-1.5, a round end not concentric with the hole or on a shank outside 0.5-1 H, a hole off the
-middle of its width, an end neither round nor square) is flagged per position, with the reason, and
-kept out of safety factors. That includes a pin pushing along the shank (compression, e/H large):
-the FEA of pushed lugs puts the peak at the bearing contact, 17 % above the pulled lug's at d/H =
-0.3 and not converged by the rim-point refinement study, so it is not tabulated.
+(``python -m linkstress.validation.pin_hole_kt`` reproduces the tables): square ends over d/H and
+e/H, round ends (e = H / 2) over d/H and w/H, each value from a three-level refinement study, the
+peak von Mises over P / ((H - d) t); linear in log d/H and in e/H or w/H between table points;
+below the smallest table hole Kt (d/H) / (1 - d/H) (the peak over the bearing stress P / (d t))
+stays that row's. The open plate takes the larger of the pulled and the pushed lug at d/H = 0.1
+(1.55 P / (d t)). Whatever the tables do not cover (d/H above 0.7, a square end's e/H outside
+0.5-1.5, a round end's shank outside 0.5-1 H, a square end's hole off the middle of its width, an
+end neither round nor square) is flagged per position, with the reason, and kept out of safety
+factors. That includes a pin pushing along the shank of a lug (e/H above 1.5 with edges near): the
+FEA of pushed lugs puts the peak at the bearing contact, 17 % above the pulled lug's at d/H = 0.3.
 """
 
 from __future__ import annotations
@@ -66,7 +69,9 @@ ROUND_KT = (
     (4.660, 3.933, 3.161),
     (5.934, 4.390, 3.308),
 )
-"""Kt (rows RATIOS, columns END_DISTANCES or SHANKS) from ``linkstress.validation.pin_hole_kt``."""
+OPEN_KT = 13.963
+"""Kt (rows RATIOS, columns END_DISTANCES or SHANKS; and of the open plate at d/H = 0.1) from
+``linkstress.validation.pin_hole_kt``."""
 
 DIRECTIONS = 72
 """Force directions per hole on which the outline is measured (every 5 degrees)."""
@@ -85,6 +90,10 @@ RIM_REACH = 0.55
 polygon of 16 sides reaches 0.507 d from the centre of its area-equivalent circle)."""
 EDGE_SLACK = 0.01
 """Relative slack at the tables' edges: an end drawn on an edge measures within rounding of it."""
+SIDE_REACH = 0.5 / RATIOS[0]
+"""Material farther than this many hole diameters beside a hole does not change its peak: the width
+H is at most d / RATIOS[0] = 10 d, where Kt x nominal is already the bearing asymptote (the earlier
+table's d/H = 0.05 and 0.1 gave 1.496 and 1.481 P / (d t), within 1 %)."""
 CENTRING_TOLERANCE = 0.1
 """Largest offset of the hole from the middle of the width across the force, over H."""
 SOURCE = (
@@ -94,8 +103,8 @@ SOURCE = (
     "(validation/pin_hole_kt.py), read per position by the direction of the pin force; a couple carried "
     "through the pin (a keyed shaft) is not included"
 )
-SQUARE, ROUND, OTHER = 0, 1, 2
-SHAPE_NAMES = ("square", "round", "other")
+SQUARE, ROUND, OTHER, OPEN = 0, 1, 2, 3
+SHAPE_NAMES = ("square", "round", "other", "open")
 
 
 @dataclass(frozen=True)
@@ -179,8 +188,14 @@ def hole_outline(boundary: Boundary, centre: NDArray[np.float64], diameter: floa
     starts, ends = boundary.starts[~own], boundary.ends[~own]
     reach, _ = ray_hits(starts, ends, np.broadcast_to(centre, units.shape), units)
     quarter = DIRECTIONS // 4
-    end, left, right = reach, np.roll(reach, -quarter), np.roll(reach, quarter)
-    shape, misfit = _end_shape(reach, left, right)
+    # Beside a small hole only material within SIDE_REACH diameters counts (the bearing regime).
+    side_cap = SIDE_REACH * diameter
+    end = reach
+    left, right = np.minimum(np.roll(reach, -quarter), side_cap), np.minimum(np.roll(reach, quarter), side_cap)
+    shape, misfit = _end_shape(reach, left, right, side_cap)
+    # No edge within side_cap anywhere ahead of the pin (+-90 degrees): the open plate.
+    ahead = np.stack([np.roll(reach, -k) for k in range(-quarter, quarter + 1)]).min(axis=0)
+    shape = np.where(ahead >= side_cap, OPEN, shape)
     # A round end concentric with the hole is as wide as its diameter 2 e across any force that meets
     # it; a shank met obliquely measures wider than the end but is no wider than it.
     is_round = shape == ROUND
@@ -196,23 +211,25 @@ def hole_outline(boundary: Boundary, centre: NDArray[np.float64], diameter: floa
                        np.not_equal(reason, None), reason)
 
 
-def _end_shape(reach: NDArray[np.float64], left: NDArray[np.float64],
-               right: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+def _end_shape(reach: NDArray[np.float64], left: NDArray[np.float64], right: NDArray[np.float64],
+               side_cap: float) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
     """Per direction: the end shape code and the misfit of the better of the two shapes, from the
     distances ``reach`` (K,) [m] to the outline along each direction and ``left`` / ``right`` at +-90
-    degrees from it. The square end may be tilted by up to SQUARE_TILTS_DEG to the force."""
+    degrees from it (at most ``side_cap`` [m]; rays and shapes are cut off at lines that far to
+    either side). The square end may be tilted by up to SQUARE_TILTS_DEG to the force."""
     steps = np.array([int(round(d * DIRECTIONS / 360)) for d in SHAPE_RAYS_DEG])
     offsets = np.concatenate([steps, -steps])
     phi = 2 * np.pi * offsets / DIRECTIONS  # (R,)
-    measured = np.stack([np.roll(reach, -k) for k in offsets])  # (R, K)
-    round_misfit = np.abs(measured / reach - 1).max(axis=0)
+    beside = (side_cap / np.abs(np.sin(phi)))[:, None]  # (R, 1)
+    measured = np.minimum(np.stack([np.roll(reach, -k) for k in offsets]), beside)  # (R, K)
+    round_misfit = np.abs(measured / np.minimum(reach, beside) - 1).max(axis=0)
     tilt = np.radians(np.asarray(SQUARE_TILTS_DEG))[:, None, None]  # (T, 1, 1)
     # A straight end at right angles to a normal tilted by ``tilt`` from the force, with straight
     # sides along that normal through the points the +-90 degree rays meet.
     off = phi[None, :, None] - tilt
     end = reach * np.cos(tilt) / np.cos(off)
     side = np.where(off > 0, left * np.cos(tilt), right * np.cos(tilt)) / np.abs(np.sin(off))
-    square = np.where(np.abs(off) < np.pi / 2, np.minimum(end, side), side)
+    square = np.minimum(np.where(np.abs(off) < np.pi / 2, np.minimum(end, side), side), beside)
     square_misfit = np.abs(measured / square - 1).max(axis=1).min(axis=0)
     is_round = round_misfit <= np.minimum(square_misfit, SHAPE_TOLERANCE)
     is_square = ~is_round & (square_misfit <= SHAPE_TOLERANCE)
@@ -233,10 +250,11 @@ def _shank_width(starts: NDArray[np.float64], ends: NDArray[np.float64], centre:
 def table_kt(shape: NDArray[np.int64], d_over_h: NDArray[np.float64], e_over_h: NDArray[np.float64],
              w_over_h: NDArray[np.float64]) -> NDArray[np.float64]:
     """Kt of each geometry (shape codes, d/H, e/H, w/H) from its table, clamped to the table's edges
-    (the square table for OTHER)."""
-    return np.where(
-        shape == ROUND,
-        _interpolate(ROUND_KT, SHANKS, d_over_h, w_over_h),
+    (the square table for OTHER; the open plate's Kt x (d/H) / (1 - d/H) kept at its d/H = 0.1 value)."""
+    bearing = OPEN_KT * (RATIOS[0] / (1 - RATIOS[0])) * (1 - d_over_h) / d_over_h
+    return np.select(
+        [shape == ROUND, shape == OPEN],
+        [_interpolate(ROUND_KT, SHANKS, d_over_h, w_over_h), bearing],
         _interpolate(SQUARE_KT, END_DISTANCES, d_over_h, e_over_h),
     )
 
@@ -247,6 +265,8 @@ def _reason(shape: int, d_over_h: float, e_over_h: float, w_over_h: float, offse
         return (f"end neither square (within {SQUARE_TILTS_DEG[-1]} degrees of square to the force) nor round "
                 f"and concentric with the hole: the outline ahead of the hole is {misfit:.0%} off both")
     low, high = 1 - EDGE_SLACK, 1 + EDGE_SLACK
+    if shape == OPEN:
+        return None
     if d_over_h > RATIOS[-1] * high:
         return f"d/H = {d_over_h:.2f} above the table's {RATIOS[-1]}"
     if shape == ROUND and not SHANKS[0] * low <= w_over_h <= SHANKS[-1] * high:
