@@ -205,3 +205,14 @@ def test_a_link_outside_the_table_everywhere_has_no_pin_hole_factor():
     (hole, other) = pin_hole_estimates(square_ended(0.032, 0.04), pin_loads(PULL, (0.0, P)))
     assert hole.outside.all() and other.outside.all() and hole.kt is None
     assert pin_hole_factor((hole, other), 250e6) is None
+
+
+def test_a_small_hole_far_from_the_edges_is_an_open_plate_pulled_or_pushed():
+    # d = 4 mm in the 40 mm lug with its ends 40 mm away: no edge within 3 d ahead nor 5 d beside.
+    # The width counts 5 d each side (H = 10 d) and the estimate is the open plate's bearing peak
+    # 13.963 x 0.1 / 0.9 x P / (d t) = 1.551 P / (d t), pulled or pushed.
+    d = 0.004
+    (hole, _) = pin_hole_estimates(square_ended(d, 0.04), pin_loads(PULL, (P, 0.0), (0.0, P)))
+    assert hole.shape == ("open", "open", "open") and not hole.outside.any()
+    assert hole.width == pytest.approx(np.full(3, 10 * d), rel=1e-4)  # d: the polygon's area-equivalent
+    assert hole.estimate == pytest.approx(np.full(3, 13.963 * 0.1 / 0.9 * P / (d * T)), rel=1e-3)

@@ -91,10 +91,12 @@ def round_table() -> tuple[tuple[float, ...], ...]:
 
 
 def open_plate_kt() -> float:
-    """Kt of a hole with no edge within 5 d ahead of or beside the pin: the larger of the square lug
-    with d/H = 0.1, e = H pulled and pushed (the pushed one, which bears on the long shank)."""
-    lug = square_lug(RATIOS[0], 1.0)
-    return round(max(lug_kt(lug)[0], lug_kt(lug, sense=-1.0)[0]), 3)
+    """Kt of a hole far from the edges (none within 3 d ahead of the pin, 5 d beside it): the largest
+    of the square lug with d/H = 0.1 pulled with its end 3 d or 10 d ahead and pushed along its
+    shank (the pushed one, which bears on the long shank)."""
+    cases = [lug_kt(square_lug(RATIOS[0], 0.3)), lug_kt(square_lug(RATIOS[0], 1.0)),
+             lug_kt(square_lug(RATIOS[0], 1.0), sense=-1.0)]
+    return round(max(kt for kt, _ in cases), 3)
 
 
 def main() -> None:
