@@ -39,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from shapely.geometry import Polygon
 
 from linkstress.boundary import Boundary
 from linkstress.loads import LinkLoadCase
@@ -98,14 +99,18 @@ OPEN_REACH = 3.0
 """Hole diameters from the centre within which no edge may lie ahead of an open-plate pin: pulled
 square lugs of d/H = 0.1 with their end 3, 4, 5 and 10 d ahead give Kt 13.05, 13.08, 13.16, 13.33,
 all below the open plate's 13.963."""
+SIMPLIFY = 0.002
+"""The outline is measured with its vertices merged within this many diameters of the smallest pin
+hole (a 0.2 % error in e and H, well inside the tables' 1 % edge slack)."""
 CENTRING_TOLERANCE = 0.1
 """Largest offset of the hole from the middle of the width across the force, over H."""
 SOURCE = (
-    "estimate: Kt x P / ((H - d) t), H the link's width across the pin force through the hole centre, "
-    "for a close-fitting pin; Kt from linkstress plane-stress FEA of pin-loaded lugs with square ends "
-    "(over d/H, end distance e/H) and round ends concentric with the hole (over d/H, shank width w/H) "
-    "(validation/pin_hole_kt.py), read per position by the direction of the pin force; a couple carried "
-    "through the pin (a keyed shaft) is not included"
+    "estimate: Kt x P / ((H - d) t), H the link's width across the pin force through the hole centre "
+    "(at most 10 d; a round end's diameter), for a close-fitting pin; Kt from linkstress plane-stress FEA "
+    "of pin-loaded lugs with square ends (over d/H, end distance e/H), round ends concentric with the hole "
+    "(over d/H, shank width w/H) and holes far from the edges (validation/pin_hole_kt.py), read per "
+    "position by the direction of the pin force; a couple carried through the pin (a keyed shaft) is not "
+    "included"
 )
 SQUARE, ROUND, OTHER, OPEN = 0, 1, 2, 3
 SHAPE_NAMES = ("square", "round", "other", "open")
@@ -115,7 +120,7 @@ SHAPE_NAMES = ("square", "round", "other", "open")
 class HoleOutline:
     """What a pin force sees at one hole, per force direction k (angle 2 pi k / DIRECTIONS [rad],
     member frame): ``width`` H, ``end_distance`` e and ``shank`` w (K,) [m], ``shape`` (K,) codes
-    SQUARE / ROUND / OTHER, ``kt`` (K,) from the tables (clamped to their edges where outside),
+    SQUARE / ROUND / OTHER / OPEN, ``kt`` (K,) from the tables (clamped to their edges where outside),
     ``outside`` (K,) and ``reason`` (K,) object array: why Kt is outside the tables, None inside."""
 
     width: NDArray[np.float64]
@@ -195,11 +200,11 @@ def hole_outline(boundary: Boundary, centre: NDArray[np.float64], diameter: floa
     # Beside a small hole only material within SIDE_REACH diameters counts (the bearing regime).
     side_cap = SIDE_REACH * diameter
     end = reach
-    left, right = np.minimum(np.roll(reach, -quarter), side_cap), np.minimum(np.roll(reach, quarter), side_cap)
+    left, right = np.minimum(turned(reach, [quarter, -quarter]), side_cap)
     shape, misfit = _end_shape(reach, left, right, side_cap)
     # The open plate: no edge within OPEN_REACH d ahead of the pin (+-90 degrees), none within
     # SIDE_REACH d beside it.
-    ahead = np.stack([np.roll(reach, -k) for k in range(-quarter, quarter + 1)]).min(axis=0)
+    ahead = turned(reach, np.arange(-quarter, quarter + 1)).min(axis=0)
     is_open = (ahead >= OPEN_REACH * diameter) & (np.minimum(left, right) >= side_cap)
     shape = np.where(is_open, OPEN, shape)
     # A round end concentric with the hole is as wide as its diameter 2 e across any force that meets
@@ -217,6 +222,13 @@ def hole_outline(boundary: Boundary, centre: NDArray[np.float64], diameter: floa
                        np.not_equal(reason, None), reason)
 
 
+def turned(values: NDArray[np.float64], steps) -> NDArray[np.float64]:
+    """(S, K): per step count s of ``steps``, ``values`` (K,) of the direction s grid steps
+    counter-clockwise from each direction."""
+    k = np.arange(len(values))
+    return values[(k[None, :] + np.asarray(steps)[:, None]) % len(values)]
+
+
 def _end_shape(reach: NDArray[np.float64], left: NDArray[np.float64], right: NDArray[np.float64],
                side_cap: float) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
     """Per direction: the end shape code and the misfit of the better of the two shapes, from the
@@ -227,7 +239,7 @@ def _end_shape(reach: NDArray[np.float64], left: NDArray[np.float64], right: NDA
     offsets = np.concatenate([steps, -steps])
     phi = 2 * np.pi * offsets / DIRECTIONS  # (R,)
     beside = (side_cap / np.abs(np.sin(phi)))[:, None]  # (R, 1)
-    measured = np.minimum(np.stack([np.roll(reach, -k) for k in offsets]), beside)  # (R, K)
+    measured = np.minimum(turned(reach, offsets), beside)  # (R, K)
     round_misfit = np.abs(measured / np.minimum(reach, beside) - 1).max(axis=0)
     tilt = np.radians(np.asarray(SQUARE_TILTS_DEG))[:, None, None]  # (T, 1, 1)
     # A straight end at right angles to a normal tilted by ``tilt`` from the force, with straight
@@ -309,14 +321,19 @@ def link_outlines(link: LinkProfile, frame_joints: tuple[int, int]) -> dict[int,
     cache = link.__dict__.setdefault("_pin_hole_outlines", {})
     key = tuple(j % len(link.joints) for j in frame_joints)
     if key not in cache:
-        boundary = link.boundary(*frame_joints)
         joints = link.frame(*frame_joints).to_local(link.joints)
-        areas = link.holes[1]
-        cache[key] = {
-            j: hole_outline(boundary, joints[j], 2 * float(np.sqrt(areas[hole] / np.pi)))
-            for j, hole in enumerate(link.joint_holes) if hole is not None
-        }
+        diameters = {j: 2 * float(np.sqrt(link.holes[1][hole] / np.pi))
+                     for j, hole in enumerate(link.joint_holes) if hole is not None}
+        boundary = _simplified_boundary(link.local_outline(*frame_joints), SIMPLIFY * min(diameters.values(), default=0.0))
+        cache[key] = {j: hole_outline(boundary, joints[j], d) for j, d in diameters.items()}
     return cache[key]
+
+
+def _simplified_boundary(outline: Polygon, tolerance: float) -> Boundary:
+    """The edges of ``outline`` with its arcs' fine chords merged within ``tolerance`` [m]: the rays
+    cost in proportion to the edges."""
+    simple = outline.simplify(tolerance, preserve_topology=True) if tolerance > 0 else outline
+    return Boundary.from_rings([np.asarray(r.coords)[:-1] for r in (simple.exterior, *simple.interiors)])
 
 
 def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleEstimate, ...]:
