@@ -16,8 +16,9 @@ when either neighbour it draws on is):
   ``SQUARE_TILTS_DEG``, between straight sides), open (no edge within ``OPEN_REACH`` d in the
   half-plane ahead of the pin, none within SIDE_REACH d beside it) or other;
 - the width H across the force through the hole's centre: the sum of the two side distances, and
-  for a round end its diameter 2 e; for a round end also the shank width w behind it (the chord
-  across the force e behind the centre, at most 2 e).
+  for a round end its diameter 2 e;
+- the shank behind the hole, from the chord across the force e behind the centre: its width w (for
+  a round end, at most 2 e) and the force's tilt to its axis (at most ``MAX_TILT_DEG``).
 
 The nominal stress is the net-section stress P / ((H - d) t) of the pin force P over the two
 ligaments beside the hole. Kt comes from linkstress's own plane-stress FEA of pin-loaded lugs
@@ -27,8 +28,8 @@ peak von Mises over P / ((H - d) t); linear in log d/H and in e/H or w/H between
 below the smallest table hole Kt (d/H) / (1 - d/H) (the peak over the bearing stress P / (d t))
 stays that row's. The open plate takes the larger of the pulled and the pushed lug at d/H = 0.1
 (1.55 P / (d t)). Whatever the tables do not cover (d/H above 0.7, a square end's e/H outside
-0.5-1.5, a round end's shank outside 0.5-1 H, a square end's hole off the middle of its width, an
-end neither round nor square) is flagged per position, with the reason, and kept out of safety
+0.5-1.5, a round end's shank outside 0.5-1 H, a force more than 10 degrees off the shank's axis, a
+square end's hole off the middle of its width, an end neither round nor square) is flagged per position, with the reason, and kept out of safety
 factors. That includes a pin pushing along the shank of a lug (e/H above 1.5 with edges near): the
 FEA of pushed lugs puts the peak at the bearing contact, 17 % above the pulled lug's at d/H = 0.3.
 """
@@ -102,6 +103,10 @@ all below the open plate's 13.963."""
 SIMPLIFY = 0.002
 """The outline is measured with its vertices merged within this many diameters of the smallest pin
 hole (a 0.2 % error in e and H, well inside the tables' 1 % edge slack)."""
+MAX_TILT_DEG = 10.0
+"""Largest angle between the pin force and the axis of the shank behind the hole: the FEA of lugs
+pulled off their axis gives 0.94 (round end d/H 0.5), 0.98 (boss d/H 0.32), 0.96 (square d/H 0.3)
+of the peak at 10 degrees, 0.82, 0.84 and 0.80 at 30 degrees."""
 CENTRING_TOLERANCE = 0.1
 """Largest offset of the hole from the middle of the width across the force, over H."""
 SOURCE = (
@@ -211,12 +216,13 @@ def hole_outline(boundary: Boundary, centre: NDArray[np.float64], diameter: floa
     # it; a shank met obliquely measures wider than the end but is no wider than it.
     is_round = shape == ROUND
     width = np.where(is_round, 2 * end, left + right)
-    shank = np.where(is_round, np.minimum(_shank_width(starts, ends, centre, units, end), 2 * end), 0.0)
+    chord, tilt = _shank(starts, ends, centre, units, end)
+    shank = np.where(is_round, np.minimum(chord, 2 * end), 0.0)
     d_over_h, e_over_h, w_over_h = diameter / width, end / width, shank / width
     offset = np.abs(left - right) / (2 * width)
     reason = np.array([
         _reason(*values) for values in zip(shape.tolist(), d_over_h.tolist(), e_over_h.tolist(),
-                                            w_over_h.tolist(), offset.tolist(), misfit.tolist())
+                                            w_over_h.tolist(), offset.tolist(), misfit.tolist(), tilt.tolist())
     ], dtype=object)
     return HoleOutline(width, end, shank, shape, table_kt(shape, d_over_h, e_over_h, w_over_h),
                        np.not_equal(reason, None), reason)
@@ -255,14 +261,21 @@ def _end_shape(reach: NDArray[np.float64], left: NDArray[np.float64], right: NDA
     return shape, np.minimum(round_misfit, square_misfit)
 
 
-def _shank_width(starts: NDArray[np.float64], ends: NDArray[np.float64], centre: NDArray[np.float64],
-                 units: NDArray[np.float64], end: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Per direction: the chord [m] across the force e behind the hole's centre, 0 outside the material."""
+def _shank(starts: NDArray[np.float64], ends: NDArray[np.float64], centre: NDArray[np.float64],
+           units: NDArray[np.float64], end: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Per direction: the shank's width [m] e behind the hole's centre (0 where that point is outside
+    the material) and the force's tilt [deg] to the shank's axis (inf there: no shank). The chord across the force
+    there crosses the shank obliquely: its middle, on the shank's axis, lies e tan(tilt) off the force's
+    line, and it is width / cos(tilt) long."""
     behind = centre - end[:, None] * units
     across = np.column_stack([-units[:, 1], units[:, 0]])
     up, crossings = ray_hits(starts, ends, behind, across)
     down, _ = ray_hits(starts, ends, behind, -across)
-    return np.where(crossings % 2 == 1, up + down, 0.0)
+    inside = crossings % 2 == 1
+    # Outside the material the rays may meet nothing (inf): no shank, no tilt to measure.
+    up, down = np.where(inside, up, 0.0), np.where(inside, down, 0.0)
+    tilt = np.arctan2(np.abs(up - down) / 2, end)
+    return np.where(inside, (up + down) * np.cos(tilt), 0.0), np.where(inside, np.degrees(tilt), np.inf)
 
 
 def table_kt(shape: NDArray[np.int64], d_over_h: NDArray[np.float64], e_over_h: NDArray[np.float64],
@@ -277,23 +290,29 @@ def table_kt(shape: NDArray[np.int64], d_over_h: NDArray[np.float64], e_over_h: 
     )
 
 
-def _reason(shape: int, d_over_h: float, e_over_h: float, w_over_h: float, offset: float, misfit: float) -> str | None:
+def _reason(shape: int, d_over_h: float, e_over_h: float, w_over_h: float, offset: float, misfit: float,
+            tilt: float) -> str | None:
     """Why one direction's geometry is outside the tables, None if it is inside."""
     if shape == OTHER:
         return (f"end neither square (within {SQUARE_TILTS_DEG[-1]} degrees of square to the force) nor round "
                 f"and concentric with the hole: the outline ahead of the hole is {misfit:.0%} off both")
-    low, high = 1 - EDGE_SLACK, 1 + EDGE_SLACK
     if shape == OPEN:
         return None
+    low, high = 1 - EDGE_SLACK, 1 + EDGE_SLACK
     if d_over_h > RATIOS[-1] * high:
         return f"d/H = {d_over_h:.2f} above the table's {RATIOS[-1]}"
-    if shape == ROUND and not SHANKS[0] * low <= w_over_h <= SHANKS[-1] * high:
-        return f"round end on a shank w/H = {w_over_h:.2f} outside the table's {SHANKS[0]}-{SHANKS[-1]}"
     if shape == SQUARE and e_over_h < END_DISTANCES[0] * low:
         return f"end distance e/H = {e_over_h:.2f} below the table's {END_DISTANCES[0]}"
     if shape == SQUARE and e_over_h > END_DISTANCES[-1] * high:
         return (f"end distance e/H = {e_over_h:.2f} above the table's {END_DISTANCES[-1]} (a pin pushing "
                 "along the shank: its peak is at the bearing contact, not in the table)")
+    if not np.isfinite(tilt):
+        return "no shank behind the hole (the point e behind its centre, against the force, is outside the link)"
+    if tilt > MAX_TILT_DEG:
+        return (f"pin force {tilt:.0f} degrees off the axis of the shank behind the hole (the tables are "
+                f"for forces within {MAX_TILT_DEG:.0f} degrees of it)")
+    if shape == ROUND and not SHANKS[0] * low <= w_over_h <= SHANKS[-1] * high:
+        return f"round end on a shank w/H = {w_over_h:.2f} outside the table's {SHANKS[0]}-{SHANKS[-1]}"
     if shape == SQUARE and offset > CENTRING_TOLERANCE:
         return f"hole {offset:.2f} H off the middle of the width across the force"
     return None
