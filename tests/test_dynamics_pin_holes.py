@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 from shapely.geometry import Point, Polygon, box
 
-from linkstress.dynamics.pin_holes import (
-    END_DISTANCES, RATIOS, ROUND_KT, SHANKS, SQUARE_KT, pin_hole_estimates, table_kt, ROUND, SQUARE,
-)
 from linkstress.builders import stadium
 from linkstress.curves import arc_points
+from linkstress.dynamics.pin_holes import (
+    END_DISTANCES, OPEN_KT, RATIOS, ROUND, ROUND_KT, SHANKS, SQUARE, SQUARE_KT, pin_hole_estimates, table_kt,
+)
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
@@ -170,6 +170,8 @@ def test_tables_are_what_the_generator_gives():
     # Two table points re-run: the committed values are the generator's, to its printed rounding.
     assert lug_kt(square_lug(0.3, 0.75))[0] == pytest.approx(SQUARE_KT[2][1], abs=1e-3)
     assert lug_kt(round_lug(0.5, 0.75))[0] == pytest.approx(ROUND_KT[4][1], abs=1e-3)
+    # The open plate's value is the pushed lug's at d/H = 0.1 (the largest of its three cases).
+    assert lug_kt(square_lug(0.1, 1.0), sense=-1.0)[0] == pytest.approx(OPEN_KT, abs=1e-3)
 
 
 def test_kt_falls_with_d_over_h_and_from_d_over_h_0_3_a_short_end_or_narrow_shank_raises_it():
