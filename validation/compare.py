@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
+from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
@@ -104,7 +105,8 @@ class HolePeak:
     """The FEA against the Kt x nominal ``estimate`` (Pc,) [Pa] at the pin hole of joint ``joint``
     (diameter ``diameter`` [m], centre ``centre`` (2,) [m, member frame]): ``fea`` (Pc,) [Pa] the
     largest von Mises within HOLE_NEIGHBOURHOOD radii of that centre, at ``fea_at`` (Pc, 2) [m,
-    member frame], at each compared position."""
+    member frame], at each compared position; ``inside`` (Pc,) where the estimate's geometry is
+    inside the Kt tables (elsewhere it is no estimate), ``reasons`` why not."""
 
     joint: int
     diameter: float
@@ -112,6 +114,8 @@ class HolePeak:
     estimate: NDArray[np.float64]
     fea: NDArray[np.float64]
     fea_at: NDArray[np.float64]
+    inside: NDArray[np.bool_]
+    reasons: tuple[str | None, ...]
 
     @property
     def error(self) -> NDArray[np.float64]:
@@ -169,11 +173,9 @@ class LinkComparison:
 
     @property
     def hole_peaks(self) -> tuple[HolePeak, ...]:
-        """Each pin hole's Kt x nominal estimate beside the FEA's peak at that hole (holes whose d/H
-        is beyond the Kt table have no estimate and are left out)."""
-        return tuple(
-            _hole_peak(self.fea, h.joint, h.diameter, h.estimate) for h in self.beam.pin_holes if h.estimate is not None
-        )
+        """Each pin hole's Kt x nominal estimate beside the FEA's peak at that hole (an estimate
+        counts only at the positions where its geometry is inside the Kt tables)."""
+        return tuple(_hole_peak(self.fea, h) for h in self.beam.pin_holes)
 
     @property
     def resultant_error(self) -> NDArray[np.float64]:
@@ -230,13 +232,16 @@ def resultant_error(values: NDArray[np.float64], reference: NDArray[np.float64],
     return np.maximum(relative(d_force, force_scale), relative(d_moment, moment_scale))
 
 
-def _hole_peak(fea: LinkFEAResult, joint: int, diameter: float, estimate: NDArray[np.float64]) -> HolePeak:
-    """The FEA's largest von Mises within HOLE_NEIGHBOURHOOD radii of joint ``joint``'s hole."""
-    centre = fea.link.frame(*fea.frame_joints).to_local(fea.link.joints[joint])
-    near = np.flatnonzero(np.hypot(*(fea.nodes - centre).T) <= HOLE_NEIGHBOURHOOD * diameter / 2)
+def _hole_peak(fea: LinkFEAResult, hole: PinHoleEstimate) -> HolePeak:
+    """The FEA's largest von Mises within HOLE_NEIGHBOURHOOD radii of ``hole``'s centre."""
+    centre = fea.link.frame(*fea.frame_joints).to_local(fea.link.joints[hole.joint])
+    near = np.flatnonzero(np.hypot(*(fea.nodes - centre).T) <= HOLE_NEIGHBOURHOOD * hole.diameter / 2)
     values = fea.nodal_von_mises[:, near]
     k = values.argmax(axis=1)
-    return HolePeak(joint, diameter, centre, estimate, values.max(axis=1), fea.nodes[near[k]])
+    return HolePeak(
+        hole.joint, hole.diameter, centre, hole.estimate, values.max(axis=1), fea.nodes[near[k]], ~hole.outside,
+        hole.reasons,
+    )
 
 
 def comparison_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> NDArray[np.float64]:

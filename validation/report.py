@@ -164,23 +164,29 @@ def fea_safety_factor(result: ValidationResult, name: str, c: LinkComparison) ->
 
 
 def pin_estimate(c: LinkComparison) -> float | None:
-    """The largest Kt x nominal estimate at the link's pin holes over the compared positions."""
-    values = [h.estimate.max() for h in c.beam.pin_holes if h.estimate is not None]
-    return float(max(values)) if values else None
+    """The largest Kt x nominal estimate inside the Kt tables at the link's pin holes over the compared positions."""
+    values = [e for e in (h.largest(slice(None)) for h in c.beam.pin_holes) if e is not None]
+    return max(values) if values else None
 
 
 def pin_hole_record(h: HolePeak, angles: NDArray[np.float64]) -> dict:
-    """One pin hole's estimate against the FEA at the same hole, at the position of its largest FEA peak."""
-    k = int(np.argmax(h.fea))
+    """One pin hole's estimate against the FEA at the same hole, at the position of its largest FEA
+    peak among those where the estimate is inside the Kt tables (where it is nowhere: the FEA's
+    largest, no estimate, and why)."""
+    inside = np.flatnonzero(h.inside)
+    candidates = inside if inside.size else np.arange(len(h.fea))
+    k = int(candidates[np.argmax(h.fea[candidates])])
     return {
         "joint": h.joint,
         "diameter_m": h.diameter,
         "centre_member_m": h.centre.tolist(),
         "input_angle_deg": float(angles[k]),
-        "estimate_pa": float(h.estimate[k]),
+        "estimate_pa": float(h.estimate[k]) if inside.size else None,
         "fea_peak_pa": float(h.fea[k]),
         "fea_peak_at_member_m": h.fea_at[k].tolist(),
-        "error_pct": float(100 * h.error[k]),
+        "error_pct": float(100 * h.error[k]) if inside.size else None,
+        "kt_outside_table": not inside.size,
+        "kt_outside_reason": None if inside.size else h.reasons[k],
     }
 
 
@@ -330,6 +336,12 @@ def nominal_words(c: LinkComparison, angles: NDArray[np.float64]) -> str:
 def pin_hole_words(h: HolePeak, angles: NDArray[np.float64]) -> str:
     """A pin hole's Kt x nominal estimate against the FEA's peak at the same hole and position."""
     r = pin_hole_record(h, angles)
+    if r["estimate_pa"] is None:
+        return (
+            f"pin hole at joint {h.joint} (d = {h.diameter:.4g} m, centre ({h.centre[0]:.4g}, {h.centre[1]:.4g}) m, "
+            f"member frame): no Kt x nominal estimate at the compared positions ({r['kt_outside_reason']}); the FEA's "
+            f"peak at that hole is {r['fea_peak_pa']:.4g} Pa at input angle {r['input_angle_deg']:.4g} deg"
+        )
     return (
         f"pin hole at joint {h.joint} (d = {h.diameter:.4g} m, centre ({h.centre[0]:.4g}, {h.centre[1]:.4g}) m, "
         f"member frame): Kt x nominal estimate {r['estimate_pa']:.4g} Pa against the FEA's {r['fea_peak_pa']:.4g} Pa "

@@ -3,8 +3,10 @@
 Where a link's material gives ``yield_strength`` [Pa], ``analyze`` reports, per position, the yield
 strength over the link's largest section von Mises (beam theory; nominal within a section depth of
 a pin hole) and, where the link has pin-hole estimates, over the largest Kt x nominal estimate (an
-estimate, labelled as one, like the stress it divides). A position where the stress is zero has no
-finite factor: the reports leave it empty (JSON null), never print infinity.
+estimate, labelled as one, like the stress it divides). Only estimates whose Kt is inside the
+tables at that position count: a position where every hole's geometry is outside them has no
+pin-hole factor. A position where the stress is zero, or without a pin-hole factor, has no finite
+factor: the reports leave it empty (JSON null), never print infinity.
 
 A curved link (``linkstress.curvature``) gets no section factor: its straight-beam von Mises falls
 10-20 % short of the FEA, and a factor from it would be unconservative. The reports say why
@@ -32,20 +34,26 @@ CURVED_NOTE = "not given: curved link (straight-beam value), see validate"
 class SafetyFactors:
     """One link's factors over P positions: ``sections`` (P,), yield strength over the largest
     section von Mises, None where withheld (``withheld`` says why); ``pin_holes`` (P,) over the
-    largest pin-hole estimate, None where the link has none (no pin hole, or every hole beyond the
-    Kt table); inf where the stress is zero."""
+    largest pin-hole estimate inside the Kt tables, None where the link has none at any position (no
+    pin hole, or every hole outside the tables at every position); ``pin_hole_inside`` (P,) where
+    some hole's estimate is inside the tables (elsewhere ``pin_holes`` is inf: no factor); inf where
+    the stress is zero."""
 
     yield_strength: float
     sections: NDArray[np.float64] | None
     pin_holes: NDArray[np.float64] | None
     withheld: str | None = None
+    pin_hole_inside: NDArray[np.bool_] | None = None
 
     def lowest(self, positions) -> tuple[float | None, float | None]:
         """The lowest factors over ``positions`` (a mask or indices): against the sections (None
-        where withheld), and against the pin holes (None where the link has no estimate); inf where
-        no stress there."""
+        where withheld), and against the pin holes (None where no estimate is inside the tables
+        there); inf where no stress there."""
         sections = None if self.sections is None else float(self.sections[positions].min())
-        pin_holes = None if self.pin_holes is None else float(self.pin_holes[positions].min())
+        pin_holes = None
+        if self.pin_holes is not None:
+            inside = self.pin_holes[positions][self.pin_hole_inside[positions]]
+            pin_holes = float(inside.min()) if inside.size else None
         return sections, pin_holes
 
 
@@ -59,11 +67,21 @@ def yield_factor(yield_strength: float, stress: NDArray[np.float64]) -> NDArray[
 def safety_factors(stress: SectionStresses, yield_strength: float, curved: bool = False) -> SafetyFactors:
     """The factors of a link whose stresses are ``stress`` and whose material yields at
     ``yield_strength`` [Pa]; a ``curved`` link's section factor is withheld."""
-    estimates = [hole.estimate for hole in stress.pin_holes if hole.estimate is not None]
-    pin_holes = yield_factor(yield_strength, np.max(estimates, axis=0)) if estimates else None
-    if curved:
-        return SafetyFactors(yield_strength, None, pin_holes, CURVED_NOTE)
-    return SafetyFactors(yield_strength, yield_factor(yield_strength, stress.max_von_mises), pin_holes)
+    pin_holes, inside = pin_hole_factor(stress.pin_holes, yield_strength)
+    sections = None if curved else yield_factor(yield_strength, stress.max_von_mises)
+    return SafetyFactors(yield_strength, sections, pin_holes, CURVED_NOTE if curved else None, inside)
+
+
+def pin_hole_factor(holes, yield_strength: float) -> tuple[NDArray[np.float64] | None, NDArray[np.bool_] | None]:
+    """``yield_strength`` [Pa] over the largest estimate inside the Kt tables of ``holes``
+    (``PinHoleEstimate``) per position, inf where none is inside there, and where some is; (None,
+    None) where none ever is."""
+    holes = [hole for hole in holes if not hole.outside.all()]
+    if not holes:
+        return None, None
+    trusted = np.array([np.where(hole.outside, -1.0, hole.estimate) for hole in holes]).max(axis=0)
+    inside = trusted >= 0
+    return np.where(inside, yield_factor(yield_strength, np.maximum(trusted, 0.0)), np.inf), inside
 
 
 def link_safety_factors(result: AnalysisResult) -> dict[str, SafetyFactors]:
@@ -77,5 +95,5 @@ def link_safety_factors(result: AnalysisResult) -> dict[str, SafetyFactors]:
 
 
 def finite_or_none(values: NDArray[np.float64]) -> list[float | None]:
-    """JSON-ready values: None where a factor is infinite."""
+    """JSON-ready values: None where a factor is infinite (no stress, or no estimate there)."""
     return [v if np.isfinite(v) else None for v in values.tolist()]

@@ -232,12 +232,13 @@ def _pin_holes_table(result: AnalysisResult) -> str:
         for hole in stress.pin_holes:
             if not ok.any():
                 continue
-            if hole.estimate is None:
+            largest = hole.largest(ok)
+            if largest is None:
                 k = worst_position(hole.nominal, ok)
-                estimate = "beyond the Kt table"
+                estimate = "outside the Kt tables"
             else:
-                k = worst_position(hole.estimate, ok)
-                estimate = float(hole.estimate[k])
+                k = worst_position(np.where(hole.outside, -1.0, hole.estimate), ok)
+                estimate = largest
             rows.append((name, hole.joint, hole.diameter, hole.depth, "-" if hole.kt is None else hole.kt,
                          float(hole.nominal[k]), estimate, float(result.scene.motion.angle_deg[k])))
     if not rows:

@@ -108,11 +108,12 @@ def _away_from_holes(result: AnalysisResult, name: str, ok: NDArray[np.bool_]) -
 
 
 def _pin_hole(result: AnalysisResult, name: str, ok: NDArray[np.bool_]) -> SweepFigure | None:
-    """The largest pin-hole estimate over the holes and positions, at its hole's centre."""
-    holes = [hole for hole in result.stresses[name].pin_holes if hole.estimate is not None]
+    """The largest pin-hole estimate inside the Kt tables over the holes and positions, at its hole's
+    centre; None where no hole's estimate is inside them at a feasible position."""
+    holes = [hole for hole in result.stresses[name].pin_holes if not hole.outside[ok].all()]
     if not holes:
         return None
-    estimates = np.stack([hole.estimate for hole in holes])
+    estimates = np.stack([np.where(hole.outside, -1.0, hole.estimate) for hole in holes])
     k = worst_position(estimates.max(axis=0), ok)
     hole = holes[int(np.argmax(estimates[:, k]))]
     profile = result.scene.links[name].profile

@@ -9,7 +9,8 @@ straight-beam values fall short),
 ``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
 some station is at least a section depth from every pin hole), ``equilibrium_mismatch`` and
 ``pin_holes`` (per pin hole: Kt, the net-section stress of its pin force and the Kt x nominal
-estimate, labelled as such) where stresses were computed, ``yield_safety_factor`` (yield strength
+estimate, labelled as such, with the width, end distance and end shape the force sees and whether
+that is outside the Kt tables) where stresses were computed, ``yield_safety_factor`` (yield strength
 over ``max_von_mises_pa``; null on a curved link, with ``yield_safety_factor_note`` saying why) and
 ``pin_hole_yield_safety_factor_estimate`` (over the largest pin-hole
 estimate) where the material gives ``yield_strength`` (null where the stress is zero), and with
@@ -120,11 +121,20 @@ def _station_lists(stress) -> dict[str, object]:
 
 
 def _pin_hole_lists(hole) -> dict[str, object]:
+    """One pin hole's record: what all positions share, then per position lists (Kt and the
+    estimate null where the geometry the pin force sees is outside the Kt tables)."""
+    trusted = np.where(hole.outside, None, hole.estimate.astype(object))
     return {
         "joint": hole.joint, "hole_diameter_m": hole.diameter, "depth_m": hole.depth, "kt": hole.kt,
         "nominal_pa": hole.nominal.tolist(),
-        "estimate_pa": None if hole.estimate is None else hole.estimate.tolist(),
+        "estimate_pa": trusted.tolist(),
         "basis": hole.source,
+        "kt_at_position": np.where(hole.outside, None, hole.kts.astype(object)).tolist(),
+        "kt_outside_table": hole.outside.tolist(),
+        "kt_outside_reason": list(hole.reasons),
+        "width_m": hole.width.tolist(),
+        "end_distance_m": hole.end_distance.tolist(),
+        "end_shape": list(hole.shape),
     }
 
 

@@ -200,7 +200,7 @@ def stress_table(result: AnalysisResult) -> str:
         row = [
             name, peak.value, peak.input_angle_deg, f"({peak.at[0]:.4g}, {peak.at[1]:.4g})",
             "-" if figures.away_from_holes is None else figures.away_from_holes.value,
-            "-" if figures.pin_hole is None else figures.pin_hole.value, float(stress.forces.mismatch[ok].max()),
+            _pin_hole_cell(figures, stress), float(stress.forces.mismatch[ok].max()),
         ]
         if factors:
             row += _factor_cells(factors.get(name), ok)
@@ -238,6 +238,13 @@ def figure_lines(figures: LinkFigures) -> list[str]:
         (figures.section_factor, "", 3), (figures.pin_hole_factor, "", 3),
     ]
     return [figure.describe(unit, digits) for figure, unit, digits in listed if figure is not None]
+
+
+def _pin_hole_cell(figures, stress) -> float | str:
+    """The largest pin-hole estimate, or why there is none."""
+    if figures.pin_hole is not None:
+        return figures.pin_hole.value
+    return "- (outside the Kt tables)" if stress.pin_holes else "-"
 
 
 def _factor_cells(factors, ok) -> list[str]:
