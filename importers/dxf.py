@@ -28,7 +28,11 @@ from linkstress.importers.units import choose_unit, insunits_label, unit_from_in
 GAP_TOLERANCE = 1e-4
 """Default endpoint gap tolerance of DXF sketches, a fraction of the drawing size."""
 
-MAX_BLOCK_DEPTH = 16
+MAX_BLOCK_DEPTH = 64
+"""Block references nest at most this deep (CAD libraries nest a few levels; cycles are caught by name)."""
+MAX_BLOCK_ENTITIES = 100_000
+"""The most entities block references may expand to: ezdxf makes each one a Python object (about
+50 us), and nested references multiply (two per level, 20 deep, are a million)."""
 _BINARY = b"AutoCAD Binary DXF"
 _VERTEX_SPLINE_FRAME = 16
 _SUPPORTED = {"LINE", "POINT", "CIRCLE", "ARC", "ELLIPSE", "LWPOLYLINE", "POLYLINE", "SPLINE", "INSERT"}
@@ -52,7 +56,7 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
         _add_simple(curves, simple, hidden, ignored)
-        _Collector(curves, hidden, ignored).entities(doc.modelspace(), None, 0)
+        _Collector(curves, hidden, ignored).entities(doc.modelspace(), None, ())
     except SketchError as error:
         raise SketchError(with_damage(str(error), fixes)) from None
     return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
@@ -158,16 +162,18 @@ class _Collector:
         self.curves, self.hidden, self.ignored = curves, hidden, ignored
         self.lines: list[tuple] = []
         self.line_origins: list[Origin] = []
+        self.expanded = 0
 
-    def entities(self, entities, insert: tuple[str, str] | None, depth: int) -> None:
-        """Add ``entities``; inside a block reference ``insert`` = (INSERT handle, its layer)."""
+    def entities(self, entities, insert: tuple[str, str] | None, blocks: tuple[str, ...]) -> None:
+        """Add ``entities``; inside a block reference ``insert`` = (INSERT handle, its layer) and
+        ``blocks`` the names of the blocks it is in, outermost first."""
         for entity in entities:
-            self.entity(entity, insert, depth)
-        if depth == 0 and self.lines:
+            self.entity(entity, insert, blocks)
+        if not blocks and self.lines:
             self.curves.add_lines(np.array(self.lines, float), self.line_origins)
             self.lines, self.line_origins = [], []
 
-    def entity(self, e, insert: tuple[str, str] | None, depth: int) -> None:
+    def entity(self, e, insert: tuple[str, str] | None, blocks: tuple[str, ...]) -> None:
         kind = e.dxftype()
         handler = getattr(self, f"_{kind.lower()}", None) if kind in _SUPPORTED else None
         if handler is None:
@@ -182,40 +188,42 @@ class _Collector:
             if layer.lower() in self.hidden or e.dxf.get("invisible", 0):
                 self.ignored[f"{kind} (hidden layer)"] += 1
                 return
-            handler(e, origin, (handle, layer), depth)
+            handler(e, origin, (handle, layer), blocks)
+        except SketchError:
+            raise
         except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError, IndexError) as error:
             where = f"{kind} (handle {e.dxf.get('handle', '?')})" if insert is None else f"{kind} in block reference {insert[0]}"
             raise SketchError(f"{where} cannot be read ({error}); redraw or explode it") from None
 
-    def _line(self, e, origin, _insert, _depth) -> None:
+    def _line(self, e, origin, _insert, _blocks) -> None:
         s, t = e.dxf.start, e.dxf.end
         self.lines.append((s.x, s.y, t.x, t.y))
         self.line_origins.append(origin)
 
-    def _point(self, e, origin, _insert, _depth) -> None:
+    def _point(self, e, origin, _insert, _blocks) -> None:
         p = e.dxf.location
         self.curves.add_points([[p.x, p.y]], [origin])
 
-    def _circle(self, e, origin, _insert, _depth) -> None:
+    def _circle(self, e, origin, _insert, _blocks) -> None:
         c, ex = e.dxf.center, e.dxf.extrusion
         geo.add_circles(self.curves, np.array([[c.x, c.y, e.dxf.radius, ex.x, ex.y, ex.z]]), [origin], self.ignored)
 
-    def _arc(self, e, origin, _insert, _depth) -> None:
+    def _arc(self, e, origin, _insert, _blocks) -> None:
         c, ex = e.dxf.center, e.dxf.extrusion
         row = [c.x, c.y, e.dxf.radius, e.dxf.start_angle, e.dxf.end_angle, ex.x, ex.y, ex.z]
         geo.add_arcs(self.curves, np.array([row]), [origin], self.ignored)
 
-    def _ellipse(self, e, origin, _insert, _depth) -> None:
+    def _ellipse(self, e, origin, _insert, _blocks) -> None:
         tool = e.construction_tool()
         geo.add_ellipse(self.curves, np.array(tool.center), np.array(tool.major_axis), np.array(tool.minor_axis),
                         tool.start_param, tool.end_param, np.array(e.dxf.extrusion), origin, self.ignored)
 
-    def _lwpolyline(self, e, origin, _insert, _depth) -> None:
+    def _lwpolyline(self, e, origin, _insert, _blocks) -> None:
         pts = np.array(e.get_points("xyb"), float).reshape(-1, 3)
         geo.add_ocs_polyline(self.curves, pts[:, :2], pts[:, 2], e.closed, np.array(e.dxf.extrusion), origin,
                              self.ignored)
 
-    def _polyline(self, e, origin, _insert, _depth) -> None:
+    def _polyline(self, e, origin, _insert, _blocks) -> None:
         if not (e.is_2d_polyline or e.is_3d_polyline):
             self.ignored["POLYLINE (mesh)"] += 1
             return
@@ -228,23 +236,36 @@ class _Collector:
             extrusion = np.array(e.dxf.get("extrusion", (0.0, 0.0, 1.0)), float)
         geo.add_ocs_polyline(self.curves, xy, bulges, e.is_closed, extrusion, origin, self.ignored)
 
-    def _spline(self, e, origin, _insert, _depth) -> None:
+    def _spline(self, e, origin, _insert, _blocks) -> None:
         if not (e.control_point_count() or e.fit_point_count()):
             self.ignored["SPLINE (no points)"] += 1
             return
         self.curves.add_spline(e.construction_tool(), origin)
 
-    def _insert(self, e, origin, insert, depth) -> None:
-        if depth >= MAX_BLOCK_DEPTH:
+    def _insert(self, e, origin, insert, blocks) -> None:
+        name = e.dxf.get("name", "?")
+        if name in blocks:
+            through = blocks[blocks.index(name) + 1:]
+            via = f" through block {', '.join(repr(b) for b in through)}" if through else ""
             raise SketchError(
-                f"{geo.describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep "
-                "(a block that inserts itself?)"
+                f"block {name!r} inserts itself{via} ({geo.describe(origin)}); a block cannot contain "
+                f"itself: delete the reference to {name!r} from its definition in CAD"
+            )
+        if len(blocks) >= MAX_BLOCK_DEPTH:
+            raise SketchError(
+                f"{geo.describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep; explode "
+                "the outer blocks in CAD"
             )
         skipped = Counter()
         for reference in e.multi_insert() if e.mcount > 1 else [e]:
             virtual = list(reference.virtual_entities(
                 skipped_entity_callback=lambda entity, reason: skipped.update([entity.dxftype()])))
-            self.entities(virtual, insert, depth + 1)
+            self.expanded += len(virtual)
+            if self.expanded > MAX_BLOCK_ENTITIES:
+                raise SketchError(
+                    f"block references expand to more than {MAX_BLOCK_ENTITIES:,} entities (block {name!r}, "
+                    f"{geo.describe(origin)}); explode nested blocks in CAD or draw one sketch per link"
+                )
+            self.entities(virtual, insert, (*blocks, name))
         for kind, n in skipped.items():
             self.ignored[f"{kind} in block reference (cannot be transformed)"] += n
-

@@ -32,6 +32,17 @@ from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 POINT_RULE = "point"
 HOLE_RULE = "hole centre"
 
+MAX_REACH_M = 1e6
+"""No curve or POINT of a sketch may reach farther than this from its origin [m]: a machine, not a map."""
+MIN_SIZE_M = 1e-9
+"""A drawing less than this across [m] has the wrong units: no link is a nanometre."""
+MAX_OFFSET = 1e6
+"""How many drawing sizes its curves may lie from the origin: at 1e6 sizes a coordinate's rounding
+(1.1e-16 relative) is 1.1e-10 of the size, still ten times below the vertex merging distance
+(``contours.DUPLICATE_VERTEX``, 1e-9 of the size); farther out gaps and corners blur."""
+MIN_GAP_TOLERANCE = 1e-9
+"""The smallest gap tolerance, as a fraction of the drawing size: vertices closer than this merge anyway."""
+
 
 @dataclass(frozen=True)
 class ImportedLink:
@@ -138,12 +149,17 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
     bounds = raw.curves.bounds()
     if bounds is None:
         raise SketchError(f"no outline: the drawing has no curves{_ignored_note(raw.ignored)}")
+    _check_reach(raw)
     size = math.hypot(bounds[2] - bounds[0], bounds[3] - bounds[1])
-    if not (math.isfinite(size) and size > 0):
+    if not size > 0:
         raise SketchError("no outline: all curves sit at one point")
+    _check_scale(raw, bounds, size)
     gap = raw.gap_tolerance if tolerance is None else tolerance
-    if not (isinstance(gap, (int, float)) and math.isfinite(gap) and 0 < gap < 0.5):
-        raise SketchError(f"the gap tolerance is a fraction of the drawing size in (0, 0.5), got {gap!r}")
+    if not (isinstance(gap, (int, float)) and math.isfinite(gap) and MIN_GAP_TOLERANCE <= gap < 0.5):
+        raise SketchError(
+            f"the gap tolerance (--tolerance) is a fraction of the drawing size in [{MIN_GAP_TOLERANCE:g}, 0.5), "
+            f"got {gap!r}"
+        )
     unit = raw.unit.name
     pieces = flatten(raw.curves, Tolerance.for_size(size, sagitta))
     contours = build_contours(pieces, raw.curves.curve_origins(), gap * size, size, unit)
@@ -160,6 +176,37 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
             )
     return Sketch(path, raw.format, unit, raw.units_source, tuple(links), MappingProxyType(dict(ignored)),
                   tuple(fixes), gap * size / raw.unit.per_metre)
+
+
+def _check_reach(raw: RawSketch) -> None:
+    """Refuse a curve or POINT farther than ``MAX_REACH_M`` from the origin, naming it."""
+    boxes, origins = raw.curves.extents()
+    with np.errstate(over="ignore"):
+        reach = np.abs(boxes).max(axis=1) / raw.unit.per_metre
+    if reach.max() > MAX_REACH_M:
+        k = int(np.argmax(reach))
+        raise SketchError(
+            f"{describe(origins[k])} reaches {reach[k]:.3g} m from the origin, beyond the {MAX_REACH_M:g} m a "
+            f"sketch may span; fix or delete it, or check the drawing's units ({raw.unit.name}, "
+            f"{raw.units_source})"
+        )
+
+
+def _check_scale(raw: RawSketch, bounds: tuple[float, float, float, float], size: float) -> None:
+    """Refuse a drawing too small to be a part, or so far from the origin that rounding blurs its gaps."""
+    unit = raw.unit.name
+    if size / raw.unit.per_metre < MIN_SIZE_M:
+        raise SketchError(
+            f"the drawing is {size / raw.unit.per_metre:.3g} m across, smaller than {MIN_SIZE_M:g} m; check "
+            f"the drawing's units ({unit}, {raw.units_source}) or scale it to the part's size"
+        )
+    offset = max(abs(v) for v in bounds)
+    if offset > MAX_OFFSET * size:
+        raise SketchError(
+            f"the drawing is {size:.3g} {unit} across but lies {offset:.3g} {unit} from the origin, more than "
+            f"{MAX_OFFSET:g} times its size: double precision cannot resolve its gaps there; move the "
+            "drawing near the origin"
+        )
 
 
 def _ignored_note(ignored: Mapping[str, int]) -> str:
