@@ -29,10 +29,12 @@ GAP_TOLERANCE = 1e-4
 """Default endpoint gap tolerance of DXF sketches, a fraction of the drawing size."""
 
 MAX_BLOCK_DEPTH = 64
-"""Block references nest at most this deep (CAD libraries nest a few levels; cycles are caught by name)."""
-MAX_BLOCK_ENTITIES = 100_000
-"""The most entities block references may expand to: ezdxf makes each one a Python object (about
-50 us), and nested references multiply (two per level, 20 deep, are a million)."""
+"""Block references nest at most this deep (CAD libraries nest a few levels; a block that contains
+itself is caught by name before this)."""
+MAX_BLOCK_ENTITIES = 20_000
+"""The most entities one block reference may expand to, counted before expanding it: ezdxf makes
+each a transformed Python object (about 0.25 ms), and nested references multiply (two per level,
+20 deep, are a million)."""
 _BINARY = b"AutoCAD Binary DXF"
 _VERTEX_SPLINE_FRAME = 16
 _SUPPORTED = {"LINE", "POINT", "CIRCLE", "ARC", "ELLIPSE", "LWPOLYLINE", "POLYLINE", "SPLINE", "INSERT"}
@@ -56,7 +58,7 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
         _add_simple(curves, simple, hidden, ignored)
-        _Collector(curves, hidden, ignored).entities(doc.modelspace(), None, ())
+        _Collector(curves, hidden, ignored, _BlockSizes(doc)).entities(doc.modelspace(), None, ())
     except SketchError as error:
         raise SketchError(with_damage(str(error), fixes)) from None
     return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
@@ -78,7 +80,9 @@ def _recover(path: Path, fixes: list[str]):
     try:
         doc, auditor = recover.readfile(path)
     except Exception as error:  # noqa: BLE001 - ezdxf raises many types on damaged input; all mean the same
-        raise SketchError(f"a damaged DXF file that ezdxf cannot recover ({error})") from None
+        raise SketchError(
+            f"a damaged DXF file that ezdxf cannot recover ({error}); export the sketch from CAD again"
+        ) from None
     fixes.extend(f"ezdxf recover: {entry.message}" for entry in [*auditor.fixes, *auditor.errors])
     return doc
 
@@ -158,11 +162,10 @@ def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignor
 class _Collector:
     """Walks ezdxf entities (model space, block contents) into a CurveSet."""
 
-    def __init__(self, curves: CurveSet, hidden: set[str], ignored: Counter) -> None:
-        self.curves, self.hidden, self.ignored = curves, hidden, ignored
+    def __init__(self, curves: CurveSet, hidden: set[str], ignored: Counter, sizes: "_BlockSizes") -> None:
+        self.curves, self.hidden, self.ignored, self.sizes = curves, hidden, ignored, sizes
         self.lines: list[tuple] = []
         self.line_origins: list[Origin] = []
-        self.expanded = 0
 
     def entities(self, entities, insert: tuple[str, str] | None, blocks: tuple[str, ...]) -> None:
         """Add ``entities``; inside a block reference ``insert`` = (INSERT handle, its layer) and
@@ -244,28 +247,50 @@ class _Collector:
 
     def _insert(self, e, origin, insert, blocks) -> None:
         name = e.dxf.get("name", "?")
-        if name in blocks:
-            through = blocks[blocks.index(name) + 1:]
+        if not blocks:
+            size = e.mcount * self.sizes.of(name, (), origin)
+            if size > MAX_BLOCK_ENTITIES:
+                raise SketchError(
+                    f"{geo.describe(origin)} of block {name!r} expands to {size:,} entities, more than the "
+                    f"{MAX_BLOCK_ENTITIES:,} linkstress expands; explode its nested blocks in CAD or draw "
+                    "one sketch per link"
+                )
+        skipped = Counter()
+        for reference in e.multi_insert() if e.mcount > 1 else [e]:
+            virtual = list(reference.virtual_entities(
+                skipped_entity_callback=lambda entity, reason: skipped.update([entity.dxftype()])))
+            self.entities(virtual, insert, (*blocks, name))
+        for kind, n in skipped.items():
+            self.ignored[f"{kind} in block reference (cannot be transformed)"] += n
+
+
+class _BlockSizes:
+    """How many entities each block expands to, nested references included, from the block
+    definitions alone (nothing is expanded); a block that contains itself is an error naming it."""
+
+    def __init__(self, doc) -> None:
+        self.doc = doc
+        self.known: dict[str, int] = {}
+
+    def of(self, name: str, within: tuple[str, ...], origin: Origin) -> int:
+        """Entities of block ``name``, referenced inside blocks ``within`` (outermost first) by ``origin``."""
+        if name in within:
+            through = within[within.index(name) + 1:]
             via = f" through block {', '.join(repr(b) for b in through)}" if through else ""
             raise SketchError(
                 f"block {name!r} inserts itself{via} ({geo.describe(origin)}); a block cannot contain "
                 f"itself: delete the reference to {name!r} from its definition in CAD"
             )
-        if len(blocks) >= MAX_BLOCK_DEPTH:
+        if len(within) >= MAX_BLOCK_DEPTH:
             raise SketchError(
                 f"{geo.describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep; explode "
                 "the outer blocks in CAD"
             )
-        skipped = Counter()
-        for reference in e.multi_insert() if e.mcount > 1 else [e]:
-            virtual = list(reference.virtual_entities(
-                skipped_entity_callback=lambda entity, reason: skipped.update([entity.dxftype()])))
-            self.expanded += len(virtual)
-            if self.expanded > MAX_BLOCK_ENTITIES:
-                raise SketchError(
-                    f"block references expand to more than {MAX_BLOCK_ENTITIES:,} entities (block {name!r}, "
-                    f"{geo.describe(origin)}); explode nested blocks in CAD or draw one sketch per link"
-                )
-            self.entities(virtual, insert, (*blocks, name))
-        for kind, n in skipped.items():
-            self.ignored[f"{kind} in block reference (cannot be transformed)"] += n
+        if name not in self.known:
+            block = self.doc.blocks.get(name)
+            inner = (*within, name)
+            self.known[name] = 0 if block is None else sum(
+                e.mcount * self.of(e.dxf.get("name", "?"), inner, origin) if e.dxftype() == "INSERT" else 1
+                for e in block
+            )
+        return self.known[name]
