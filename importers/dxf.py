@@ -11,6 +11,7 @@ structure is broken is read with ezdxf's recover mode, and what it repaired is r
 from __future__ import annotations
 
 import io
+import re
 from collections import Counter
 from pathlib import Path
 
@@ -53,7 +54,7 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
     else:
         doc, simple = _read_text(path, data, fixes)
     try:
-        unit, source = _unit(doc, units)
+        unit, source = _unit(doc if _has_header(data) else None, units)
         curves = CurveSet()
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
@@ -64,8 +65,17 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
     return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
 
 
+def _has_header(data: bytes) -> bool:
+    """Whether the file has a HEADER section: without one ezdxf fills in its defaults ($INSUNITS 6,
+    metres), which the file never said."""
+    if data.startswith(_BINARY):
+        return re.search(rb"\x02\x00?HEADER\x00", data) is not None  # group code 2 in one or two bytes
+    return re.search(rb"(?:^|\n)[ \t]*2[ \t]*\r?\n[ \t]*HEADER[ \t]*\r?\n", data) is not None
+
+
 def _unit(doc, units: str | None):
-    code = _insunits(doc)
+    """The drawing's unit: $INSUNITS of ``doc``'s header (None: the file has none), else ``units``."""
+    code = 0 if doc is None else _insunits(doc)
     declared = unit_from_insunits(code)
     if code and declared is None:
         raise SketchError(
@@ -93,7 +103,7 @@ def _read_text(path: Path, data: bytes, fixes: list[str]):
     try:
         info = ezdxf.filemanagement.dxf_file_info(str(path))
     except Exception as damage:  # noqa: BLE001 - on damaged input ezdxf raises many types, all meaning the same
-        return _damaged(path, fixes, f"{type(damage).__name__}: {damage}")
+        return _damaged(path, fixes, _reason(damage))
     try:
         simple, rest = split_entities(data.decode(info.encoding, errors="surrogateescape"))
     except (DamagedDXF, LookupError) as damage:
@@ -106,7 +116,14 @@ def _ezdxf_only(path: Path, fixes: list[str], read, simple: SimpleEntities | Non
     try:
         return read(), simple or SimpleEntities()
     except Exception as damage:  # noqa: BLE001 - on damaged input ezdxf raises many types, all meaning the same
-        return _damaged(path, fixes, f"{type(damage).__name__}: {damage}")
+        return _damaged(path, fixes, _reason(damage))
+
+
+def _reason(damage: Exception) -> str:
+    """What ezdxf's exception says; a StopIteration (it ran out of tags) says nothing."""
+    if isinstance(damage, StopIteration):
+        return "the file ends before its structure does (truncated?)"
+    return f"{type(damage).__name__}: {damage}"
 
 
 def _damaged(path: Path, fixes: list[str], reason: str):
