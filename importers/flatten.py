@@ -351,17 +351,14 @@ def _splines(curves: CurveSet, tolerance: Tolerance) -> Block:
 def _spline_vertices(spline, distance: float, limit: int, origin: Origin) -> NDArray[np.float64]:
     """ezdxf's adaptive flattening of ``spline`` to chord ``distance``, refused beyond ``limit`` vertices.
 
-    ezdxf subdivides without bound while a chord's distance exceeds ``distance``: a spline whose
-    rounding noise is larger (control points far beyond the rest) would never finish, so the vertices
-    are taken lazily and counted, and a subdivision that runs out of stack is refused too."""
+    ezdxf subdivides until every chord is within ``distance``, with no bound on the count: the
+    vertices are taken lazily and counted, so a spline that needs too many costs at most ``limit``."""
     points = spline.flattening(distance, segments=4 * max(spline.count, 1))
-    try:
-        taken = [(p.x, p.y) for p in itertools.islice(points, limit + 1)]
-    except RecursionError:
-        taken = None
-    if taken is None or len(taken) > limit:
+    taken = [(p.x, p.y) for p in itertools.islice(points, limit + 1)]
+    if len(taken) > limit:
         raise SketchError(
-            f"{describe(origin)} does not flatten within {MAX_SPLINE_VERTICES:,} vertices for all splines "
-            f"(chord tolerance {distance:.3g} drawing units); simplify it in CAD or convert it to a polyline"
+            f"the splines up to {describe(origin)} need more than the {MAX_SPLINE_VERTICES:,} vertices all "
+            f"splines may take (chord tolerance {distance:.3g} drawing units); simplify them in CAD or convert "
+            "them to polylines"
         )
     return np.array(taken, float).reshape(-1, 2)

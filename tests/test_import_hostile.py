@@ -142,7 +142,7 @@ def test_spline_flattening_is_bounded(tmp_path, monkeypatch):
     monkeypatch.setattr(flatten, "MAX_SPLINE_VERTICES", 100)
     points = [(math.cos(t), math.sin(t)) for t in np.linspace(0, 2 * math.pi, 13)]
     path = drawing(tmp_path, draw=lambda msp: msp.add_spline(points, dxfattribs={"layer": "cam"}))
-    with pytest.raises(SketchError, match=r"SPLINE \(handle \w+, layer 'cam'\) does not flatten within 100 vertices for all splines"):
+    with pytest.raises(SketchError, match=r"the splines up to SPLINE \(handle \w+, layer 'cam'\) need more than the 100 vertices all splines may take"):
         read_sketch(path)
 
 
