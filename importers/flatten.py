@@ -102,7 +102,8 @@ def flatten(curves: CurveSet, tolerance: Tolerance) -> Pieces:
                                  conic_rows[:, 7], tolerance)
     segments = _Segments.of(curves.polylines)
     bulge_steps = segment_counts(segments.radius, segments.sweep, tolerance)
-    straight = 2 * sum(len(chunk) for chunk in curves.lines) + 2 * len(conic_rows) + len(segments.p0) + len(curves.polylines)
+    line_ends = 2 * sum(len(chunk) for chunk in curves.lines)
+    straight = line_ends + 2 * len(conic_rows) + len(segments.p0) + len(curves.polylines)
     _check_budget(int(conic_steps.sum()) + int(bulge_steps.sum()), len(conic_rows) + len(bulge_steps), straight,
                   tolerance)
     blocks = [_lines(curves), _conics(conic_rows, conic_steps), _polylines(curves.polylines, segments, bulge_steps),

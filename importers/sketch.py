@@ -7,12 +7,9 @@ hole); a link without POINTs takes the centres of its circular holes. Joints are
 
 from __future__ import annotations
 
-import logging
 import math
-import warnings
 from collections import Counter
 from collections.abc import Mapping
-from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from pathlib import Path
 from types import MappingProxyType
@@ -28,6 +25,7 @@ from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
 from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.ilogic_csv import read_csv
+from linkstress.importers.library_notes import library_notes, noted, with_notes
 from linkstress.importers.primitives import RawSketch, describe, with_damage
 from linkstress.materials import Material
 from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
@@ -134,71 +132,13 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     raw = None
     notes: list[str] = []
     try:
-        with _library_notes(notes):
+        with library_notes(notes):
             raw = read_dxf(path, data, units) if _is_dxf(path, data) else read_csv(path, data, units)
             sketch = _build(path, raw, tolerance, sagitta)
     except SketchError as error:
         message = str(error) if raw is None else with_damage(str(error), raw.fixes)
-        raise SketchError(f"{path.name}: {message}{_noted(notes)}") from None
-    fixes = sketch.fixes + _summary([note for note in notes if not _repeats(note, sketch.fixes)])
-    return replace(sketch, fixes=tuple(dict.fromkeys(fixes)))
-
-
-def _repeats(note: str, fixes: tuple[str, ...]) -> bool:
-    """True when an ezdxf log line says what recover mode's auditor already listed among ``fixes``."""
-    return note.startswith("ezdxf: ") and any(fix.endswith(note.removeprefix("ezdxf: ")) for fix in fixes)
-
-
-MAX_NOTES = 5
-"""How many distinct library warnings a sketch's fixes list; the rest are counted."""
-
-
-class _Collect(logging.Handler):
-    def __init__(self, notes: list[str]) -> None:
-        super().__init__(logging.WARNING)
-        self.notes = notes
-
-    def emit(self, record: logging.LogRecord) -> None:
-        self.notes.append(f"ezdxf: {record.getMessage()}")
-
-
-@contextmanager
-def _library_notes(notes: list[str]):
-    """ezdxf's log warnings (e.g. what recover mode repaired) and Python warnings (numpy's
-    RuntimeWarnings) raised while reading go into ``notes``, not onto the terminal."""
-    logger = logging.getLogger("ezdxf")
-    handler, propagate = _Collect(notes), logger.propagate
-    logger.addHandler(handler)
-    logger.propagate = False
-    try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            yield
-    finally:
-        logger.removeHandler(handler)
-        logger.propagate = propagate
-        notes.extend(f"{w.category.__name__}: {w.message}" for w in caught)
-
-
-def _distinct(notes: list[str]) -> list[str]:
-    return list(dict.fromkeys(" ".join(note.split()) for note in notes))
-
-
-def _summary(notes: list[str]) -> tuple[str, ...]:
-    """The distinct ``notes``, one line each: the first ``MAX_NOTES`` and a count of the rest."""
-    distinct = _distinct(notes)
-    shown = tuple(f"library warning: {note}" for note in distinct[:MAX_NOTES])
-    more = len(distinct) - MAX_NOTES
-    return shown + ((f"library warning: {more} more not listed",) if more > 0 else ())
-
-
-def _noted(notes: list[str]) -> str:
-    """The first library warning, as a note to an error message."""
-    distinct = _distinct(notes)
-    if not distinct:
-        return ""
-    more = f"; and {len(distinct) - 1} more" if len(distinct) > 1 else ""
-    return f" (note: library warning: {distinct[0]}{more})"
+        raise SketchError(f"{path.name}: {message}{noted(notes)}") from None
+    return replace(sketch, fixes=with_notes(sketch.fixes, notes))
 
 
 def _is_dxf(path: Path, data: bytes) -> bool:
