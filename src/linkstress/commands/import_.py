@@ -37,15 +37,14 @@ def run(args: argparse.Namespace) -> int:
     from linkstress.importers.summary import finite, sketch_json, sketch_text
 
     sketch = read_sketch(args.sketch, args.units, args.tolerance, args.sagitta)
-    data = sketch_json(sketch)
-    # Checked whether or not --json is given: the table prints the same numbers.
-    if not finite(data):
-        raise InputError(
-            f"{sketch.path.name}: the results hold a non-finite number; nothing written (a linkstress defect: "
-            "please report it with the sketch)"
-        )
     outputs: list[tuple[str, bytes]] = []
     if args.json:
+        data = sketch_json(sketch)
+        if not finite(data):
+            raise InputError(
+                f"{sketch.path.name}: the results hold a non-finite number; nothing written (a linkstress "
+                "defect: please report it with the sketch)"
+            )
         outputs.append((args.json, json.dumps(data, indent=1).encode()))
     if args.plot:
         from linkstress.importers.figure import sketch_png
