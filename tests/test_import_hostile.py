@@ -233,6 +233,15 @@ def test_a_csv_header_with_two_units_is_refused(tmp_path):
     assert refused(tmp_path, path) == "plate.csv: line 1: the header gives two units, mm and cm; keep the one the numbers are in"
 
 
+def test_a_csv_circle_at_1e300_cm_is_refused_naming_its_line(tmp_path):
+    path = tmp_path / "plate.csv"
+    path.write_text("# linkstress-sketch v1 units=cm\ncircle, 0, 0, 10\ncircle, 1e300, 0, 1\n")
+    # 1e300 cm + the radius is 1e298 m from the origin.
+    assert refused(tmp_path, path) == (
+        "plate.csv: circle on line 3 reaches 1e+298 m from the origin, beyond the 1e+06 m a sketch may span; "
+        "fix or delete it, or check the drawing's units (cm, the header's units=)")
+
+
 # -- files that are not sketches --------------------------------------------------------------------
 
 
