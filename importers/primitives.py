@@ -132,7 +132,7 @@ class CurveSet:
         for c in self.conics:
             half = np.hypot(c[:, 2:4], c[:, 4:6])  # (|major_x, minor_x|, |major_y, minor_y|)
             boxes.append(np.hstack([c[:, :2] - half, c[:, :2] + half]))
-        shapes = [np.vstack([p.vertices, _bulge_extent(p)]) for p in self.polylines]
+        shapes = [np.vstack([p.vertices, _bulge_extent(p)]) if p.bulges.any() else p.vertices for p in self.polylines]
         shapes += [np.asarray([(v[0], v[1]) for v in s.control_points], float).reshape(-1, 2) for s in self.splines]
         if shapes:
             xy = np.concatenate(shapes)
@@ -143,11 +143,14 @@ class CurveSet:
 
     def bounds(self) -> tuple[float, float, float, float] | None:
         """A box (minx, miny, maxx, maxy) holding every curve (conics and splines conservatively); None if none."""
-        boxes = self.extents()[0][:self.curve_count()]
-        if not len(boxes):
-            return None
-        return float(boxes[:, 0].min()), float(boxes[:, 1].min()), float(boxes[:, 2].max()), float(boxes[:, 3].max())
+        return box_of(self.extents()[0][:self.curve_count()])
 
+
+def box_of(boxes: NDArray[np.float64]) -> tuple[float, float, float, float] | None:
+    """The box (minx, miny, maxx, maxy) holding ``boxes`` (rows of the same); None if there are none."""
+    if not len(boxes):
+        return None
+    return float(boxes[:, 0].min()), float(boxes[:, 1].min()), float(boxes[:, 2].max()), float(boxes[:, 3].max())
 
 def with_damage(message: str, fixes: tuple[str, ...] | list[str]) -> str:
     """``message``, noting that the file was damaged (and read in recover mode) if it was."""

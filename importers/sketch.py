@@ -26,7 +26,7 @@ from linkstress.importers.dxf import read_dxf
 from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.ilogic_csv import read_csv
 from linkstress.importers.library_notes import library_notes, noted, with_notes
-from linkstress.importers.primitives import RawSketch, describe, with_damage
+from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, with_damage
 from linkstress.materials import Material
 from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 
@@ -153,10 +153,11 @@ def _is_dxf(path: Path, data: bytes) -> bool:
 
 
 def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float | None) -> Sketch:
-    bounds = raw.curves.bounds()
+    boxes, origins = raw.curves.extents()
+    bounds = box_of(boxes[:raw.curves.curve_count()])
     if bounds is None:
         raise SketchError(f"no outline: the drawing has no curves{_ignored_note(raw.ignored)}")
-    _check_reach(raw)
+    _check_reach(raw, boxes, origins)
     size = math.hypot(bounds[2] - bounds[0], bounds[3] - bounds[1])
     if not size > 0:
         raise SketchError("no outline: all curves sit at one point")
@@ -185,9 +186,9 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
                   tuple(fixes), gap * size / raw.unit.per_metre)
 
 
-def _check_reach(raw: RawSketch) -> None:
-    """Refuse a curve or POINT farther than ``MAX_REACH_M`` from the origin, naming it."""
-    boxes, origins = raw.curves.extents()
+def _check_reach(raw: RawSketch, boxes: NDArray[np.float64], origins: list[Origin]) -> None:
+    """Refuse a curve or POINT (``boxes`` in drawing units, from ``origins``) farther than
+    ``MAX_REACH_M`` from the origin, naming it."""
     with np.errstate(over="ignore"):
         reach = np.abs(boxes).max(axis=1) / raw.unit.per_metre
     if reach.max() > MAX_REACH_M:
