@@ -89,7 +89,7 @@ class Tolerance:
     def for_size(cls, size: float, relative: float | None = None) -> "Tolerance":
         rel = RELATIVE_SAGITTA if relative is None else relative
         if not (math.isfinite(rel) and 0 < rel < 0.5):
-            raise SketchError(f"the chord tolerance must be a fraction of the radius in (0, 0.5), got {rel!r}")
+            raise SketchError(f"the chord tolerance (--sagitta) must be a fraction of the radius in (0, 0.5), got {rel!r}")
         return cls(rel, DRAWING_SAGITTA * size, SPLINE_SAGITTA * size)
 
 

@@ -159,6 +159,14 @@ def test_sagitta_1e_minus_15_is_refused_before_any_vertex_is_made(tmp_path):
     assert message.endswith("use --sagitta 2e-13 or more (the default is 0.0001)")
 
 
+@pytest.mark.parametrize("sagitta", ["0", "-1", "nan", "inf", "0.5"])
+def test_sagitta_outside_a_fraction_is_refused(tmp_path, sagitta):
+    path = drawing(tmp_path, draw=lambda msp: msp.add_circle((0, 0), 1))
+    with pytest.raises(SketchError, match=r"^sketch.dxf: the chord tolerance \(--sagitta\) must be a fraction of the "
+                                          r"radius in \(0, 0.5\), got "):
+        read_sketch(path, sagitta=float(sagitta))
+
+
 @pytest.mark.parametrize("tolerance", ["1e-300", "5e-324", "0", "-1", "nan", "inf", "0.5", "1e300"])
 def test_gap_tolerance_extremes_are_refused(tmp_path, tolerance):
     path = drawing(tmp_path, draw=lambda msp: rectangle(msp, 0, 0, 2, 1))
