@@ -17,8 +17,10 @@ import numpy as np
 import pytest
 
 from linkstress.cli import main
-from linkstress.errors import SketchError
+from linkstress.errors import SceneError, SketchError
 from linkstress.importers import flatten, read_sketch, summary
+from linkstress.scene import load_scene
+from test_scene_errors import BASE
 from linkstress.importers import sketch as sketch_module
 
 BOUND_S = 10.0
@@ -262,6 +264,20 @@ def test_a_file_that_is_not_a_sketch_is_never_quoted(tmp_path):
                        "'New <entity>' line, a linkstress-sketch CSV with '# linkstress-sketch v1'); give a sketch "
                        "exported from CAD")
     assert "daemon" not in message
+
+
+def test_a_scene_pointing_its_sketch_at_a_system_file_does_not_echo_it(tmp_path):
+    (tmp_path / "etc").mkdir()
+    (tmp_path / "etc" / "passwd").write_text("root:x:0:0:root:/root:/bin/bash\ndaemon:x:1:1:daemon:/usr/sbin\n")
+    (tmp_path / "a" / "b").mkdir(parents=True)
+    scene = tmp_path / "a" / "b" / "scene.toml"
+    scene.write_text(BASE.replace("[links.crank]\njoints = [[0.0, 0.0], [0.02, 0.0]]",
+                                  '[links.crank]\nsketch = "../../etc/passwd"'))
+    with pytest.raises(SceneError) as error:
+        load_scene(scene)
+    message = str(error.value)
+    assert message.startswith("scene.toml: links.crank.sketch: passwd: line 2: not a DXF or linkstress CSV sketch")
+    assert "daemon" not in message and "root" not in message
 
 
 def test_a_non_utf8_text_file_is_refused_without_quoting_it(tmp_path):
