@@ -11,6 +11,7 @@ structure is broken is read with ezdxf's recover mode, and what it repaired is r
 from __future__ import annotations
 
 import io
+import re
 from collections import Counter
 from pathlib import Path
 
@@ -28,7 +29,13 @@ from linkstress.importers.units import choose_unit, insunits_label, unit_from_in
 GAP_TOLERANCE = 1e-4
 """Default endpoint gap tolerance of DXF sketches, a fraction of the drawing size."""
 
-MAX_BLOCK_DEPTH = 16
+MAX_BLOCK_DEPTH = 64
+"""Block references nest at most this deep (CAD libraries nest a few levels; a block that contains
+itself is caught by name before this)."""
+MAX_BLOCK_ENTITIES = 20_000
+"""The most entities one block reference may expand to, counted before expanding it: ezdxf makes
+each a transformed Python object (about 0.25 ms), and nested references multiply (two per level,
+20 deep, are a million)."""
 _BINARY = b"AutoCAD Binary DXF"
 _VERTEX_SPLINE_FRAME = 16
 _SUPPORTED = {"LINE", "POINT", "CIRCLE", "ARC", "ELLIPSE", "LWPOLYLINE", "POLYLINE", "SPLINE", "INSERT"}
@@ -47,19 +54,28 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
     else:
         doc, simple = _read_text(path, data, fixes)
     try:
-        unit, source = _unit(doc, units)
+        unit, source = _unit(doc if _has_header(data) else None, units)
         curves = CurveSet()
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
         _add_simple(curves, simple, hidden, ignored)
-        _Collector(curves, hidden, ignored).entities(doc.modelspace(), None, 0)
+        _Collector(curves, hidden, ignored, _BlockSizes(doc)).entities(doc.modelspace(), None, ())
     except SketchError as error:
         raise SketchError(with_damage(str(error), fixes)) from None
     return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
 
 
+def _has_header(data: bytes) -> bool:
+    """Whether the file has a HEADER section: without one ezdxf fills in its defaults ($INSUNITS 6,
+    metres), which the file never said."""
+    if data.startswith(_BINARY):
+        return re.search(rb"\x02\x00?HEADER\x00", data) is not None  # group code 2 in one or two bytes
+    return re.search(rb"(?:^|\n)[ \t]*2[ \t]*\r?\n[ \t]*HEADER[ \t]*\r?\n", data) is not None
+
+
 def _unit(doc, units: str | None):
-    code = _insunits(doc)
+    """The drawing's unit: $INSUNITS of ``doc``'s header (None: the file has none), else ``units``."""
+    code = 0 if doc is None else _insunits(doc)
     declared = unit_from_insunits(code)
     if code and declared is None:
         raise SketchError(
@@ -74,7 +90,9 @@ def _recover(path: Path, fixes: list[str]):
     try:
         doc, auditor = recover.readfile(path)
     except Exception as error:  # noqa: BLE001 - ezdxf raises many types on damaged input; all mean the same
-        raise SketchError(f"a damaged DXF file that ezdxf cannot recover ({error})") from None
+        raise SketchError(
+            f"a damaged DXF file that ezdxf cannot recover ({error}); export the sketch from CAD again"
+        ) from None
     fixes.extend(f"ezdxf recover: {entry.message}" for entry in [*auditor.fixes, *auditor.errors])
     return doc
 
@@ -85,7 +103,7 @@ def _read_text(path: Path, data: bytes, fixes: list[str]):
     try:
         info = ezdxf.filemanagement.dxf_file_info(str(path))
     except Exception as damage:  # noqa: BLE001 - on damaged input ezdxf raises many types, all meaning the same
-        return _damaged(path, fixes, f"{type(damage).__name__}: {damage}")
+        return _damaged(path, fixes, _reason(damage))
     try:
         simple, rest = split_entities(data.decode(info.encoding, errors="surrogateescape"))
     except (DamagedDXF, LookupError) as damage:
@@ -98,7 +116,14 @@ def _ezdxf_only(path: Path, fixes: list[str], read, simple: SimpleEntities | Non
     try:
         return read(), simple or SimpleEntities()
     except Exception as damage:  # noqa: BLE001 - on damaged input ezdxf raises many types, all meaning the same
-        return _damaged(path, fixes, f"{type(damage).__name__}: {damage}")
+        return _damaged(path, fixes, _reason(damage))
+
+
+def _reason(damage: Exception) -> str:
+    """What ezdxf's exception says; a StopIteration (it ran out of tags) says nothing."""
+    if isinstance(damage, StopIteration):
+        return "the file ends before its structure does (truncated?)"
+    return f"{type(damage).__name__}: {damage}"
 
 
 def _damaged(path: Path, fixes: list[str], reason: str):
@@ -154,20 +179,21 @@ def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignor
 class _Collector:
     """Walks ezdxf entities (model space, block contents) into a CurveSet."""
 
-    def __init__(self, curves: CurveSet, hidden: set[str], ignored: Counter) -> None:
-        self.curves, self.hidden, self.ignored = curves, hidden, ignored
+    def __init__(self, curves: CurveSet, hidden: set[str], ignored: Counter, sizes: "_BlockSizes") -> None:
+        self.curves, self.hidden, self.ignored, self.sizes = curves, hidden, ignored, sizes
         self.lines: list[tuple] = []
         self.line_origins: list[Origin] = []
 
-    def entities(self, entities, insert: tuple[str, str] | None, depth: int) -> None:
-        """Add ``entities``; inside a block reference ``insert`` = (INSERT handle, its layer)."""
+    def entities(self, entities, insert: tuple[str, str] | None, blocks: tuple[str, ...]) -> None:
+        """Add ``entities``; inside a block reference ``insert`` = (INSERT handle, its layer) and
+        ``blocks`` the names of the blocks it is in, outermost first."""
         for entity in entities:
-            self.entity(entity, insert, depth)
-        if depth == 0 and self.lines:
+            self.entity(entity, insert, blocks)
+        if not blocks and self.lines:
             self.curves.add_lines(np.array(self.lines, float), self.line_origins)
             self.lines, self.line_origins = [], []
 
-    def entity(self, e, insert: tuple[str, str] | None, depth: int) -> None:
+    def entity(self, e, insert: tuple[str, str] | None, blocks: tuple[str, ...]) -> None:
         kind = e.dxftype()
         handler = getattr(self, f"_{kind.lower()}", None) if kind in _SUPPORTED else None
         if handler is None:
@@ -182,40 +208,42 @@ class _Collector:
             if layer.lower() in self.hidden or e.dxf.get("invisible", 0):
                 self.ignored[f"{kind} (hidden layer)"] += 1
                 return
-            handler(e, origin, (handle, layer), depth)
+            handler(e, origin, (handle, layer), blocks)
+        except SketchError:
+            raise
         except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError, IndexError) as error:
             where = f"{kind} (handle {e.dxf.get('handle', '?')})" if insert is None else f"{kind} in block reference {insert[0]}"
             raise SketchError(f"{where} cannot be read ({error}); redraw or explode it") from None
 
-    def _line(self, e, origin, _insert, _depth) -> None:
+    def _line(self, e, origin, _insert, _blocks) -> None:
         s, t = e.dxf.start, e.dxf.end
         self.lines.append((s.x, s.y, t.x, t.y))
         self.line_origins.append(origin)
 
-    def _point(self, e, origin, _insert, _depth) -> None:
+    def _point(self, e, origin, _insert, _blocks) -> None:
         p = e.dxf.location
         self.curves.add_points([[p.x, p.y]], [origin])
 
-    def _circle(self, e, origin, _insert, _depth) -> None:
+    def _circle(self, e, origin, _insert, _blocks) -> None:
         c, ex = e.dxf.center, e.dxf.extrusion
         geo.add_circles(self.curves, np.array([[c.x, c.y, e.dxf.radius, ex.x, ex.y, ex.z]]), [origin], self.ignored)
 
-    def _arc(self, e, origin, _insert, _depth) -> None:
+    def _arc(self, e, origin, _insert, _blocks) -> None:
         c, ex = e.dxf.center, e.dxf.extrusion
         row = [c.x, c.y, e.dxf.radius, e.dxf.start_angle, e.dxf.end_angle, ex.x, ex.y, ex.z]
         geo.add_arcs(self.curves, np.array([row]), [origin], self.ignored)
 
-    def _ellipse(self, e, origin, _insert, _depth) -> None:
+    def _ellipse(self, e, origin, _insert, _blocks) -> None:
         tool = e.construction_tool()
         geo.add_ellipse(self.curves, np.array(tool.center), np.array(tool.major_axis), np.array(tool.minor_axis),
                         tool.start_param, tool.end_param, np.array(e.dxf.extrusion), origin, self.ignored)
 
-    def _lwpolyline(self, e, origin, _insert, _depth) -> None:
+    def _lwpolyline(self, e, origin, _insert, _blocks) -> None:
         pts = np.array(e.get_points("xyb"), float).reshape(-1, 3)
         geo.add_ocs_polyline(self.curves, pts[:, :2], pts[:, 2], e.closed, np.array(e.dxf.extrusion), origin,
                              self.ignored)
 
-    def _polyline(self, e, origin, _insert, _depth) -> None:
+    def _polyline(self, e, origin, _insert, _blocks) -> None:
         if not (e.is_2d_polyline or e.is_3d_polyline):
             self.ignored["POLYLINE (mesh)"] += 1
             return
@@ -228,23 +256,58 @@ class _Collector:
             extrusion = np.array(e.dxf.get("extrusion", (0.0, 0.0, 1.0)), float)
         geo.add_ocs_polyline(self.curves, xy, bulges, e.is_closed, extrusion, origin, self.ignored)
 
-    def _spline(self, e, origin, _insert, _depth) -> None:
+    def _spline(self, e, origin, _insert, _blocks) -> None:
         if not (e.control_point_count() or e.fit_point_count()):
             self.ignored["SPLINE (no points)"] += 1
             return
         self.curves.add_spline(e.construction_tool(), origin)
 
-    def _insert(self, e, origin, insert, depth) -> None:
-        if depth >= MAX_BLOCK_DEPTH:
-            raise SketchError(
-                f"{geo.describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep "
-                "(a block that inserts itself?)"
-            )
+    def _insert(self, e, origin, insert, blocks) -> None:
+        name = e.dxf.get("name", "?")
+        if not blocks:
+            size = e.mcount * self.sizes.of(name, (), origin)
+            if size > MAX_BLOCK_ENTITIES:
+                raise SketchError(
+                    f"{geo.describe(origin)} of block {name!r} expands to {size:,} entities, more than the "
+                    f"{MAX_BLOCK_ENTITIES:,} linkstress expands; explode its nested blocks in CAD or draw "
+                    "one sketch per link"
+                )
         skipped = Counter()
         for reference in e.multi_insert() if e.mcount > 1 else [e]:
             virtual = list(reference.virtual_entities(
                 skipped_entity_callback=lambda entity, reason: skipped.update([entity.dxftype()])))
-            self.entities(virtual, insert, depth + 1)
+            self.entities(virtual, insert, (*blocks, name))
         for kind, n in skipped.items():
             self.ignored[f"{kind} in block reference (cannot be transformed)"] += n
 
+
+class _BlockSizes:
+    """How many entities each block expands to, nested references included, from the block
+    definitions alone (nothing is expanded); a block that contains itself is an error naming it."""
+
+    def __init__(self, doc) -> None:
+        self.doc = doc
+        self.known: dict[str, int] = {}
+
+    def of(self, name: str, within: tuple[str, ...], origin: Origin) -> int:
+        """Entities of block ``name``, referenced inside blocks ``within`` (outermost first) by ``origin``."""
+        if name in within:
+            through = within[within.index(name) + 1:]
+            via = f" through block {', '.join(repr(b) for b in through)}" if through else ""
+            raise SketchError(
+                f"block {name!r} inserts itself{via} ({geo.describe(origin)}); a block cannot contain "
+                f"itself: delete the reference to {name!r} from its definition in CAD"
+            )
+        if len(within) >= MAX_BLOCK_DEPTH:
+            raise SketchError(
+                f"{geo.describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep; explode "
+                "the outer blocks in CAD"
+            )
+        if name not in self.known:
+            block = self.doc.blocks.get(name)
+            inner = (*within, name)
+            self.known[name] = 0 if block is None else sum(
+                e.mcount * self.of(e.dxf.get("name", "?"), inner, origin) if e.dxftype() == "INSERT" else 1
+                for e in block
+            )
+        return self.known[name]

@@ -29,6 +29,8 @@ _REQUIRED = {
     "LWPOLYLINE": (),
 }
 _OPTIONAL = (5, 8, 210, 220, 230, 67, 60, 70)
+# DXF group codes run from -5 to 1071; anything far outside is not a code (and must not overflow int64).
+_CODE_RANGE = (-9999, 9999)
 # Codes that make an entity not simple: app data and embedded objects (arbitrary codes inside).
 _FOREIGN = (101, 102)
 
@@ -65,7 +67,7 @@ def split_entities(text: str) -> tuple[SimpleEntities, str]:
         raise DamagedDXF("the file ends in the middle of a group code/value pair (truncated?)")
     try:
         codes = np.fromiter(map(int, lines[0::2]), np.int64, len(lines) // 2)
-    except ValueError:
+    except (ValueError, OverflowError):
         bad = _first_not_int(lines[0::2])
         raise DamagedDXF(f"line {2 * bad + 1}: {lines[2 * bad]!r} is not a group code") from None
     values = lines[1::2]
@@ -94,7 +96,8 @@ def split_entities(text: str) -> tuple[SimpleEntities, str]:
 def _first_not_int(texts: list[str]) -> int:
     for k, text in enumerate(texts):
         try:
-            int(text)
+            if not _CODE_RANGE[0] <= int(text) <= _CODE_RANGE[1]:
+                return k
         except ValueError:
             return k
     raise AssertionError("every text is an integer")

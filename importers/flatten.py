@@ -27,6 +27,7 @@ Splines have no closed-form area: they are flattened by ezdxf's adaptive B-splin
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -35,7 +36,7 @@ from numpy.typing import NDArray
 
 from linkstress.curves import MIN_SEGMENTS_PER_TURN
 from linkstress.errors import SketchError
-from linkstress.importers.primitives import CurveSet, Polyline, bulge_arcs
+from linkstress.importers.primitives import CurveSet, Origin, Polyline, bulge_arcs, describe
 
 RELATIVE_SAGITTA = 1e-4
 """Default chord tolerance of an arc, as a fraction of its own (major) radius: 223 vertices per turn."""
@@ -46,6 +47,14 @@ it only binds for arcs flatter than a tenth of the drawing, which would otherwis
 
 SPLINE_SAGITTA = 1e-7
 """Chord tolerance of splines, as a fraction of the drawing's size."""
+
+MAX_VERTICES = 5_000_000
+"""The most vertices a sketch may flatten to (80 MB of coordinates, seconds to chain): the count is
+estimated from the chord tolerance and the arcs before any is made, and a setting asking for more is refused."""
+
+MAX_SPLINE_VERTICES = 200_000
+"""The most vertices all splines together may flatten to: ezdxf subdivides them in Python, about
+25 us a vertex, so this bounds their time to about 5 s (a circle-like spline needs about 6,000)."""
 
 
 @dataclass(frozen=True)
@@ -80,13 +89,25 @@ class Tolerance:
     def for_size(cls, size: float, relative: float | None = None) -> "Tolerance":
         rel = RELATIVE_SAGITTA if relative is None else relative
         if not (math.isfinite(rel) and 0 < rel < 0.5):
-            raise SketchError(f"the chord tolerance must be a fraction of the radius in (0, 0.5), got {rel!r}")
+            raise SketchError(f"the chord tolerance (--sagitta) must be a fraction of the radius in (0, 0.5), got {rel!r}")
         return cls(rel, DRAWING_SAGITTA * size, SPLINE_SAGITTA * size)
 
 
 def flatten(curves: CurveSet, tolerance: Tolerance) -> Pieces:
-    """Every curve of ``curves`` as a polyline piece within ``tolerance`` (drawing units)."""
-    blocks = [_lines(curves), _conics(curves, tolerance), _polylines(curves, tolerance), _splines(curves, tolerance)]
+    """Every curve of ``curves`` as a polyline piece within ``tolerance`` (drawing units).
+
+    The vertex count is checked against ``MAX_VERTICES`` before any vertex is made."""
+    conic_rows = np.concatenate(curves.conics) if curves.conics else np.empty((0, 9))
+    conic_steps = segment_counts(np.maximum(np.hypot(*conic_rows[:, 2:4].T), np.hypot(*conic_rows[:, 4:6].T)),
+                                 conic_rows[:, 7], tolerance)
+    segments = _Segments.of(curves.polylines)
+    bulge_steps = segment_counts(segments.radius, segments.sweep, tolerance)
+    line_ends = 2 * sum(len(chunk) for chunk in curves.lines)
+    straight = line_ends + 2 * len(conic_rows) + len(segments.p0) + len(curves.polylines)
+    _check_budget(int(conic_steps.sum()) + int(bulge_steps.sum()), len(conic_rows) + len(bulge_steps), straight,
+                  tolerance)
+    blocks = [_lines(curves), _conics(conic_rows, conic_steps), _polylines(curves.polylines, segments, bulge_steps),
+              _splines(curves, tolerance)]
     xy = np.concatenate([b[0] for b in blocks])
     counts = np.concatenate([b[1] for b in blocks])
     if not np.isfinite(xy).all():
@@ -97,6 +118,32 @@ def flatten(curves: CurveSet, tolerance: Tolerance) -> Pieces:
         np.concatenate([b[2] for b in blocks]).astype(bool),
         np.concatenate([b[3] for b in blocks]).reshape(-1, 3),
     )
+
+
+def _check_budget(arc_vertices: int, arcs: int, straight: int, tolerance: Tolerance) -> None:
+    """Refuse a flattening of more than ``MAX_VERTICES``: ``arc_vertices`` on ``arcs`` arcs at the
+    chord tolerance asked for, ``straight`` vertices of lines and polyline corners whatever it is."""
+    total = arc_vertices + straight
+    if total <= MAX_VERTICES:
+        return
+    if straight >= MAX_VERTICES:
+        raise SketchError(
+            f"the drawing has {straight:,} line ends and polyline vertices, more than the {MAX_VERTICES:,} "
+            "linkstress flattens; split it into one sketch per link"
+        )
+    # The steps of an arc go as 1 / sqrt(sagitta): the tolerance that fits in the budget.
+    needed = tolerance.relative * (arc_vertices / (MAX_VERTICES - straight)) ** 2
+    raise SketchError(
+        f"the chord tolerance --sagitta {tolerance.relative:g} asks for about {total:,} vertices "
+        f"({arc_vertices:,} on {arcs:,} arc(s)), more than the limit of {MAX_VERTICES:,}; use --sagitta "
+        f"{_round_up(needed):g} or more (the default is {RELATIVE_SAGITTA:g})"
+    )
+
+
+def _round_up(value: float) -> float:
+    """``value`` rounded up to one significant digit."""
+    scale = 10.0 ** math.floor(math.log10(value))
+    return math.ceil(value / scale) * scale
 
 
 Block = tuple[NDArray[np.float64], NDArray[np.intp], NDArray[np.bool_], NDArray[np.float64]]
@@ -177,14 +224,13 @@ def _circle_metadata(centre, major, minor) -> NDArray[np.float64]:
     return np.where(circular[:, None], np.column_stack([centre, radius]), np.nan)
 
 
-def _conics(curves: CurveSet, tolerance: Tolerance) -> Block:
-    if not curves.conics:
+def _conics(rows: NDArray[np.float64], n: NDArray[np.intp]) -> Block:
+    """Conic rows of :class:`CurveSet` flattened in ``n`` steps each (their step follows the larger
+    semi-axis: a damaged file may have a "minor" axis longer than the major)."""
+    if not len(rows):
         return _empty_block()
-    rows = np.concatenate(curves.conics)
     centre, major, minor = rows[:, 0:2], rows[:, 2:4], rows[:, 4:6]
     start, sweep, closed = rows[:, 6], rows[:, 7], rows[:, 8] > 0
-    # The step follows the larger semi-axis (a damaged file may have a "minor" axis longer than the major).
-    n = segment_counts(np.maximum(np.hypot(*major.T), np.hypot(*minor.T)), sweep, tolerance)
     counts = np.where(closed, n, n + 2)
     out = np.empty((int(counts.sum()), 2))
     first = np.cumsum(counts) - counts
@@ -206,31 +252,54 @@ def _conics(curves: CurveSet, tolerance: Tolerance) -> Block:
 # -- polylines with bulges ---------------------------------------------------------------------
 
 
-def _polylines(curves: CurveSet, tolerance: Tolerance) -> Block:
-    polys = curves.polylines
+@dataclass(frozen=True)
+class _Segments:
+    """The segments of polylines, concatenated: from ``p0`` to ``p1`` with ``bulge``; ``per_polyline``
+    segments each; the arcs (``centre``, ``radius``, ``start``, ``sweep``) of the ``curved`` ones."""
+
+    p0: NDArray[np.float64]
+    p1: NDArray[np.float64]
+    per_polyline: NDArray[np.intp]
+    curved: NDArray[np.bool_]
+    centre: NDArray[np.float64]
+    radius: NDArray[np.float64]
+    start: NDArray[np.float64]
+    sweep: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, polys: list[Polyline]) -> "_Segments":
+        if not polys:
+            empty = np.empty(0)
+            return cls(np.empty((0, 2)), np.empty((0, 2)), np.empty(0, np.intp), np.empty(0, bool),
+                       np.empty((0, 2)), empty, empty, empty)
+        p0_list, p1_list, b_list = [], [], []
+        for p in polys:
+            v, b = p.vertices, p.bulges
+            nxt = np.roll(v, -1, axis=0) if p.closed else v[1:]
+            p0_list.append(v if p.closed else v[:-1])
+            p1_list.append(nxt)
+            b_list.append(b if p.closed else b[:-1])
+        p0, p1, bulge = np.concatenate(p0_list), np.concatenate(p1_list), np.concatenate(b_list)
+        # A bulge on a zero-length segment draws nothing.
+        curved = (bulge != 0) & np.any(p0 != p1, axis=1)
+        centre, radius, start, sweep = bulge_arcs(p0[curved], p1[curved], bulge[curved])
+        return cls(p0, p1, np.array([len(x) for x in p1_list], np.intp), curved, centre, radius, start, sweep)
+
+
+def _polylines(polys: list[Polyline], segments: _Segments, steps: NDArray[np.intp]) -> Block:
+    """Polylines whose curved segments take ``steps`` steps each."""
     if not polys:
         return _empty_block()
-    p0_list, p1_list, b_list, seg_counts = [], [], [], []
-    for p in polys:
-        v, b = p.vertices, p.bulges
-        nxt = np.roll(v, -1, axis=0) if p.closed else v[1:]
-        p0_list.append(v if p.closed else v[:-1])
-        p1_list.append(nxt)
-        b_list.append(b if p.closed else b[:-1])
-        seg_counts.append(len(nxt))
-    p0, p1, bulge = np.concatenate(p0_list), np.concatenate(p1_list), np.concatenate(b_list)
-    seg_counts = np.asarray(seg_counts, np.intp)
+    p0, curved, seg_counts = segments.p0, segments.curved, segments.per_polyline
     closed = np.array([p.closed for p in polys])
-    # A bulge on a zero-length segment draws nothing.
-    curved = (bulge != 0) & np.any(p0 != p1, axis=1)
     n = np.zeros(len(p0), np.intp)
+    n[curved] = steps
     interior = np.empty((0, 2))
     if curved.any():
-        centre, radius, start, sweep = bulge_arcs(p0[curved], p1[curved], bulge[curved])
-        n[curved] = segment_counts(radius, sweep, tolerance)
+        radius = segments.radius
         zeros = np.zeros_like(radius)
-        interior = interior_vertices(centre, np.column_stack([radius, zeros]), np.column_stack([zeros, radius]),
-                                     start, sweep, n[curved])
+        interior = interior_vertices(segments.centre, np.column_stack([radius, zeros]),
+                                     np.column_stack([zeros, radius]), segments.start, segments.sweep, steps)
     # Each segment contributes its start vertex and its interior vertices; an open polyline adds its end.
     per_segment = 1 + n
     poly_of_segment = np.repeat(np.arange(len(polys)), seg_counts)
@@ -271,9 +340,26 @@ def _splines(curves: CurveSet, tolerance: Tolerance) -> Block:
     if not curves.splines:
         return _empty_block()
     parts = []
-    for spline in curves.splines:
-        pts = spline.flattening(tolerance.spline, segments=4 * max(spline.count, 1))
-        parts.append(np.array([(p.x, p.y) for p in pts], float))
+    left = MAX_SPLINE_VERTICES
+    for spline, origin in zip(curves.splines, curves.origins["splines"]):
+        parts.append(_spline_vertices(spline, tolerance.spline, left, origin))
+        left -= len(parts[-1])
     counts = np.array([len(p) for p in parts], np.intp)
     n = len(parts)
     return np.concatenate(parts), counts, np.zeros(n, bool), np.full((n, 3), np.nan)
+
+
+def _spline_vertices(spline, distance: float, limit: int, origin: Origin) -> NDArray[np.float64]:
+    """ezdxf's adaptive flattening of ``spline`` to chord ``distance``, refused beyond ``limit`` vertices.
+
+    ezdxf subdivides until every chord is within ``distance``, with no bound on the count: the
+    vertices are taken lazily and counted, so a spline that needs too many costs at most ``limit``."""
+    points = spline.flattening(distance, segments=4 * max(spline.count, 1))
+    taken = [(p.x, p.y) for p in itertools.islice(points, limit + 1)]
+    if len(taken) > limit:
+        raise SketchError(
+            f"the splines up to {describe(origin)} need more than the {MAX_SPLINE_VERTICES:,} vertices all "
+            f"splines may take (chord tolerance {distance:.3g} drawing units); simplify them in CAD or convert "
+            "them to polylines"
+        )
+    return np.array(taken, float).reshape(-1, 2)

@@ -65,7 +65,10 @@ def _decode(data: bytes) -> str:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as error:
         line = data[:error.start].count(b"\n") + 1
-        raise SketchError(f"line {line}: not UTF-8 text (byte 0x{data[error.start]:02x}); is this a CSV sketch?") from None
+        raise SketchError(
+            f"line {line}: not UTF-8 text (byte 0x{data[error.start]:02x}): not a DXF or linkstress CSV "
+            "sketch, or one saved in another encoding; save the sketch as UTF-8 text"
+        ) from None
 
 
 class _Rows:
@@ -103,6 +106,7 @@ class _Rows:
 
 
 def _read_old(lines: list[str], separator: str, units: str | None) -> RawSketch:
+    _check_old_format(lines)
     rows = _Rows(separator)
     runs: list[tuple[str, int, list[list[float]]]] = []
     joints: list[list[float]] = []
@@ -148,6 +152,21 @@ def _read_old(lines: list[str], separator: str, units: str | None) -> RawSketch:
     return RawSketch(curves, unit, source, "iLogic CSV (original format)", {}, (), OLD_GAP_TOLERANCE)
 
 
+def _check_old_format(lines: list[str]) -> None:
+    """Refuse a file that is not an old iLogic CSV (its first data line starts a curve or is a Point)
+    without quoting it: it may be any file, which a message must not echo."""
+    first = next((k for k in range(1, len(lines)) if lines[k].strip()), None)
+    if first is None:
+        return
+    head = lines[first].strip().split(";")[0].split(",")[0].strip()
+    if not (_NEW.fullmatch(head) or _POINT.fullmatch(head)):
+        raise SketchError(
+            f"line {first + 1}: not a DXF or linkstress CSV sketch (an iLogic CSV's data starts with a "
+            "'New <entity>' line, a linkstress-sketch CSV with '# linkstress-sketch v1'); give a sketch "
+            "exported from CAD"
+        )
+
+
 def _no_extra(fields: list[str], line: int) -> None:
     if len(fields) > 1:
         raise SketchError(f"line {line}: {fields[0]!r} stands alone on its line, found {fields[1:]!r} after it")
@@ -183,7 +202,13 @@ def _read_v1(lines: list[str], header: re.Match, separator: str, units: str | No
         key, _, value = option.partition("=")
         if key.lower() != "units" or not value:
             raise SketchError(f"line 1: unknown header option {option!r}; the header is '# linkstress-sketch v1 units=mm'")
-        declared = unit_named(value, "line 1: units")
+        unit = unit_named(value, "line 1: units")
+        if declared is not None and unit.code != declared.code:
+            raise SketchError(
+                f"line 1: the header gives two units, {declared.name} and {unit.name}; keep the one the "
+                "numbers are in"
+            )
+        declared = unit
     rows = _Rows(separator)
     curves = CurveSet()
     found: dict[str, list] = {kind: [] for kind in _V1_FIELDS}

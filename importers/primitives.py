@@ -125,26 +125,32 @@ class CurveSet:
     def curve_count(self) -> int:
         return len(self.curve_origins())
 
+    def extents(self) -> tuple[NDArray[np.float64], list[Origin]]:
+        """A box (minx, miny, maxx, maxy) per curve, in :meth:`curve_origins` order, then one per point,
+        with their origins; conics and splines conservatively (the box of the axes, the control points)."""
+        boxes = [np.hstack([np.minimum(c[:, 0:2], c[:, 2:4]), np.maximum(c[:, 0:2], c[:, 2:4])]) for c in self.lines]
+        for c in self.conics:
+            half = np.hypot(c[:, 2:4], c[:, 4:6])  # (|major_x, minor_x|, |major_y, minor_y|)
+            boxes.append(np.hstack([c[:, :2] - half, c[:, :2] + half]))
+        shapes = [np.vstack([p.vertices, _bulge_extent(p)]) if p.bulges.any() else p.vertices for p in self.polylines]
+        shapes += [np.asarray([(v[0], v[1]) for v in s.control_points], float).reshape(-1, 2) for s in self.splines]
+        if shapes:
+            xy = np.concatenate(shapes)
+            first = np.cumsum([len(x) for x in shapes]) - [len(x) for x in shapes]
+            boxes.append(np.hstack([np.minimum.reduceat(xy, first), np.maximum.reduceat(xy, first)]))
+        boxes += [np.hstack([p, p]) for p in self.points]
+        return np.concatenate(boxes or [np.empty((0, 4))]).reshape(-1, 4), self.curve_origins() + self.origins["points"]
+
     def bounds(self) -> tuple[float, float, float, float] | None:
         """A box (minx, miny, maxx, maxy) holding every curve (conics and splines conservatively); None if none."""
-        boxes = []
-        for chunk in self.lines:
-            xy = chunk.reshape(-1, 2)
-            boxes.append(np.concatenate([xy.min(0), xy.max(0)]))
-        for chunk in self.conics:
-            half = np.hypot(chunk[:, 2:4], chunk[:, 4:6])  # (|major_x, minor_x|, |major_y, minor_y|)
-            boxes.append(np.concatenate([(chunk[:, :2] - half).min(0), (chunk[:, :2] + half).max(0)]))
-        pts = [p.vertices for p in self.polylines] + [
-            np.asarray([(v[0], v[1]) for v in s.control_points], float) for s in self.splines
-        ] + [_bulge_extent(p) for p in self.polylines if p.bulges.any()]
-        if pts:
-            xy = np.concatenate(pts)
-            boxes.append(np.concatenate([xy.min(0), xy.max(0)]))
-        if not boxes:
-            return None
-        b = np.array(boxes)
-        return float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()), float(b[:, 3].max())
+        return box_of(self.extents()[0][:self.curve_count()])
 
+
+def box_of(boxes: NDArray[np.float64]) -> tuple[float, float, float, float] | None:
+    """The box (minx, miny, maxx, maxy) holding ``boxes`` (rows of the same); None if there are none."""
+    if not len(boxes):
+        return None
+    return float(boxes[:, 0].min()), float(boxes[:, 1].min()), float(boxes[:, 2].max()), float(boxes[:, 3].max())
 
 def with_damage(message: str, fixes: tuple[str, ...] | list[str]) -> str:
     """``message``, noting that the file was damaged (and read in recover mode) if it was."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from collections import Counter
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from types import MappingProxyType
 
@@ -25,12 +25,24 @@ from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
 from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.ilogic_csv import read_csv
-from linkstress.importers.primitives import RawSketch, describe, with_damage
+from linkstress.importers.library_notes import library_notes, noted, with_notes
+from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, with_damage
 from linkstress.materials import Material
 from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 
 POINT_RULE = "point"
 HOLE_RULE = "hole centre"
+
+MAX_REACH_M = 1e6
+"""No curve or POINT of a sketch may reach farther than this from its origin [m]: a machine, not a map."""
+MIN_SIZE_M = 1e-9
+"""A drawing less than this across [m] has the wrong units: no link is a nanometre."""
+MAX_OFFSET = 1e6
+"""How many drawing sizes its curves may lie from the origin: at 1e6 sizes a coordinate's rounding
+(1.1e-16 relative) is 1.1e-10 of the size, still ten times below the vertex merging distance
+(``contours.DUPLICATE_VERTEX``, 1e-9 of the size); farther out gaps and corners blur."""
+MIN_GAP_TOLERANCE = 1e-9
+"""The smallest gap tolerance, as a fraction of the drawing size: vertices closer than this merge anyway."""
 
 
 @dataclass(frozen=True)
@@ -113,14 +125,20 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     try:
         data = path.read_bytes()
     except OSError as error:
-        raise SketchError(f"cannot read the sketch {str(path)!r}: {error.strerror or error}") from None
+        raise SketchError(
+            f"cannot read the sketch {str(path)!r}: {error.strerror or error}; give the path of a readable "
+            ".dxf or .csv file"
+        ) from None
     raw = None
+    notes: list[str] = []
     try:
-        raw = read_dxf(path, data, units) if _is_dxf(path, data) else read_csv(path, data, units)
-        return _build(path, raw, tolerance, sagitta)
+        with library_notes(notes):
+            raw = read_dxf(path, data, units) if _is_dxf(path, data) else read_csv(path, data, units)
+            sketch = _build(path, raw, tolerance, sagitta)
     except SketchError as error:
         message = str(error) if raw is None else with_damage(str(error), raw.fixes)
-        raise SketchError(f"{path.name}: {message}") from None
+        raise SketchError(f"{path.name}: {message}{noted(notes)}") from None
+    return replace(sketch, fixes=with_notes(sketch.fixes, notes))
 
 
 def _is_dxf(path: Path, data: bytes) -> bool:
@@ -135,15 +153,21 @@ def _is_dxf(path: Path, data: bytes) -> bool:
 
 
 def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float | None) -> Sketch:
-    bounds = raw.curves.bounds()
+    boxes, origins = raw.curves.extents()
+    bounds = box_of(boxes[:raw.curves.curve_count()])
     if bounds is None:
         raise SketchError(f"no outline: the drawing has no curves{_ignored_note(raw.ignored)}")
+    _check_reach(raw, boxes, origins)
     size = math.hypot(bounds[2] - bounds[0], bounds[3] - bounds[1])
-    if not (math.isfinite(size) and size > 0):
+    if not size > 0:
         raise SketchError("no outline: all curves sit at one point")
+    _check_scale(raw, bounds, size)
     gap = raw.gap_tolerance if tolerance is None else tolerance
-    if not (isinstance(gap, (int, float)) and math.isfinite(gap) and 0 < gap < 0.5):
-        raise SketchError(f"the gap tolerance is a fraction of the drawing size in (0, 0.5), got {gap!r}")
+    if not (isinstance(gap, (int, float)) and math.isfinite(gap) and MIN_GAP_TOLERANCE <= gap < 0.5):
+        raise SketchError(
+            f"the gap tolerance (--tolerance) is a fraction of the drawing size in [{MIN_GAP_TOLERANCE:g}, 0.5), "
+            f"got {gap!r}"
+        )
     unit = raw.unit.name
     pieces = flatten(raw.curves, Tolerance.for_size(size, sagitta))
     contours = build_contours(pieces, raw.curves.curve_origins(), gap * size, size, unit)
@@ -160,6 +184,37 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
             )
     return Sketch(path, raw.format, unit, raw.units_source, tuple(links), MappingProxyType(dict(ignored)),
                   tuple(fixes), gap * size / raw.unit.per_metre)
+
+
+def _check_reach(raw: RawSketch, boxes: NDArray[np.float64], origins: list[Origin]) -> None:
+    """Refuse a curve or POINT (``boxes`` in drawing units, from ``origins``) farther than
+    ``MAX_REACH_M`` from the origin, naming it."""
+    with np.errstate(over="ignore"):
+        reach = np.abs(boxes).max(axis=1) / raw.unit.per_metre
+    if reach.max() > MAX_REACH_M:
+        k = int(np.argmax(reach))
+        raise SketchError(
+            f"{describe(origins[k])} reaches {reach[k]:.3g} m from the origin, beyond the {MAX_REACH_M:g} m a "
+            f"sketch may span; fix or delete it, or check the drawing's units ({raw.unit.name}, "
+            f"{raw.units_source})"
+        )
+
+
+def _check_scale(raw: RawSketch, bounds: tuple[float, float, float, float], size: float) -> None:
+    """Refuse a drawing too small to be a part, or so far from the origin that rounding blurs its gaps."""
+    unit = raw.unit.name
+    if size / raw.unit.per_metre < MIN_SIZE_M:
+        raise SketchError(
+            f"the drawing is {size / raw.unit.per_metre:.3g} m across, smaller than {MIN_SIZE_M:g} m; check "
+            f"the drawing's units ({unit}, {raw.units_source}) or scale it to the part's size"
+        )
+    offset = max(abs(v) for v in bounds)
+    if offset > MAX_OFFSET * size:
+        raise SketchError(
+            f"the drawing is {size:.3g} {unit} across but lies {offset:.3g} {unit} from the origin, more than "
+            f"{MAX_OFFSET:g} times its size: double precision cannot resolve its gaps there; move the "
+            "drawing near the origin"
+        )
 
 
 def _ignored_note(ignored: Mapping[str, int]) -> str:

@@ -152,8 +152,8 @@ def test_junk_on_a_line_is_refused_with_its_number(tmp_path, junk, message):
 
 
 def test_old_format_structure_errors_name_the_line(tmp_path):
-    with pytest.raises(SketchError, match=r"line 2: coordinates before the first 'New <entity>' line"):
-        read_sketch(write(tmp_path, ["X, Y", "1, 2"]))
+    with pytest.raises(SketchError, match=r"line 4: coordinates before the first 'New <entity>' line"):
+        read_sketch(write(tmp_path, ["X, Y", "Point", "0, 0", "1, 2"]))
     with pytest.raises(SketchError, match=r"line 3: 'Point' must be followed by its x, y line"):
         read_sketch(write(tmp_path, ["X, Y", "New Line", "Point"]))
     with pytest.raises(SketchError, match=r"line 2: 'New Line' has 1 x, y line\(s\)"):

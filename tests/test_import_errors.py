@@ -138,9 +138,9 @@ def test_a_garbled_group_code_is_read_in_recover_mode_and_noted(tmp_path):
 def test_the_gap_tolerance_must_be_a_fraction(tmp_path):
     doc = ezdxf.new("R2013", units=6)
     rectangle_lines(doc.modelspace(), 0, 0, 2, 1)
-    with pytest.raises(SketchError, match=r"the gap tolerance is a fraction of the drawing size in \(0, 0.5\), got 2"):
+    with pytest.raises(SketchError, match=r"the gap tolerance \(--tolerance\) is a fraction of the drawing size in \[1e-09, 0.5\), got 2"):
         read_sketch(save(doc, tmp_path), tolerance=2)
-    with pytest.raises(SketchError, match=r"chord tolerance must be a fraction of the radius in \(0, 0.5\), got 0"):
+    with pytest.raises(SketchError, match=r"chord tolerance \(--sagitta\) must be a fraction of the radius in \(0, 0.5\), got 0"):
         read_sketch(save(doc, tmp_path), sagitta=0)
 
 

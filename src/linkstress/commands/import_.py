@@ -41,7 +41,10 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         data = sketch_json(sketch)
         if not finite(data):
-            raise InputError(f"{sketch.path.name}: the results hold a non-finite number; nothing written")
+            raise InputError(
+                f"{sketch.path.name}: the results hold a non-finite number; nothing written (a linkstress "
+                "defect: please report it with the sketch)"
+            )
         outputs.append((args.json, json.dumps(data, indent=1).encode()))
     if args.plot:
         from linkstress.importers.figure import sketch_png
