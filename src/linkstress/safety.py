@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
-from linkstress.dynamics.section_stress import SectionStresses
+from linkstress.dynamics.section_stress import SectionStresses, StressSummary
 
 
 @dataclass(frozen=True)
@@ -42,7 +42,7 @@ def yield_factor(yield_strength: float, stress: NDArray[np.float64]) -> NDArray[
         return np.where(stress > 0, yield_strength / stress, np.inf)
 
 
-def safety_factors(stress: SectionStresses, yield_strength: float) -> SafetyFactors:
+def safety_factors(stress: SectionStresses | StressSummary, yield_strength: float) -> SafetyFactors:
     """The factors of a link whose stresses are ``stress`` and whose material yields at
     ``yield_strength`` [Pa]."""
     estimates = [hole.estimate for hole in stress.pin_holes if hole.estimate is not None]

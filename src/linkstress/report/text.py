@@ -172,7 +172,7 @@ def stress_table(result: AnalysisResult) -> str:
         pin = float(max(estimates)) if estimates else "-"
         row = [
             name, float(stress.max_von_mises[k]), float(angles[k]), f"({where[0]:.4g}, {where[1]:.4g})",
-            away, pin, float(stress.forces.mismatch[ok].max()),
+            away, pin, float(stress.mismatch[ok].max()),
         ]
         if factors:
             row += _factor_cells(factors.get(name), ok)
