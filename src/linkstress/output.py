@@ -28,17 +28,31 @@ def write_bytes(path: Path, data: bytes) -> None:
 @contextmanager
 def replacing(path: Path) -> Iterator[BinaryIO]:
     """A binary stream to a temporary file beside ``path`` that replaces ``path`` when the block
-    ends; if anything in the block fails, the temporary file is removed and ``path`` is untouched."""
+    ends; if anything in the block fails, the temporary file is removed and ``path`` is untouched.
+    The system's refusal to write (a full disk, no permission) is an ``InputError`` naming the file."""
     folder = path.resolve().parent
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    try:
+        handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    except OSError as error:
+        raise _unwritable(path, error) from error
     try:
         with os.fdopen(handle, "wb", buffering=WRITE_BUFFER) as stream:
             yield stream
         os.chmod(temporary, 0o666 & ~_umask())  # mkstemp's files are private; outputs are not
         os.replace(temporary, path)
+    except OSError as error:
+        os.unlink(temporary)
+        raise _unwritable(path, error) from error
     except BaseException:
         os.unlink(temporary)
         raise
+
+
+def _unwritable(path: Path, error: OSError) -> InputError:
+    return InputError(
+        f"could not write {str(path)!r}: {error.strerror or error}; no file was written: "
+        "free space in its folder or choose another"
+    )
 
 
 WRITE_BUFFER = 1 << 20
