@@ -40,7 +40,10 @@ value carries).
 Every stress is linear in the load coefficients, so N, V, M and the outer fibres' sigma over a
 sweep are products of the (P, Q) coefficients with (Q, S) bases made once per link, evaluated in
 blocks of positions; only the (position, station) pairs where a bound says a chord's interior can
-beat its outer fibres are searched further.
+beat its outer fibres are searched further. A sweep keeps each block's per-position reductions
+(``StressSummary``: the largest von Mises and where, and the equilibrium check), not its (P, S)
+arrays, which took 12 kB per position over three links of 101 stations; the arrays of a block of
+positions are evaluated again where they are asked for (``StressSummary.at``).
 """
 
 from __future__ import annotations
@@ -350,5 +353,5 @@ two cores, over the same sweep, blocks of 1,800 (two per link) took 187 ms at be
 for blocks of 512 (eight rounds alternated in one process; processor time 344 and 364 ms), and
 one block per link 216 ms (three blocks for two cores). The price is memory for the blocks' working
 arrays: the process's peak over that sweep was 288 MB against 213 MB with blocks of 512 (its
-results take 86 MB). Re-checked once the sections near holes went nominal (stresses alone on two
+results then took 86 MB, since reduced per block). Re-checked once the sections near holes went nominal (stresses alone on two
 cores, six rounds): 133-153 ms with 2,048, 134-174 ms with 1,024, 145-185 ms with 512."""

@@ -12,6 +12,8 @@ estimate) where the material gives ``yield_strength`` (null where the stress is 
 ``stations`` the arrays along the link; per mechanism ``forces_n`` (Norton names) and
 ``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
+The records are made a block of positions at a time (``stream_position_records``), for
+``output.write_json_stream`` to write as they come.
 """
 
 from __future__ import annotations
