@@ -10,6 +10,13 @@ reductions and the JSON is written block by block (``report.records.stream_posit
 the peak grows with the sweep only by the kinematics, the joint forces and those reductions (about
 1.3 kB per position); the target (issue 16) is under 2 GB at 1,000,000 positions with ``--json``.
 The JSON file is written to a temporary folder and removed; its size is printed.
+
+Measured on the shared two-core machine of issue 16 (load average in the hundreds, so the times
+are long): 1e4 positions 146 MB (6.5 s), with --json 157 MB (22 s); 1e5 269 MB (11.5 s), with
+--json 276 MB (254 s, 521 MB of JSON); 1e6 1,398 MB (168 s), with --json 1,356 MB peak (35 min,
+5.2 GB of JSON; ``/usr/bin/time -v``). Before issue 16, 1e5 took 1,422 MB and 4,819 MB with --json.
+Writing the JSON dominates a long sweep: ``json.dumps`` with indentation runs in Python, about
+2 ms per position of the seed.
 """
 
 from __future__ import annotations
@@ -46,12 +53,13 @@ print(json.dumps({"code": code, "seconds": seconds, "peak_bytes": peak}), file=s
 
 @dataclass(frozen=True)
 class Run:
-    """One child's ``analyze``: exit code, seconds [s], peak resident memory [bytes] and the JSON
-    file's size [bytes] (None without ``--json``)."""
+    """One child's ``analyze``: exit code (minus the signal that ended a child killed before it
+    could report, e.g. -9 from the system's out-of-memory killer), seconds [s] and peak resident
+    memory [bytes] (None for a killed child) and the JSON file's size [bytes] (None without one)."""
 
     code: int
-    seconds: float
-    peak_bytes: int
+    seconds: float | None
+    peak_bytes: int | None
     json_bytes: int | None
 
 
@@ -75,8 +83,10 @@ def analyze_in_child(scene: Path, json_out: Path | None = None, *extra: str) -> 
     args = ["analyze", str(scene), *([] if json_out is None else ["--json", str(json_out)]), *extra]
     done = subprocess.run([sys.executable, "-c", CHILD, *args], capture_output=True, text=True, check=False)
     lines = done.stderr.strip().splitlines()
+    if done.returncode < 0:
+        return Run(done.returncode, None, None, None)
     if not lines or not lines[-1].startswith("{"):
-        raise RuntimeError(f"analyze {scene} failed:\n{done.stderr}")
+        raise RuntimeError(f"analyze {scene} failed (exit {done.returncode}):\n{done.stderr}")
     figures = json.loads(lines[-1])
     size = json_out.stat().st_size if json_out is not None and json_out.exists() else None
     return Run(figures["code"], figures["seconds"], figures["peak_bytes"], size)
@@ -97,15 +107,19 @@ def main(argv: list[str] | None = None) -> None:
                 if out is not None:
                     out.unlink(missing_ok=True)
                 rows.append((
-                    positions, "yes" if with_json else "no", run.code, run.seconds, run.peak_bytes / 1e6,
-                    "" if run.json_bytes is None else run.json_bytes / 1e6,
+                    positions, "yes" if with_json else "no", run.code, _or_dash(run.seconds),
+                    _or_dash(run.peak_bytes and run.peak_bytes / 1e6), _or_dash(run.json_bytes and run.json_bytes / 1e6),
                 ))
-                print(f"{positions:,} positions, --json {rows[-1][1]}: {run.seconds:.1f} s, peak {run.peak_bytes / 1e6:,.0f} MB",
+                print(f"{positions:,} positions, --json {rows[-1][1]}: exit {run.code}, {rows[-1][3]} s, peak {rows[-1][4]} MB",
                       flush=True)
     print()
     print(format_table(
         ("positions", "--json", "exit", "analyze [s]", "peak memory [MB]", "JSON [MB]"), rows,
     ))
+
+
+def _or_dash(value: float | None) -> float | str:
+    return "-" if value is None else value
 
 
 if __name__ == "__main__":
