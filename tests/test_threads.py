@@ -91,9 +91,13 @@ def test_a_sweep_in_many_blocks_on_threads_equals_the_sweep_in_one_block(monkeyp
         a = blocks.stresses[name]
         b = section_stress.section_stresses(scene.links[name].profile, loads, a.x)
         scale = np.abs(b.von_mises).max()
-        np.testing.assert_allclose(a.von_mises, b.von_mises, rtol=0, atol=1e-13 * scale)
-        np.testing.assert_array_equal(a.forces.moment, b.forces.moment)
-        np.testing.assert_allclose(a.forces.mismatch, b.forces.mismatch, rtol=0, atol=1e-15)
+        np.testing.assert_allclose(a.max_von_mises, b.max_von_mises, rtol=0, atol=1e-13 * scale)
+        np.testing.assert_allclose(a.mismatch, b.forces.mismatch, rtol=0, atol=1e-15)
+        along = [a.at(block) for block in a.blocks]
+        np.testing.assert_allclose(np.concatenate([s.von_mises for s in along]), b.von_mises, rtol=0, atol=1e-13 * scale)
+        # BLAS rounds a product differently with the number of rows: equal to rounding of the largest M
+        moment = np.abs(b.forces.moment).max()
+        np.testing.assert_allclose(np.concatenate([s.forces.moment for s in along]), b.forces.moment, rtol=0, atol=1e-14 * moment)
 
 
 @pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="the system cannot hold a process to a core")

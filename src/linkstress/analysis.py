@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 
 from linkstress.curvature import Curvature, link_curvature
 from linkstress.dynamics.machine_forces import MachineForces, machine_forces
-from linkstress.dynamics.section_stress import SectionStresses, default_stations, links_section_stresses
+from linkstress.dynamics.section_stress import StressSummary, default_stations, links_section_stresses
 from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
 from linkstress.scene import Scene
@@ -91,13 +91,15 @@ def plan_for(scene: Scene) -> Plan:
 class AnalysisResult:
     """Everything computed for a scene over its P positions; ``feasible`` (P,) where every stage
     that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage; ``curvature`` of
-    every link with section stresses, decided once from its geometry (None: all near-hole region)."""
+    every link with section stresses, decided once from its geometry (None: all near-hole region).
+    ``stresses`` keep per-position reductions; ``stresses[name].at(positions)`` recomputes the arrays
+    along a link."""
 
     scene: Scene
     plan: Plan
     kinematics: MachineMotion
     forces: MachineForces | None
-    stresses: dict[str, SectionStresses]
+    stresses: dict[str, StressSummary]
     seconds: dict[str, float] = field(default_factory=dict)
     curvature: dict[str, Curvature | None] = field(default_factory=dict)
 
@@ -134,7 +136,7 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
     kinematics = solve_machine(scene.machine, scene.motion)
     seconds["kinematics"] = time.perf_counter() - start
     forces = None
-    stresses: dict[str, SectionStresses] = {}
+    stresses: dict[str, StressSummary] = {}
     curvature: dict[str, Curvature | None] = {}
     if plan.forces:
         start = time.perf_counter()

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
-from linkstress.dynamics.section_stress import SectionStresses
+from linkstress.dynamics.section_stress import SectionStresses, StressSummary
 
 
 CURVED_NOTE = "not given: curved link (straight-beam value), see validate"
@@ -64,7 +64,7 @@ def yield_factor(yield_strength: float, stress: NDArray[np.float64]) -> NDArray[
         return np.where(stress > 0, yield_strength / stress, np.inf)
 
 
-def safety_factors(stress: SectionStresses, yield_strength: float, curved: bool = False) -> SafetyFactors:
+def safety_factors(stress: SectionStresses | StressSummary, yield_strength: float, curved: bool = False) -> SafetyFactors:
     """The factors of a link whose stresses are ``stress`` and whose material yields at
     ``yield_strength`` [Pa]; a ``curved`` link's section factor is withheld."""
     pin_holes, inside = pin_hole_factor(stress.pin_holes, yield_strength)

@@ -13,8 +13,8 @@ import argparse
 from pathlib import Path
 
 from linkstress.analysis import plan_for, run_analysis
-from linkstress.output import check_folder, write_json, write_text
-from linkstress.report.records import position_records
+from linkstress.output import check_folder, write_json_stream, write_text
+from linkstress.report.records import stream_position_records
 from linkstress.report.text import report
 from linkstress.scene import load_scene
 
@@ -51,14 +51,15 @@ def run(args: argparse.Namespace) -> int:
         return 0
     result = run_analysis(scene, plan)
     print(report(result))
-    # Every output is made before any is written, so a failure leaves none half-done.
+    # The HTML is made before any output is written and the JSON is written to a temporary file
+    # renamed when complete, so a failure leaves no output half-done.
     document = None
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 
         document = analysis_html(result)
     if args.json is not None:
-        write_json(args.json, {"positions": position_records(result, stations=args.stations)})
+        write_json_stream(args.json, "positions", stream_position_records(result, stations=args.stations))
     if document is not None:
         write_text(args.html, document)
     return 0

@@ -393,7 +393,7 @@ def _estimate(joint: int, diameter: float, depth: float, outline: HoleOutline, f
     estimate = kts * nominal
     inside = np.flatnonzero(~outside)
     kt = float(kts[inside[np.argmax(estimate[inside])]]) if inside.size else None
-    shape = tuple(np.array(SHAPE_NAMES)[outline.shape[nearest]].tolist())
+    shape = tuple(np.array(SHAPE_NAMES, dtype=object)[outline.shape[nearest]].tolist())  # the four names, shared
     source = SOURCE
     if outside.any():
         source += (f"; OUTSIDE the Kt tables at {int(outside.sum())} of {len(outside)} positions "

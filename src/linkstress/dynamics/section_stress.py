@@ -40,13 +40,16 @@ value carries).
 Every stress is linear in the load coefficients, so N, V, M and the outer fibres' sigma over a
 sweep are products of the (P, Q) coefficients with (Q, S) bases made once per link, evaluated in
 blocks of positions; only the (position, station) pairs where a bound says a chord's interior can
-beat its outer fibres are searched further.
+beat its outer fibres are searched further. A sweep keeps each block's per-position reductions
+(``StressSummary``: the largest von Mises and where, and the equilibrium check), not its (P, S)
+arrays, which took 12 kB per position over three links of 101 stations; the arrays of a block of
+positions are evaluated again where they are asked for (``StressSummary.at``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -118,6 +121,11 @@ class SectionStresses:
         away = self.von_mises[:, ~self.near_hole]
         return away.max(axis=1) if away.shape[1] else None
 
+    @property
+    def mismatch(self) -> NDArray[np.float64]:
+        """(P,) the equilibrium check of ``forces`` (as ``StressSummary.mismatch``)."""
+        return self.forces.mismatch
+
 
 def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int) -> NDArray[np.float64]:
     """``count`` stations [m] at the centres of equal cells over the link's extent (never on an end,
@@ -144,43 +152,114 @@ def section_stresses(
     stations: NDArray[np.float64],
     body_load_near_holes: bool = False,
 ) -> SectionStresses:
-    """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position;
-    with ``body_load_near_holes``, the body-load term on the single-chord sections near holes too.
+    """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position,
+    evaluated together; with ``body_load_near_holes``, the body-load term on the single-chord
+    sections near holes too.
 
     Candidates for the largest von Mises of a section (``fibre_candidates``): its outer fibres (free
     edges, tau = 0), the ends of chords at holes, and each chord's interior maximum where shear
     matters. Every stress is linear in the load coefficients (``load_coefficients``), so N, V, M
     and the outer fibres' sigma are each one product of those with a basis made once per link.
-    Blocks of positions run on every core, BLAS on one thread (``linkstress.threads``).
+    A long sweep takes ``links_section_stresses``: it holds only per-position reductions.
     """
-    return links_section_stresses([(link, loads, stations)], body_load_near_holes)[0]
+    return _Sweep.of(link, loads, stations, body_load_near_holes).stresses(slice(None))
+
+
+@dataclass(frozen=True)
+class StressSummary:
+    """One link's section stresses over P positions, reduced per position (member frame): what a
+    sweep keeps, 40 bytes per position instead of (P, S) arrays of each quantity.
+
+    ``max_von_mises`` (P,) [Pa] and ``max_at`` (P, 2) [m]: the largest von Mises over all stations
+    and where (station x, fibre y); ``max_away_from_holes`` (P,) [Pa] likewise over the stations
+    not near a hole (None where every station is near one); ``mismatch`` (P,): the equilibrium
+    check of ``InternalForces``; ``pin_holes``: the Kt x nominal estimates (``pin_holes.py``).
+    ``at(positions)`` recomputes the full station arrays of a block of positions; on the blocks of
+    ``blocks`` (those the sweep was evaluated in) they are exactly those the reductions came from.
+    """
+
+    sweep: "_Sweep"
+    blocks: tuple[slice, ...]
+    max_von_mises: NDArray[np.float64]
+    max_at: NDArray[np.float64]
+    max_away_from_holes: NDArray[np.float64] | None
+    mismatch: NDArray[np.float64]
+    pin_holes: tuple[PinHoleEstimate, ...]
+
+    @property
+    def x(self) -> NDArray[np.float64]:
+        return self.sweep.table.x
+
+    @property
+    def near_hole(self) -> NDArray[np.bool_]:
+        return self.sweep.near_hole
+
+    def at(self, positions: slice) -> SectionStresses:
+        """The full arrays (``SectionStresses``) at the consecutive ``positions``, evaluated as one block."""
+        return self.sweep.stresses(positions)
 
 
 def links_section_stresses(
     jobs: Sequence[tuple[LinkProfile, LinkLoadCase, NDArray[np.float64]]],
     body_load_near_holes: bool = False,
-) -> list[SectionStresses]:
-    """``section_stresses(link, loads, stations, body_load_near_holes)`` for each job: the blocks of
-    positions of every link share the cores, so that no core waits at the end of one link's blocks."""
+) -> list[StressSummary]:
+    """Each job's ``section_stresses(link, loads, stations, body_load_near_holes)`` reduced per
+    position as it is made: blocks of positions are evaluated and reduced one at a time, so that a
+    sweep never holds its (P, S) arrays. The blocks of every link share the cores (BLAS on one
+    thread, ``linkstress.threads``), so that no core waits at the end of one link's blocks."""
     sweeps = [_Sweep.of(*job, body_load_near_holes) for job in jobs]
-    threaded = cores() > 1 and sum(sweep.fibres.von_mises.size for sweep in sweeps) >= THREADED_PAIRS
-    blocks = [(sweep, block) for sweep in sweeps for block in sweep.blocks(threaded)]
+    threaded = cores() > 1 and sum(sweep.pairs for sweep in sweeps) >= THREADED_PAIRS
+    summaries = [(sweep, _Reductions.of(sweep), tuple(sweep.blocks(threaded))) for sweep in sweeps]
+    blocks = [(sweep, reductions, block) for sweep, reductions, blocks in summaries for block in blocks]
     if not threaded:
-        in_parallel(_evaluate, blocks, threads=False)
+        in_parallel(_reduce, blocks, threads=False)
     else:
         with blas_alone():
-            in_parallel(_evaluate, blocks)
-    return [sweep.result() for sweep in sweeps]
+            in_parallel(_reduce, blocks)
+    return [reductions.summary(sweep, blocks) for sweep, reductions, blocks in summaries]
 
 
-def _evaluate(item: tuple["_Sweep", slice]) -> None:
-    sweep, positions = item
-    sweep.evaluate(positions)
+def _reduce(item: tuple["_Sweep", "_Reductions", slice]) -> None:
+    sweep, reductions, positions = item
+    reductions.take(sweep, positions)
+
+
+@dataclass(frozen=True)
+class _Reductions:
+    """A link's per-position reductions, filled block by block (each block writes only its rows)."""
+
+    max_von_mises: NDArray[np.float64]
+    max_at: NDArray[np.float64]
+    max_away_from_holes: NDArray[np.float64] | None
+    mismatch: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, sweep: "_Sweep") -> "_Reductions":
+        count = len(sweep.coefficients)
+        away = np.empty(count) if not sweep.near_hole.all() else None
+        return cls(np.empty(count), np.empty((count, 2)), away, np.empty(count))
+
+    def take(self, sweep: "_Sweep", p: slice) -> None:
+        """Evaluate the block ``p`` and keep its reductions."""
+        forces, fibres = sweep.evaluate(p)
+        k = fibres.von_mises.argmax(axis=1)
+        rows = np.arange(len(k))
+        self.max_von_mises[p] = fibres.von_mises[rows, k]
+        self.max_at[p, 0] = sweep.table.x[k]
+        self.max_at[p, 1] = fibres.u[rows, k]
+        if self.max_away_from_holes is not None:
+            self.max_away_from_holes[p] = fibres.von_mises[:, ~sweep.near_hole].max(axis=1)
+        self.mismatch[p] = forces.mismatch
+
+    def summary(self, sweep: "_Sweep", blocks: tuple[slice, ...]) -> StressSummary:
+        return StressSummary(
+            sweep, blocks, self.max_von_mises, self.max_at, self.max_away_from_holes, self.mismatch, sweep.pin_holes,
+        )
 
 
 @dataclass(frozen=True)
 class _Sweep:
-    """One link's section stresses over the sweep, being filled block by block."""
+    """One link's section stresses over the sweep: what every block of positions is evaluated from."""
 
     link: LinkProfile
     loads: LinkLoadCase
@@ -190,8 +269,7 @@ class _Sweep:
     shape: SectionShape
     fibre_bases: tuple[NDArray[np.float64], ...]
     coefficients: NDArray[np.float64]
-    forces: InternalForces
-    fibres: Fibres
+    pin_holes: tuple[PinHoleEstimate, ...]
 
     @classmethod
     def of(
@@ -201,12 +279,15 @@ class _Sweep:
         basis = force_basis(link, loads, table)
         near_hole = near_holes(link, loads.frame_joints, table)
         shape = SectionShape.of(table, link.density, np.ones_like(near_hole) if body_load_near_holes else ~near_hole)
-        coefficients = load_coefficients(loads)
-        size = (len(coefficients), len(table.x))
-        normal, shear, moment, von_mises, u = (np.empty(size) for _ in range(5))
-        forces = InternalForces(table.x, normal, shear, moment, np.empty(size[0]))
-        fibres = Fibres(von_mises, u)
-        return cls(link, loads, table, near_hole, basis, shape, shape.fibre_basis(basis), coefficients, forces, fibres)
+        return cls(
+            link, loads, table, near_hole, basis, shape, shape.fibre_basis(basis), load_coefficients(loads),
+            pin_hole_estimates(link, loads),
+        )
+
+    @property
+    def pairs(self) -> int:
+        """(Position, station) pairs of the sweep."""
+        return len(self.coefficients) * len(self.table.x)
 
     def blocks(self, threaded: bool = False) -> list[slice]:
         """Near-equal blocks of positions: of at most ``POSITION_BLOCK`` on one thread; on threads,
@@ -218,33 +299,37 @@ class _Sweep:
             pieces = min(max(pieces, cores()), count)
         return even_blocks(count, pieces)
 
-    def evaluate(self, p: slice) -> None:
-        """Every fibre candidate of positions ``p``: the writes touch only those rows."""
-        basis, shape, forces, fibres = self.basis, self.shape, self.forces, self.fibres
+    def evaluate(self, p: slice) -> tuple[InternalForces, Fibres]:
+        """N, V, M and the critical fibre of every station at the consecutive positions ``p``, in
+        arrays of the block's own (rows are the block's positions)."""
+        basis, shape = self.basis, self.shape
         mean, spread, body = self.fibre_bases
         c = self.coefficients[p]
-        normal, shear, moment = forces.normal[p], forces.shear[p], forces.moment[p]
-        for out, b in ((normal, basis.normal), (shear, basis.shear), (moment, basis.moment)):
-            np.matmul(c, b, out=out)
-        forces.mismatch[p] = basis.mismatch(c, normal, shear, moment)
-        block = fibres.block(p)
-        size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, block)
+        normal, shear, moment = (np.matmul(c, b) for b in (basis.normal, basis.shear, basis.moment))
+        forces = InternalForces(self.table.x, normal, shear, moment, basis.mismatch(c, normal, shear, moment))
+        fibres = Fibres(np.empty_like(normal), np.empty_like(normal))
+        size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, fibres)
         # a crank turning steadily about a fixed pivot, without gravity, has no body load
         loaded = c[:, [FREE_Y, ALPHA]].any()
         at_single, at_split, chord = shape.interior_candidates(
-            size_n, size_m, block.von_mises, np.abs(c @ body) if loaded else None, normal, shear, moment
+            size_n, size_m, fibres.von_mises, np.abs(c @ body) if loaded else None, normal, shear, moment
         )
-        offset = p.start * len(shape.x)
-        shape.single_interiors(forces, self.coefficients, at_single + offset, fibres)
-        shape.hole_end_fibres(forces, fibres, p)
-        shape.split_interiors(forces, at_split + offset, chord, fibres)
-        block.u += self.table.neutral_axis  # now the fibre's y
+        shape.single_interiors(forces, c, at_single, fibres)
+        shape.hole_end_fibres(forces, fibres, slice(None))
+        shape.split_interiors(forces, at_split, chord, fibres)
+        fibres.u += self.table.neutral_axis  # now the fibre's y
+        return forces, fibres
 
-    def result(self) -> SectionStresses:
-        fibres = self.fibres
+    def stresses(self, p: slice) -> SectionStresses:
+        """``SectionStresses`` of the consecutive positions ``p``, evaluated as one block."""
+        forces, fibres = self.evaluate(p)
+        holes = tuple(
+            replace(h, nominal=h.nominal[p], estimate=None if h.estimate is None else h.estimate[p])
+            for h in self.pin_holes
+        )
         return SectionStresses(
-            self.table, self.forces, fibres.von_mises, fibres.u, self.near_hole, pin_hole_estimates(self.link, self.loads),
-            self.shape, self.coefficients[:, [FREE_Y, ALPHA]],
+            self.table, forces, fibres.von_mises, fibres.u, self.near_hole, holes, self.shape,
+            self.coefficients[p][:, [FREE_Y, ALPHA]],
         )
 
 
@@ -268,5 +353,5 @@ two cores, over the same sweep, blocks of 1,800 (two per link) took 187 ms at be
 for blocks of 512 (eight rounds alternated in one process; processor time 344 and 364 ms), and
 one block per link 216 ms (three blocks for two cores). The price is memory for the blocks' working
 arrays: the process's peak over that sweep was 288 MB against 213 MB with blocks of 512 (its
-results take 86 MB). Re-checked once the sections near holes went nominal (stresses alone on two
+results then took 86 MB, since reduced per block). Re-checked once the sections near holes went nominal (stresses alone on two
 cores, six rounds): 133-153 ms with 2,048, 134-174 ms with 1,024, 145-185 ms with 512."""

@@ -130,11 +130,12 @@ def stress_along_figure(
     result: AnalysisResult, name: str, k: int, fea_x=None, fea_von_mises=None,
 ) -> Figure:
     """Von Mises (largest over each section) and N, V, M along link ``name`` at position ``k``;
-    FEA values at the comparison stations when given."""
-    stress = result.stresses[name]
+    FEA values at the comparison stations when given. The arrays along the link are recomputed
+    for this one position (an analysis keeps only per-position reductions)."""
+    stress = result.stresses[name].at(slice(k, k + 1))
     x = stress.x
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
-    top.plot(x, stress.von_mises[k] / 1e6, label="beam sections", color="#1f77b4")
+    top.plot(x, stress.von_mises[0] / 1e6, label="beam sections", color="#1f77b4")
     if fea_x is not None:
         top.plot(fea_x, np.asarray(fea_von_mises) / 1e6, "o", label="FEA, same fibre", color="#d62728")
     for a, b in _runs(x, stress.near_hole):
@@ -143,9 +144,9 @@ def stress_along_figure(
     top.set_title(f"{name} at input {result.scene.motion.angle_deg[k]:.4g} deg (grey: within a depth of a pin hole)")
     top.legend(fontsize=8)
     top.grid(alpha=0.3)
-    bottom.plot(x, stress.forces.normal[k], label="N [N]")
-    bottom.plot(x, stress.forces.shear[k], label="V [N]")
-    bottom.plot(x, stress.forces.moment[k], label="M [N m]")
+    bottom.plot(x, stress.forces.normal[0], label="N [N]")
+    bottom.plot(x, stress.forces.shear[0], label="V [N]")
+    bottom.plot(x, stress.forces.moment[0], label="M [N m]")
     bottom.set_xlabel("x along the member [m]")
     bottom.legend(fontsize=8)
     bottom.grid(alpha=0.3)

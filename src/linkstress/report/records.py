@@ -17,17 +17,23 @@ estimate) where the material gives ``yield_strength`` (null where the stress is 
 ``stations`` the arrays along the link; per mechanism ``forces_n`` (Norton names) and
 ``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
+The records are made a block of positions at a time (``stream_position_records``), for
+``output.write_json_stream`` to write as they come.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
+from linkstress.dynamics.section_stress import StressSummary
 from linkstress.safety import finite_or_none, link_safety_factors
+from linkstress.threads import even_blocks
 
 
 @dataclass(frozen=True)
@@ -59,52 +65,86 @@ def link_columns(result: AnalysisResult) -> dict[str, LinkColumns]:
 
 
 def position_records(result: AnalysisResult, stations: bool = False) -> list[dict]:
-    """One JSON-ready dict per position; ``stations`` adds N, V, M and von Mises along each link."""
+    """One JSON-ready dict per position; ``stations`` adds N, V, M and von Mises along each link.
+    All of them at once: for a long sweep, ``stream_position_records``."""
+    return list(stream_position_records(result, stations))
+
+
+def stream_position_records(result: AnalysisResult, stations: bool = False) -> Iterator[dict]:
+    """``position_records``, made one block of positions at a time (``record_blocks``): columns stay
+    numpy arrays until their block is turned into lists, and the arrays along the links are
+    recomputed per block (``StressSummary.at``), so that memory does not grow with the sweep."""
     analysis = result.scene.analysis
-    link_values: dict[str, dict[str, list]] = {}
+    link_values: dict[str, dict[str, object]] = {}
     if analysis is None or analysis.kinematics:
         for name, c in link_columns(result).items():
-            values = {"angle_deg": c.angle_deg.tolist(), "omega_rad_s": c.omega.tolist(), "alpha_rad_s2": c.alpha.tolist()}
+            values = {"angle_deg": c.angle_deg, "omega_rad_s": c.omega, "alpha_rad_s2": c.alpha}
             if c.acc_g is not None:
-                values["acc_G_m_s2"] = c.acc_g.tolist()
+                values["acc_G_m_s2"] = c.acc_g
             link_values[name] = values
     for name, stress in result.stresses.items():
         values = link_values.setdefault(name, {})
         values["curved"] = result.curved(name)
-        values["max_von_mises_pa"] = stress.max_von_mises.tolist()
-        values["max_at_m"] = result.max_location(name).tolist()
+        values["max_von_mises_pa"] = stress.max_von_mises
+        values["max_at_m"] = result.max_location(name)
         if stress.max_away_from_holes is not None:
-            values["max_von_mises_away_from_holes_pa"] = stress.max_away_from_holes.tolist()
-        values["equilibrium_mismatch"] = stress.forces.mismatch.tolist()
+            values["max_von_mises_away_from_holes_pa"] = stress.max_away_from_holes
+        values["equilibrium_mismatch"] = stress.mismatch
         if stress.pin_holes:
             values["pin_holes"] = [_pin_hole_lists(h) for h in stress.pin_holes]
         if stations:
-            values["stations"] = _station_lists(stress)
+            values["stations"] = partial(_block_station_lists, stress)
     for name, factors in link_safety_factors(result).items():
         if factors.sections is None:
             link_values[name]["yield_safety_factor"] = None
             link_values[name]["yield_safety_factor_note"] = factors.withheld
         else:
-            link_values[name]["yield_safety_factor"] = finite_or_none(factors.sections)
+            link_values[name]["yield_safety_factor"] = partial(_finite_rows, factors.sections)
         if factors.pin_holes is not None:
-            link_values[name]["pin_hole_yield_safety_factor_estimate"] = finite_or_none(factors.pin_holes)
+            link_values[name]["pin_hole_yield_safety_factor_estimate"] = partial(_finite_rows, factors.pin_holes)
     mechanism_values = _mechanism_lists(result)
-    transmission = {name: np.degrees(loop.transmission_angle).tolist() for name, loop in result.kinematics.loops.items()}
-    feasible = result.feasible.tolist()
-    warnings = result.kinematics.warnings
-    records = []
-    for k, angle in enumerate(result.scene.motion.angle_deg.tolist()):
-        record = {"input_angle_deg": angle, "feasible": feasible[k], "reason": result.reasons[k]}
-        if warnings[k]:
-            record["warnings"] = list(warnings[k])
-        record["links"] = {}
-        if feasible[k]:
-            record["links"] = {name: _at(values, k) for name, values in link_values.items()}
-            record["transmission_angle_deg"] = {name: angles[k] for name, angles in transmission.items()}
-        if result.forces is not None:
-            record["mechanisms"] = {name: _at(values, k) for name, values in mechanism_values.items()} if feasible[k] else {}
-        records.append(record)
-    return records
+    transmission = {name: np.degrees(loop.transmission_angle) for name, loop in result.kinematics.loops.items()}
+    for block in record_blocks(result):
+        links = {name: _rows(values, block) for name, values in link_values.items()}
+        mechanisms = {name: _rows(values, block) for name, values in mechanism_values.items()}
+        angles_of = {name: angles[block].tolist() for name, angles in transmission.items()}
+        feasible = result.feasible[block].tolist()
+        reasons = result.reasons[block]
+        warnings = result.kinematics.warnings[block]
+        for k, angle in enumerate(result.scene.motion.angle_deg[block].tolist()):
+            record = {"input_angle_deg": angle, "feasible": feasible[k], "reason": reasons[k]}
+            if warnings[k]:
+                record["warnings"] = list(warnings[k])
+            record["links"] = {}
+            if feasible[k]:
+                record["links"] = {name: _at(values, k) for name, values in links.items()}
+                record["transmission_angle_deg"] = {name: angles[k] for name, angles in angles_of.items()}
+            if result.forces is not None:
+                record["mechanisms"] = {name: _at(values, k) for name, values in mechanisms.items()} if feasible[k] else {}
+            yield record
+
+
+RECORD_BLOCK = 2048
+"""Positions whose records are made together where no stress sweep sets the blocks: a block's lists
+take about 30 MB with stations, a few MB without."""
+
+
+def record_blocks(result: AnalysisResult) -> list[slice]:
+    """The blocks records are made in: those the section stresses were evaluated in (so that the
+    arrays along the links recomputed per block are exactly those the reductions came from), else
+    blocks of at most ``RECORD_BLOCK`` positions."""
+    for stress in result.stresses.values():
+        return list(stress.blocks)
+    count = len(result.scene.motion.angle_deg)
+    return even_blocks(count, -(-count // RECORD_BLOCK))
+
+
+def _block_station_lists(stress: StressSummary, block: slice) -> dict[str, object]:
+    return _station_lists(stress.at(block))
+
+
+def _finite_rows(values: NDArray[np.float64], block: slice) -> list[float | None]:
+    return finite_or_none(values[block])
 
 
 def _station_lists(stress) -> dict[str, object]:
@@ -123,19 +163,23 @@ def _station_lists(stress) -> dict[str, object]:
 def _pin_hole_lists(hole) -> dict[str, object]:
     """One pin hole's record: what all positions share, then per position lists (Kt and the
     estimate null where the geometry the pin force sees is outside the Kt tables)."""
-    trusted = np.where(hole.outside, None, hole.estimate.astype(object))
     return {
         "joint": hole.joint, "hole_diameter_m": hole.diameter, "depth_m": hole.depth, "kt": hole.kt,
-        "nominal_pa": hole.nominal.tolist(),
-        "estimate_pa": trusted.tolist(),
+        "nominal_pa": hole.nominal,
+        "estimate_pa": partial(_inside_rows, hole.estimate, hole.outside),
         "basis": hole.source,
-        "kt_at_position": np.where(hole.outside, None, hole.kts.astype(object)).tolist(),
-        "kt_outside_table": hole.outside.tolist(),
-        "kt_outside_reason": list(hole.reasons),
-        "width_m": hole.width.tolist(),
-        "end_distance_m": hole.end_distance.tolist(),
-        "end_shape": list(hole.shape),
+        "kt_at_position": partial(_inside_rows, hole.kts, hole.outside),
+        "kt_outside_table": hole.outside,
+        "kt_outside_reason": np.asarray(hole.reasons, dtype=object),
+        "width_m": hole.width,
+        "end_distance_m": hole.end_distance,
+        "end_shape": np.asarray(hole.shape, dtype=object),
     }
+
+
+def _inside_rows(values: NDArray[np.float64], outside: NDArray[np.bool_], block: slice) -> list[float | None]:
+    """``values`` of the positions ``block``, null where the geometry is outside the Kt tables."""
+    return np.where(outside[block], None, values[block].astype(object)).tolist()
 
 
 def _mechanism_lists(result: AnalysisResult) -> dict[str, dict[str, object]]:
@@ -143,13 +187,34 @@ def _mechanism_lists(result: AnalysisResult) -> dict[str, dict[str, object]]:
         return {}
     out = {}
     for name, mech in result.forces.mechanisms.items():
-        values: dict[str, object] = {"forces_n": {k: v.tolist() for k, v in mech.forces.items()}}
+        values: dict[str, object] = {"forces_n": dict(mech.forces)}
         if mech.driving_torque is not None:
-            values["driving_torque_nm"] = mech.driving_torque.tolist()
+            values["driving_torque_nm"] = mech.driving_torque
             values["torque"] = mech.torque_name
         if mech.driving_force is not None:
-            values["driving_force_n"] = mech.driving_force.tolist()
+            values["driving_force_n"] = mech.driving_force
         out[name] = values
+    return out
+
+
+def _rows(values: dict, block: slice) -> dict:
+    """The entries of the positions ``block`` as lists: per-position arrays and lists sliced, blocks
+    made (functions of the block), dicts and lists of dicts recursed, and what all positions share
+    kept whole."""
+    out = {}
+    for key, column in values.items():
+        if isinstance(column, dict):
+            out[key] = _rows(column, block)
+        elif callable(column):
+            out[key] = column(block)
+        elif isinstance(column, np.ndarray):
+            out[key] = column.tolist() if key in SHARED else column[block].tolist()
+        elif isinstance(column, list) and column and isinstance(column[0], dict):
+            out[key] = [_rows(item, block) for item in column]
+        elif isinstance(column, list) and key not in SHARED:
+            out[key] = column[block]
+        else:
+            out[key] = column
     return out
 
 

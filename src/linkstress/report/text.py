@@ -200,7 +200,7 @@ def stress_table(result: AnalysisResult) -> str:
         row = [
             name, peak.value, peak.input_angle_deg, f"({peak.at[0]:.4g}, {peak.at[1]:.4g})",
             "-" if figures.away_from_holes is None else figures.away_from_holes.value,
-            _pin_hole_cell(figures, stress), float(stress.forces.mismatch[ok].max()),
+            _pin_hole_cell(figures, stress), float(stress.mismatch[ok].max()),
         ]
         if factors:
             row += _factor_cells(factors.get(name), ok)
