@@ -117,7 +117,10 @@ def test_the_html_recomputes_the_arrays_along_a_link_only_at_the_positions_it_dr
         assert f'alt="stresses along {name}"' in text
     result = run_analysis(load_scene(scene_path))
     worst = [int(np.argmax(result.stresses[name].max_von_mises)) for name in LINKS]
-    assert [(p.start, p.stop) for p, _ in asked] == [(k, k + 1) for k in worst]
+    # One position at a time, never a block of the sweep: each link's worst (its figure) and where
+    # its largest value away from holes is (the text and the HTML each name that point).
+    assert all(p.stop - p.start == 1 for p, _ in asked) and len(asked) <= 3 * len(LINKS)
+    assert {(p.start, p.stop) for p, _ in asked} >= {(k, k + 1) for k in worst}
     drawn = text.count('alt="mechanism at position ')
     assert 1 <= drawn <= 4
 

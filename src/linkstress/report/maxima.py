@@ -102,8 +102,9 @@ def _away_from_holes(result: AnalysisResult, name: str, ok: NDArray[np.bool_]) -
         return None
     k = worst_position(values, ok)
     away = np.flatnonzero(~stress.near_hole)
-    s = int(away[np.argmax(stress.von_mises[k, away])])
-    at = to_ground(result, name, k, np.array([stress.x[s], stress.fibre_y[k, s]]))
+    arrays = stress.at(slice(k, k + 1))  # that one position's arrays along the link
+    s = int(away[np.argmax(arrays.von_mises[0, away])])
+    at = to_ground(result, name, k, np.array([arrays.x[s], arrays.fibre_y[0, s]]))
     return SweepFigure("max von Mises away from holes", float(values[k]), k, float(result.scene.motion.angle_deg[k]), at)
 
 
