@@ -1,10 +1,15 @@
-"""Writing output files whole or not at all: a temporary file beside the target, then a rename."""
+"""Writing output files whole or not at all: a temporary file beside each target, then renames.
+
+Output paths are checked before any work (``check_outputs``); a write that still fails (disk full,
+file-size limit, read-only folder) is an ``InputError`` naming the file, and leaves no file behind.
+"""
 
 from __future__ import annotations
 
 import json
 import os
 import tempfile
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 
 from linkstress.errors import InputError
@@ -16,18 +21,77 @@ def check_folder(path: Path | None, option: str) -> None:
         raise InputError(f"{option}: folder {str(path.parent)!r} does not exist; create it or choose another")
 
 
-def write_bytes(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically."""
-    folder = path.resolve().parent
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+def check_outputs(options: Mapping[str, Path | None], inputs: Iterable[Path] = ()) -> None:
+    """Refuse, before any work, output files (``options``: flag -> path or None) that are folders, lie in
+    no folder, name the same file twice, or would overwrite one of ``inputs`` (the scene, its sketches)."""
+    given = {option: path for option, path in options.items() if path is not None}
+    seen: dict[Path, str] = {}
+    for option, path in given.items():
+        check_folder(path, option)
+        if path.is_dir():
+            raise InputError(f"{option}: {str(path)!r} is a folder; give a file name, e.g. {str(path / 'out')!r}")
+        if path.resolve() in seen:
+            raise InputError(f"{seen[path.resolve()]} and {option} name the same file {str(path)!r}; give each output its own file")
+        seen[path.resolve()] = option
+    for source in inputs:
+        for option, path in given.items():
+            if _same_file(path, source):
+                raise InputError(
+                    f"{option}: {str(path)!r} is an input ({str(source)!r}); writing would overwrite it: choose another name"
+                )
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    if a.exists() and b.exists():
+        return os.path.samefile(a, b)  # also sees hard and symbolic links
+    return a.resolve() == b.resolve()
+
+
+def json_bytes(data: object, option: str) -> bytes:
+    """JSON text of ``data``; NaN and infinity are refused (they are never valid output)."""
+    try:
+        return (json.dumps(data, indent=1, allow_nan=False) + "\n").encode("utf-8")
+    except ValueError:
+        raise InputError(f"{option}: the results hold a non-finite number (nan or inf); nothing written") from None
+
+
+def write_all(outputs: Sequence[tuple[Path, bytes]]) -> None:
+    """Write every (path, data) whole, or none of them: each to a temporary file beside it, then the renames."""
+    staged: list[tuple[str, Path]] = []
+    try:
+        for path, data in outputs:
+            staged.append((_staged(path, data), path))
+        for temporary, path in staged:
+            try:
+                os.replace(temporary, path)
+            except OSError as error:
+                raise _write_error(path, error) from None
+    except BaseException:
+        for temporary, _ in staged:
+            Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def _staged(path: Path, data: bytes) -> str:
+    """``data`` in a temporary file in ``path``'s folder, with the permissions of an ordinary new file."""
+    try:
+        handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.resolve().parent)
+    except OSError as error:
+        raise _write_error(path, error) from None
     try:
         with os.fdopen(handle, "wb") as stream:
             stream.write(data)
         os.chmod(temporary, 0o666 & ~_umask())  # mkstemp's files are private; outputs are not
-        os.replace(temporary, path)
-    except BaseException:
+    except BaseException as error:
         os.unlink(temporary)
+        if isinstance(error, OSError):
+            raise _write_error(path, error) from None
         raise
+    return temporary
+
+
+def _write_error(path: Path, error: OSError) -> InputError:
+    return InputError(f"cannot write {str(path)!r}: {error.strerror or error}; nothing written (free space, or choose another folder)")
 
 
 def _umask() -> int:
@@ -36,10 +100,15 @@ def _umask() -> int:
     return mask
 
 
+def write_bytes(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically."""
+    write_all([(path, data)])
+
+
 def write_text(path: Path, text: str) -> None:
     write_bytes(path, text.encode("utf-8"))
 
 
 def write_json(path: Path, data: object) -> None:
     """JSON with NaN and infinity refused (they are never valid output)."""
-    write_text(path, json.dumps(data, indent=1, allow_nan=False) + "\n")
+    write_bytes(path, json_bytes(data, str(path)))

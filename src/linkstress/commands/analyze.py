@@ -12,11 +12,23 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from linkstress.analysis import plan_for, run_analysis
-from linkstress.output import check_folder, write_json, write_text
+import numpy as np
+
+from linkstress.analysis import AnalysisResult, Plan, plan_for, run_analysis
+from linkstress.errors import InputError
+from linkstress.output import check_outputs, json_bytes, write_all
 from linkstress.report.records import position_records
 from linkstress.report.text import report
-from linkstress.scene import load_scene
+from linkstress.scene import Scene, load_scene
+
+MEMORY_LIMIT = 6e9
+"""Bytes a run may take: a workstation's share, leaving room for everything else it runs."""
+# Measured on the seed four-bar (4 links, 3 stressed; peak RSS less the 0.1 GB of the loaded tool):
+# 1e6 positions took 0.5 GB for kinematics, 1.3 GB with joint forces and 14 GB with --json; 3.6e4
+# positions with stresses at 101 stations (1.1e7 station values) 0.59 GB. --stations lists hold six
+# numbers per station as Python floats in lists, then as text.
+BYTES_PER_LINK_POSITION = {"kinematics": 110, "forces": 230, "records": 3500}
+BYTES_PER_STATION = {"stresses": 40, "records": 400}
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -42,23 +54,97 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    check_folder(args.json, "--json")
-    check_folder(args.html, "--html")
+    outputs = {"--json": args.json, "--html": args.html}
+    check_outputs(outputs, [args.scene])
     scene = load_scene(args.scene)
+    check_outputs(outputs, scene_sketches(scene))
     plan = plan_for(scene)
+    check_work(scene, plan, records=args.json is not None or args.html is not None, stations=args.stations)
     if args.explain:
         print(plan.describe())
         return 0
-    result = run_analysis(scene, plan)
-    print(report(result))
+    # Overflow is reported by refuse_non_finite, naming the keys, rather than as numpy warnings.
+    with np.errstate(all="ignore"):
+        result = run_analysis(scene, plan)
+    refuse_non_finite(result)
     # Every output is made before any is written, so a failure leaves none half-done.
-    document = None
+    files = []
+    if args.json is not None:
+        files.append((args.json, json_bytes({"positions": position_records(result, stations=args.stations)}, "--json")))
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 
-        document = analysis_html(result)
-    if args.json is not None:
-        write_json(args.json, {"positions": position_records(result, stations=args.stations)})
-    if document is not None:
-        write_text(args.html, document)
+        files.append((args.html, analysis_html(result).encode("utf-8")))
+    print(report(result))
+    write_all(files)
     return 0
+
+
+def scene_sketches(scene: Scene) -> list[Path]:
+    """The sketch files a scene reads (outputs must not overwrite them)."""
+    return [link.sketch for link in scene.links.values() if link.sketch is not None]
+
+
+# What feeds each computed quantity, for the message when one overflows.
+KINEMATIC_KEYS = "the joints and motion.input_angle_deg / input_speed_rad_s / input_acceleration_rad_s2"
+FORCE_KEYS = f"{KINEMATIC_KEYS}, the links' mass data or thickness and material density, and [loads]"
+STRESS_KEYS = f"{FORCE_KEYS}, and the links' sketches"
+
+
+def refuse_non_finite(result: AnalysisResult) -> None:
+    """The last guard: a non-finite number at a feasible position is an ``InputError`` naming the
+    quantity, the first such input angle and the keys that feed it (never a nan cell in a table)."""
+    feasible = result.feasible
+    for what, values, keys in _computed(result):
+        bad = ~np.isfinite(values[feasible].reshape(int(feasible.sum()), -1)).all(axis=1)
+        if bad.any():
+            angle = result.scene.motion.angle_deg[feasible][bad.argmax()]
+            raise InputError(
+                f"{result.scene.path.name}: {what} overflowed (not a finite number) at input angle {angle:g} deg; "
+                f"it comes from {keys}: bring them to the size of a real machine"
+            )
+
+
+def _computed(result: AnalysisResult):
+    """(what, (P, ...) array, keys that feed it) for every computed per-position quantity."""
+    for name, motion in result.kinematics.links.items():
+        for label, values in (("angle", motion.angle), ("angular speed", motion.omega),
+                              ("angular acceleration", motion.alpha), ("acceleration", motion.origin_acceleration)):
+            yield f"the {label} of link {name!r}", values, KINEMATIC_KEYS
+    if result.forces is not None:
+        for name, mech in result.forces.mechanisms.items():
+            for force, values in mech.forces.items():
+                yield f"joint force {force} of mechanism {name!r}", values, FORCE_KEYS
+            for label, values in (("driving torque", mech.driving_torque), ("driving force", mech.driving_force)):
+                if values is not None:
+                    yield f"the {label} of mechanism {name!r}", values, FORCE_KEYS
+    for name, stress in result.stresses.items():
+        yield f"the section von Mises stress of link {name!r}", stress.max_von_mises, STRESS_KEYS
+
+
+def check_work(scene: Scene, plan: Plan, records: bool = False, stations: bool = False) -> None:
+    """Refuse, before computing, a run whose arrays (and JSON/HTML ``records``, with ``stations``)
+    would not fit in MEMORY_LIMIT, stating the estimate and the limit."""
+    estimate = memory_estimate(scene, plan, records, stations)
+    if estimate > MEMORY_LIMIT:
+        positions, links = scene.motion.n_positions, len(scene.links)
+        raise InputError(
+            f"{scene.path.name}: {positions} positions of {links} links"
+            + (f" with section stresses at {plan.stations} stations" if plan.stresses else "")
+            + (" written as JSON or HTML" if records else "")
+            + f" need about {estimate / 1e9:.3g} GB of memory, more than the {MEMORY_LIMIT / 1e9:g} GB limit: give fewer "
+            "input angles (motion.input_angle_deg num) or [analysis] stations, ask for less in [analysis], "
+            "or split the sweep"
+        )
+
+
+def memory_estimate(scene: Scene, plan: Plan, records: bool = False, stations: bool = False) -> float:
+    """Peak memory [bytes] of analysing ``scene`` by ``plan``: per link and position, per station."""
+    link_positions = scene.motion.n_positions * len(scene.links)
+    cells = scene.motion.n_positions * plan.stations * len(plan.stresses)
+    per_link = BYTES_PER_LINK_POSITION["kinematics"] + (BYTES_PER_LINK_POSITION["forces"] if plan.forces else 0)
+    per_cell = BYTES_PER_STATION["stresses"]
+    if records:
+        per_link += BYTES_PER_LINK_POSITION["records"]
+        per_cell += BYTES_PER_STATION["records"] if stations else 0
+    return float(link_positions * per_link + cells * per_cell)

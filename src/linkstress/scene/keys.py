@@ -29,6 +29,9 @@ RANGES: dict[str, tuple[float, float, str]] = {
     "N m": (0.0, 1e12, "a couple"),
 }
 
+MAX_STATIONS = 100_000
+"""Section stations per link: far finer than any section changes (the default is 101)."""
+
 
 def range_problem(value: float, unit: str, positive: bool = False) -> str | None:
     """Why ``value`` [``unit``] lies outside the range accepted for its quantity, or None."""
@@ -99,7 +102,8 @@ class Table:
             raise self.error(key, problem)
         return float(value)
 
-    def integer(self, key: str, default: int | None = None, *, minimum: int | None = None) -> int | None:
+    def integer(self, key: str, default: int | None = None, *, minimum: int | None = None,
+                maximum: int | None = None) -> int | None:
         if key not in self.data:
             return default
         value = self.data[key]
@@ -107,6 +111,8 @@ class Table:
             raise self.error(key, f"must be a whole number, got {_shown(value)}")
         if minimum is not None and value < minimum:
             raise self.error(key, f"must be >= {minimum}, got {value!r}")
+        if maximum is not None and value > maximum:
+            raise self.error(key, f"must be <= {maximum}, got {value!r}")
         return value
 
     def string(self, key: str, default: str | None = None, choices: Iterable[str] | None = None) -> str | None:

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from linkstress.kinematics.machine import Machine
-from linkstress.scene.keys import Table
+from linkstress.scene.keys import MAX_STATIONS, Table
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
 
 LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
@@ -89,7 +89,7 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
         kinematics=table.boolean("kinematics", False),
         forces=table.boolean("forces", False),
         stresses=table.boolean("stresses", False),
-        stations=table.integer("stations", None, minimum=2),
+        stations=table.integer("stations", None, minimum=2, maximum=MAX_STATIONS),
         validate=validate,
         mesh_size=table.number("mesh_size_m", positive=True, unit="m"),
         element_order=order,

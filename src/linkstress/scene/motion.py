@@ -73,9 +73,7 @@ def _range(spec: Table, unit: str) -> np.ndarray:
     for key in RANGE_KEYS:
         spec.require(key, "start, stop and num, e.g. {start = 0.0, stop = 360.0, num = 361}")
     start, stop = spec.number("start", unit=unit), spec.number("stop", unit=unit)
-    num = spec.integer("num", minimum=1)
-    if num > MAX_POSITIONS:
-        raise spec.error("num", f"must be <= {MAX_POSITIONS}, got {num}")
+    num = spec.integer("num", minimum=1, maximum=MAX_POSITIONS)
     return angle_range(start, stop, num)
 
 
