@@ -93,7 +93,7 @@ def test_bad_input_exits_2_with_one_message_and_writes_nothing(tmp_path, case):
 def test_an_unwritable_output_exits_2_and_leaves_no_file(tmp_path):
     result = run_cli("import", str(SEED), "--json", "links.json", "--plot", "no/such/folder/x.png", cwd=tmp_path)
     assert result.returncode == 2
-    assert result.stderr.startswith("linkstress: error: cannot write 'no/such/folder/x.png'")
+    assert result.stderr.startswith("linkstress: error: --plot: folder 'no/such/folder' does not exist")
     assert list(tmp_path.iterdir()) == []
 
 

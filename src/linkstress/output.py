@@ -1,16 +1,26 @@
-"""Writing output files whole or not at all: a temporary file beside the target, then a rename."""
+"""Writing output files whole or not at all: a temporary file beside each target, then renames.
+
+Output paths are checked before any work (``check_outputs``); a write that still fails (disk full,
+file-size limit, read-only folder) is an ``InputError`` naming the file, and leaves no file behind.
+An output is bytes, or a function that writes into a binary stream (``json_stream``), so that a
+long sweep's records are encoded as they come and never all held at once.
+"""
 
 from __future__ import annotations
 
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import BinaryIO
 
 from linkstress.errors import InputError
+
+Content = bytes | Callable[[BinaryIO], None]
+"""What an output file holds: its bytes, or a function that writes them into a stream."""
+WRITE_BUFFER = 1 << 20
+"""Bytes gathered before each write of a streamed file."""
 
 
 def check_folder(path: Path | None, option: str) -> None:
@@ -19,44 +29,106 @@ def check_folder(path: Path | None, option: str) -> None:
         raise InputError(f"{option}: folder {str(path.parent)!r} does not exist; create it or choose another")
 
 
-def write_bytes(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically."""
-    with replacing(path) as stream:
-        stream.write(data)
+def check_outputs(options: Mapping[str, Path | None], inputs: Iterable[Path] = ()) -> None:
+    """Refuse, before any work, output files (``options``: flag -> path or None) that are folders, lie in
+    no folder, name the same file twice, or would overwrite one of ``inputs`` (the scene, its sketches)."""
+    given = {option: path for option, path in options.items() if path is not None}
+    seen: dict[Path, str] = {}
+    for option, path in given.items():
+        check_folder(path, option)
+        if path.is_dir():
+            raise InputError(f"{option}: {str(path)!r} is a folder; give a file name, e.g. {str(path / 'out')!r}")
+        if path.resolve() in seen:
+            raise InputError(f"{seen[path.resolve()]} and {option} name the same file {str(path)!r}; give each output its own file")
+        seen[path.resolve()] = option
+    for source in inputs:
+        for option, path in given.items():
+            if _same_file(path, source):
+                raise InputError(
+                    f"{option}: {str(path)!r} is an input ({str(source)!r}); writing would overwrite it: choose another name"
+                )
 
 
-@contextmanager
-def replacing(path: Path) -> Iterator[BinaryIO]:
-    """A binary stream to a temporary file beside ``path`` that replaces ``path`` when the block
-    ends; if anything in the block fails, the temporary file is removed and ``path`` is untouched.
-    The system's refusal to write (a full disk, no permission) is an ``InputError`` naming the file."""
-    folder = path.resolve().parent
+def _same_file(a: Path, b: Path) -> bool:
+    if a.exists() and b.exists():
+        return os.path.samefile(a, b)  # also sees hard and symbolic links
+    return a.resolve() == b.resolve()
+
+
+def json_bytes(data: object, option: str) -> bytes:
+    """JSON text of ``data``; NaN and infinity are refused (they are never valid output)."""
     try:
-        handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
-    except OSError as error:
-        raise _unwritable(path, error) from error
+        return (json.dumps(data, indent=1, allow_nan=False) + "\n").encode("utf-8")
+    except ValueError:
+        raise _non_finite(option) from None
+
+
+def json_stream(key: str, items: Iterable[object], option: str) -> Callable[[BinaryIO], None]:
+    """The writer of ``json_bytes({key: list(items)}, option)``, byte for byte, each item encoded and
+    written as it comes. The items are at depth 2 of that indentation: each item's lines two spaces in."""
+
+    def write(stream: BinaryIO) -> None:
+        stream.write(f"{{\n {json.dumps(key)}: [".encode())
+        separator = "\n  "
+        for item in items:
+            try:
+                text = json.dumps(item, indent=1, allow_nan=False).replace("\n", "\n  ")
+            except ValueError:
+                raise _non_finite(option) from None
+            stream.write(f"{separator}{text}".encode())
+            separator = ",\n  "
+        stream.write(b"]\n}\n" if separator == "\n  " else b"\n ]\n}\n")
+
+    return write
+
+
+def _non_finite(option: str) -> InputError:
+    return InputError(f"{option}: the results hold a non-finite number (nan or inf); nothing written")
+
+
+def write_all(outputs: Sequence[tuple[Path, Content]]) -> None:
+    """Write every (path, content) whole, or none of them: each to a temporary file beside it, then the renames."""
+    staged: list[tuple[str, Path]] = []
     try:
-        with os.fdopen(handle, "wb", buffering=WRITE_BUFFER) as stream:
-            yield stream
-        os.chmod(temporary, 0o666 & ~_umask())  # mkstemp's files are private; outputs are not
-        os.replace(temporary, path)
-    except OSError as error:
-        os.unlink(temporary)
-        raise _unwritable(path, error) from error
+        for path, content in outputs:
+            staged.append((_staged(path, content), path))
+        for temporary, path in staged:
+            try:
+                os.replace(temporary, path)
+            except OSError as error:
+                raise _write_error(path, error) from None
     except BaseException:
-        os.unlink(temporary)
+        for temporary, _ in staged:
+            Path(temporary).unlink(missing_ok=True)
         raise
 
 
-def _unwritable(path: Path, error: OSError) -> InputError:
+def _staged(path: Path, content: Content) -> str:
+    """``content`` in a temporary file in ``path``'s folder, with the permissions of an ordinary new file."""
+    try:
+        handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.resolve().parent)
+    except OSError as error:
+        raise _write_error(path, error) from None
+    try:
+        with os.fdopen(handle, "wb", buffering=WRITE_BUFFER) as stream:
+            if callable(content):
+                content(stream)
+            else:
+                stream.write(content)
+        os.chmod(temporary, 0o666 & ~_umask())  # mkstemp's files are private; outputs are not
+    except BaseException as error:
+        os.unlink(temporary)
+        if isinstance(error, OSError):
+            raise _write_error(path, error) from None
+        raise
+    return temporary
+
+
+def _write_error(path: Path, error: OSError) -> InputError:
     return InputError(
-        f"could not write {str(path)!r}: {error.strerror or error}; no file was written: "
-        "free space in its folder or choose another"
+        f"cannot write {str(path)!r}: {error.strerror or error}; nothing written: free space in its folder "
+        "or choose another"
     )
-
-
-WRITE_BUFFER = 1 << 20
-"""Bytes gathered before each write of a streamed file."""
 
 
 def _umask() -> int:
@@ -65,24 +137,20 @@ def _umask() -> int:
     return mask
 
 
+def write_bytes(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically."""
+    write_all([(path, data)])
+
+
 def write_text(path: Path, text: str) -> None:
     write_bytes(path, text.encode("utf-8"))
 
 
 def write_json(path: Path, data: object) -> None:
     """JSON with NaN and infinity refused (they are never valid output)."""
-    write_text(path, json.dumps(data, indent=1, allow_nan=False) + "\n")
+    write_bytes(path, json_bytes(data, str(path)))
 
 
 def write_json_stream(path: Path, key: str, items: Iterable[object]) -> None:
-    """``write_json(path, {key: list(items)})`` byte for byte, each item encoded and written as it
-    comes, so that the items are never all held at once; whole or not at all, like ``write_bytes``.
-    The items are at depth 2 of ``write_json``'s indentation: each item's own lines, two spaces in."""
-    with replacing(path) as stream:
-        stream.write(f"{{\n {json.dumps(key)}: [".encode())
-        separator = "\n  "
-        for item in items:
-            text = json.dumps(item, indent=1, allow_nan=False).replace("\n", "\n  ")
-            stream.write(f"{separator}{text}".encode())
-            separator = ",\n  "
-        stream.write(b"]\n}\n" if separator == "\n  " else b"\n ]\n}\n")
+    """``write_json(path, {key: list(items)})`` byte for byte, written as the items come."""
+    write_all([(path, json_stream(key, items, str(path)))])

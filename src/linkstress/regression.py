@@ -97,6 +97,22 @@ def find_cases(folder: Path) -> list[Path]:
     return cases
 
 
+def read_reference(case: Path) -> dict:
+    """The case's stored reference (empty when it has none); an ``InputError`` naming the case and
+    file when it is not a JSON object."""
+    path = case / REFERENCE_FILE
+    if not path.is_file():
+        return {}
+    where = f"case {case.name}: {REFERENCE_FILE}"
+    try:
+        stored = json.loads(path.read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise InputError(f"{where}: not valid JSON ({error}); restore it from version control, or delete it and run regress --update") from None
+    if not isinstance(stored, dict):
+        raise InputError(f"{where}: must be a JSON object {{...}}, got {type(stored).__name__}; restore it, or delete it and run regress --update")
+    return stored
+
+
 def current_values(case: Path, settings: dict) -> dict:
     """Analysis records and, where the scene has profiled links, the beam-against-FEA errors."""
     scene = load_scene(case / SCENE_FILE)
@@ -117,7 +133,7 @@ def run_case(case: Path, update: bool = False) -> CaseResult:
     """Re-run ``case`` and compare it with its reference (or, with ``update``, rewrite the reference)."""
     result = CaseResult(case.name)
     reference_path = case / REFERENCE_FILE
-    stored = json.loads(reference_path.read_text()) if reference_path.is_file() else {}
+    stored = read_reference(case)
     settings = {**DEFAULT_VALIDATION, **stored.get("validation_settings", {})}
     try:
         values = current_values(case, settings)

@@ -12,11 +12,23 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from linkstress.analysis import plan_for, run_analysis
-from linkstress.output import check_folder, write_json_stream, write_text
+import numpy as np
+
+from linkstress.analysis import AnalysisResult, Plan, plan_for, run_analysis
+from linkstress.errors import InputError
+from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.records import stream_position_records
 from linkstress.report.text import report
-from linkstress.scene import load_scene
+from linkstress.scene import Scene, load_scene
+
+MEMORY_LIMIT = 6e9
+"""Bytes a run may take: a workstation's share, leaving room for everything else it runs."""
+# Measured on the seed four-bar (4 links, 3 stressed; peak RSS less the 0.1 GB of the loaded tool):
+# 1e6 positions took 0.5 GB for kinematics, 1.3 GB with joint forces and 1.36-1.40 GB with section
+# stresses at 101 stations, with or without --json: a sweep keeps per-position reductions, and the
+# arrays along the links and the JSON records are made and written a block of positions at a time.
+BYTES_PER_LINK_POSITION = {"kinematics": 110, "forces": 230}
+BYTES_PER_STRESSED_LINK_POSITION = 60
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -42,24 +54,93 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    check_folder(args.json, "--json")
-    check_folder(args.html, "--html")
+    outputs = {"--json": args.json, "--html": args.html}
+    check_outputs(outputs, [args.scene])
     scene = load_scene(args.scene)
+    check_outputs(outputs, scene_sketches(scene))
     plan = plan_for(scene)
+    check_work(scene, plan)
     if args.explain:
         print(plan.describe())
         return 0
-    result = run_analysis(scene, plan)
-    print(report(result))
-    # The HTML is made before any output is written and the JSON is written to a temporary file
-    # renamed when complete, so a failure leaves no output half-done.
-    document = None
+    # Overflow is reported by refuse_non_finite, naming the keys, rather than as numpy warnings.
+    with np.errstate(all="ignore"):
+        result = run_analysis(scene, plan)
+    refuse_non_finite(result)
+    # Every output is staged before any is renamed into place, so a failure leaves none half-done; the
+    # JSON is encoded into its staged file as its records are made, a block of positions at a time.
+    files = []
+    if args.json is not None:
+        files.append((args.json, json_stream("positions", stream_position_records(result, stations=args.stations), "--json")))
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 
-        document = analysis_html(result)
-    if args.json is not None:
-        write_json_stream(args.json, "positions", stream_position_records(result, stations=args.stations))
-    if document is not None:
-        write_text(args.html, document)
+        files.append((args.html, analysis_html(result).encode("utf-8")))
+    print(report(result))
+    write_all(files)
     return 0
+
+
+def scene_sketches(scene: Scene) -> list[Path]:
+    """The sketch files a scene reads (outputs must not overwrite them)."""
+    return [link.sketch for link in scene.links.values() if link.sketch is not None]
+
+
+# What feeds each computed quantity, for the message when one overflows.
+KINEMATIC_KEYS = "the joints and motion.input_angle_deg / input_speed_rad_s / input_acceleration_rad_s2"
+FORCE_KEYS = f"{KINEMATIC_KEYS}, the links' mass data or thickness and material density, and [loads]"
+STRESS_KEYS = f"{FORCE_KEYS}, and the links' sketches"
+
+
+def refuse_non_finite(result: AnalysisResult) -> None:
+    """The last guard: a non-finite number at a feasible position is an ``InputError`` naming the
+    quantity, the first such input angle and the keys that feed it (never a nan cell in a table)."""
+    feasible = result.feasible
+    for what, values, keys in _computed(result):
+        bad = ~np.isfinite(values[feasible].reshape(int(feasible.sum()), -1)).all(axis=1)
+        if bad.any():
+            angle = result.scene.motion.angle_deg[feasible][bad.argmax()]
+            raise InputError(
+                f"{result.scene.path.name}: {what} overflowed (not a finite number) at input angle {angle:g} deg; "
+                f"it comes from {keys}: bring them to the size of a real machine"
+            )
+
+
+def _computed(result: AnalysisResult):
+    """(what, (P, ...) array, keys that feed it) for every computed per-position quantity."""
+    for name, motion in result.kinematics.links.items():
+        for label, values in (("angle", motion.angle), ("angular speed", motion.omega),
+                              ("angular acceleration", motion.alpha), ("acceleration", motion.origin_acceleration)):
+            yield f"the {label} of link {name!r}", values, KINEMATIC_KEYS
+    if result.forces is not None:
+        for name, mech in result.forces.mechanisms.items():
+            for force, values in mech.forces.items():
+                yield f"joint force {force} of mechanism {name!r}", values, FORCE_KEYS
+            for label, values in (("driving torque", mech.driving_torque), ("driving force", mech.driving_force)):
+                if values is not None:
+                    yield f"the {label} of mechanism {name!r}", values, FORCE_KEYS
+    for name, stress in result.stresses.items():
+        yield f"the section von Mises stress of link {name!r}", stress.max_von_mises, STRESS_KEYS
+
+
+def check_work(scene: Scene, plan: Plan) -> None:
+    """Refuse, before computing, a run whose arrays would not fit in MEMORY_LIMIT, stating the
+    estimate and the limit."""
+    estimate = memory_estimate(scene, plan)
+    if estimate > MEMORY_LIMIT:
+        positions, links = scene.motion.n_positions, len(scene.links)
+        raise InputError(
+            f"{scene.path.name}: {positions} positions of {links} links"
+            + (f" with section stresses at {plan.stations} stations" if plan.stresses else "")
+            + f" need about {estimate / 1e9:.3g} GB of memory, more than the {MEMORY_LIMIT / 1e9:g} GB limit: give fewer "
+            "input angles (motion.input_angle_deg num) or [analysis] stations, ask for less in [analysis], "
+            "or split the sweep"
+        )
+
+
+def memory_estimate(scene: Scene, plan: Plan) -> float:
+    """Peak memory [bytes] of analysing ``scene`` by ``plan``, per link and position (the arrays
+    along the links and the output records take a block of positions at a time, whatever the sweep)."""
+    positions = scene.motion.n_positions
+    per_link = BYTES_PER_LINK_POSITION["kinematics"] + (BYTES_PER_LINK_POSITION["forces"] if plan.forces else 0)
+    return float(positions * (len(scene.links) * per_link + len(plan.stresses) * BYTES_PER_STRESSED_LINK_POSITION))

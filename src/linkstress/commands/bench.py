@@ -11,7 +11,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from linkstress.output import check_folder, write_json, write_text
+from linkstress.output import check_outputs, json_bytes, write_all
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -34,8 +34,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    check_folder(args.json, "--json")
-    check_folder(args.html, "--html")
+    check_outputs({"--json": args.json, "--html": args.html})
     # The FEA stack (gmsh, scikit-fem) loads only when the bench runs.
     from linkstress.validation.bench_report import bench_html, bench_json, bench_text
     from linkstress.validation.bench_suite import FULL, QUICK, run_bench
@@ -43,9 +42,10 @@ def run(args: argparse.Namespace) -> int:
     result = run_bench(QUICK if args.quick else FULL, progress=lambda message: print(f"bench: {message}", file=sys.stderr))
     print(bench_text(result))
     # Every output is made before any is written, so a failure leaves none half-done.
-    document = bench_html(result) if args.html is not None else None
+    files = []
     if args.json is not None:
-        write_json(args.json, bench_json(result))
-    if document is not None:
-        write_text(args.html, document)
+        files.append((args.json, json_bytes(bench_json(result), "--json")))
+    if args.html is not None:
+        files.append((args.html, bench_html(result).encode("utf-8")))
+    write_all(files)
     return 1 if result.failures() else 0

@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import tempfile
 from pathlib import Path
 
 from linkstress.errors import InputError
+from linkstress.output import check_outputs, write_all
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -36,8 +35,10 @@ def run(args: argparse.Namespace) -> int:
     from linkstress.importers import read_sketch
     from linkstress.importers.summary import finite, sketch_json, sketch_text
 
+    outputs = {"--json": args.json and Path(args.json), "--plot": args.plot and Path(args.plot)}
+    check_outputs(outputs, [Path(args.sketch)])
     sketch = read_sketch(args.sketch, args.units, args.tolerance, args.sagitta)
-    outputs: list[tuple[str, bytes]] = []
+    files: list[tuple[Path, bytes]] = []
     if args.json:
         data = sketch_json(sketch)
         if not finite(data):
@@ -45,31 +46,11 @@ def run(args: argparse.Namespace) -> int:
                 f"{sketch.path.name}: the results hold a non-finite number; nothing written (a linkstress "
                 "defect: please report it with the sketch)"
             )
-        outputs.append((args.json, json.dumps(data, indent=1).encode()))
+        files.append((Path(args.json), json.dumps(data, indent=1).encode()))
     if args.plot:
         from linkstress.importers.figure import sketch_png
 
-        outputs.append((args.plot, sketch_png(sketch)))
-    _write_all(outputs)
+        files.append((Path(args.plot), sketch_png(sketch)))
+    write_all(files)
     print(sketch_text(sketch))
     return 0
-
-
-def _write_all(outputs: list[tuple[str, bytes]]) -> None:
-    """Write every output to a temporary file beside it, then rename them all: no half-written file,
-    and none written at all when one of them cannot be."""
-    staged: list[tuple[str, Path]] = []
-    target = Path(".")
-    try:
-        for path, data in outputs:
-            target = Path(path)
-            handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-            staged.append((temporary, target))
-            with os.fdopen(handle, "wb") as out:
-                out.write(data)
-        for temporary, target in staged:
-            os.replace(temporary, target)
-    except OSError as error:
-        for temporary, _ in staged:
-            Path(temporary).unlink(missing_ok=True)
-        raise InputError(f"cannot write {str(target)!r}: {error.strerror or error}") from None

@@ -8,7 +8,8 @@ import argparse
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from linkstress.regression import CaseResult, find_cases, run_case
+from linkstress.commands.validate import check_jobs
+from linkstress.regression import CaseResult, find_cases, read_reference, run_case
 from linkstress.tables import format_table
 
 def default_cases() -> Path:
@@ -36,11 +37,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from linkstress.errors import InputError
-
-    if args.jobs < 1:
-        raise InputError("--jobs: must be at least 1")
+    check_jobs(args.jobs)
     cases = find_cases(args.cases or default_cases())
+    for case in cases:
+        read_reference(case)  # a broken reference.json stops the run before any case runs
     if args.jobs > 1 and len(cases) > 1:
         with ProcessPoolExecutor(max_workers=args.jobs) as pool:
             results = list(pool.map(run_case, cases, [args.update] * len(cases)))

@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 import numpy as np
 
 from linkstress.builders import straight_bar
+from linkstress.errors import InputError
 from linkstress.materials import Material
 from linkstress.profile import LinkProfile
+from linkstress.scene.keys import MAX_STATIONS, range_problem
 from linkstress.tables import format_table
 
 
@@ -32,11 +35,27 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    check_arguments(args)
     spacing, height, overhang, thickness = args.bar
     material = Material("material", args.density)
     link = straight_bar(spacing, height, overhang, thickness, material, hole_diameter=args.hole)
     print(describe(link, max(args.stations, 2)))
     return 0
+
+
+def check_arguments(args: argparse.Namespace) -> None:
+    """Each number within the range accepted for its quantity (as in a scene), and a station count
+    that fits, before any work."""
+    names = ("SPACING", "HEIGHT", "OVERHANG", "THICKNESS")
+    given = [(f"--bar {name}", value, "m") for name, value in zip(names, args.bar)]
+    given += [("--hole", args.hole, "m"), ("--density", args.density, "kg/m^3")]
+    for flag, value, unit in given:
+        if value is None or not math.isfinite(value) or value <= 0:
+            continue  # the profile builder refuses these with its own message
+        if (problem := range_problem(value, unit, positive=True)) is not None:
+            raise InputError(f"{flag}: {problem}")
+    if args.stations > MAX_STATIONS:
+        raise InputError(f"--stations: must be at most {MAX_STATIONS} (one table row each), got {args.stations}")
 
 
 def describe(link: LinkProfile, n_stations: int) -> str:

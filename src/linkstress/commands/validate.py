@@ -11,12 +11,25 @@ checked" and no safety factor is given either.
 from __future__ import annotations
 
 import argparse
+import math
+import os
 from pathlib import Path
 
+import numpy as np
+
 from linkstress.analysis import plan_for
+from linkstress.commands.analyze import check_work, refuse_non_finite, scene_sketches
 from linkstress.errors import InputError
-from linkstress.output import check_folder, write_json, write_text
-from linkstress.scene import load_scene
+from linkstress.output import check_outputs, json_bytes, write_all
+from linkstress.scene import Scene, load_scene
+
+MAX_MESH_LEVELS = 6
+MAX_COMPARED_POSITIONS = 3600
+MAX_ELEMENTS = 1_000_000
+"""Triangles on a link's finest mesh: quadratic ones give about 4 million unknowns, some GB to factorise."""
+JOBS_PER_PROCESSOR = 4
+REFINEMENT_RATIO = 1.5
+"""Each level of a refinement study is this much finer (``convergence_study``'s ratio)."""
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -47,23 +60,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    check_folder(args.json, "--json")
-    check_folder(args.html, "--html")
+    outputs = {"--json": args.json, "--html": args.html}
+    check_outputs(outputs, [args.scene])
     if args.vtu is not None and args.vtu.exists() and not args.vtu.is_dir():
         raise InputError(f"--vtu: {str(args.vtu)!r} exists and is not a folder")
-    if args.mesh_levels not in (1,) and args.mesh_levels < 3:
-        raise InputError("--mesh-levels: use 1 (one mesh) or 3 and more (a refinement study)")
-    if args.positions is not None and args.positions < 1:
-        raise InputError("--positions: must be at least 1")
-    if args.mesh_size is not None and not args.mesh_size > 0:
-        raise InputError("--mesh-size: must be > 0 m")
-    if args.jobs < 1:
-        raise InputError("--jobs: must be at least 1")
+    check_flags(args)
     # The FEA stack (gmsh, scikit-fem) loads only when a validation runs.
     from linkstress.validation.report import validation_html, validation_json, validation_text
     from linkstress.validation.validate_scene import MAX_POSITIONS, validate_scene
 
     scene = load_scene(args.scene)
+    check_outputs(outputs, scene_sketches(scene))
     plan = plan_for(scene)
     if args.explain:
         print(plan.describe())
@@ -73,16 +80,88 @@ def run(args: argparse.Namespace) -> int:
             f"{args.scene.name}: no link to validate: the FEA needs links drawn in a sketch with a thickness and "
             "a material (density, youngs_modulus, poisson_ratio), and joint forces (mass data for every moving link)"
         )
-    result = validate_scene(scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, args.jobs)
-    print(validation_text(result))
+    check_materials(scene, plan.validate)
+    check_meshes(scene, plan.validate, args.mesh_size, args.mesh_levels)
+    check_work(scene, plan)
+    with np.errstate(all="ignore"):
+        result = validate_scene(scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, args.jobs)
+    refuse_non_finite(result.analysis)
     # Every output is made before any is written, so a failure leaves none half-done.
-    document = validation_html(result) if args.html is not None else None
+    files = []
     if args.json is not None:
-        write_json(args.json, validation_json(result))
-    if document is not None:
-        write_text(args.html, document)
+        files.append((args.json, json_bytes(validation_json(result), "--json")))
+    if args.html is not None:
+        files.append((args.html, validation_html(result).encode("utf-8")))
+    print(validation_text(result))
+    write_all(files)
     if args.vtu is not None:
         args.vtu.mkdir(parents=True, exist_ok=True)
         for name, comparison in result.comparisons.items():
             comparison.fea.write_vtu(args.vtu / name)
     return 1 if result.failures() else 0
+
+
+def check_flags(args: argparse.Namespace) -> None:
+    """The numeric flags, each within the limit this machine can carry out."""
+    if args.mesh_levels != 1 and not 3 <= args.mesh_levels <= MAX_MESH_LEVELS:
+        raise InputError(
+            f"--mesh-levels: use 1 (one mesh) or 3 to {MAX_MESH_LEVELS} (a refinement study, each level 1.5 times "
+            f"finer), got {args.mesh_levels}"
+        )
+    if args.positions is not None and not 1 <= args.positions <= MAX_COMPARED_POSITIONS:
+        raise InputError(f"--positions: must be 1 to {MAX_COMPARED_POSITIONS} (each is an FEA load case), got {args.positions}")
+    if args.mesh_size is not None and not (math.isfinite(args.mesh_size) and args.mesh_size > 0):
+        raise InputError(f"--mesh-size: must be a finite size > 0 m, got {args.mesh_size!r}")
+    check_jobs(args.jobs)
+
+
+def check_jobs(jobs: int) -> None:
+    """``--jobs``: 1 to JOBS_PER_PROCESSOR per processor (more processes only compete for them, and
+    each holds its own FEA stack in memory)."""
+    most = JOBS_PER_PROCESSOR * (os.cpu_count() or 1)
+    if not 1 <= jobs <= most:
+        raise InputError(f"--jobs: must be 1 to {most} ({JOBS_PER_PROCESSOR} per processor of this machine), got {jobs}")
+
+
+def check_materials(scene: Scene, names: tuple[str, ...]) -> None:
+    """The FEA needs each link's elastic constants: missing ones are bad input, not a failed check."""
+    for name in names:
+        material = scene.links[name].material
+        for key in ("youngs_modulus", "poisson_ratio"):
+            if getattr(material, key) is None:
+                raise InputError(
+                    f"{scene.path.name}: materials.{material.name}.{key}: missing; the FEA of link {name!r} needs it "
+                    "(e.g. youngs_modulus = 200e9 and poisson_ratio = 0.3 for steel)"
+                )
+
+
+def check_meshes(scene: Scene, names: tuple[str, ...], size: float | None, levels: int) -> None:
+    """Refuse, before meshing, an element size coarser than a link's depth or one whose finest mesh
+    would hold more than MAX_ELEMENTS triangles (estimated from the link's area)."""
+    from linkstress.validation.compare import ELEMENTS_PER_DEPTH, comparison_stations, default_mesh
+    from linkstress.validation.validate_scene import LINEAR_REFINEMENT
+
+    size = size or (scene.analysis.mesh_size if scene.analysis is not None else None)
+    order = scene.analysis.element_order if scene.analysis is not None else 2
+    flag = "--mesh-size" if size is not None else "the default mesh size"
+    for name in names:
+        link = scene.links[name]
+        stations = comparison_stations(link.profile, link.frame_joints)
+        default = default_mesh(link.profile, link.frame_joints, stations).size
+        depth = default * ELEMENTS_PER_DEPTH
+        if size is not None and size > depth:
+            raise InputError(
+                f"{flag} (or [analysis] mesh_size_m): {size:g} m is larger than the depth of link {name!r}, {depth:.3g} m; "
+                f"give at most that (the default is {default:.3g} m)"
+            )
+        coarsest = size or default
+        if size is None and order == 1:
+            coarsest /= LINEAR_REFINEMENT
+        finest = coarsest / REFINEMENT_RATIO ** (levels - 1)
+        elements = link.profile.area / (math.sqrt(3) / 4 * finest**2)
+        if elements > MAX_ELEMENTS:
+            raise InputError(
+                f"--mesh-size / --mesh-levels: link {name!r} ({link.profile.area:.3g} m^2) would need about "
+                f"{elements:.2g} elements of {finest:.3g} m on its finest mesh, more than the {MAX_ELEMENTS:.0e} "
+                f"this tool meshes; give a size of at least {coarsest * math.sqrt(elements / MAX_ELEMENTS):.3g} m or fewer levels"
+            )

@@ -10,6 +10,40 @@ from numpy.typing import NDArray
 
 from linkstress.errors import SceneError
 
+# The range of magnitudes accepted per unit: (smallest for a quantity that must be > 0, largest for any).
+# Far wider than any machine, yet narrow enough that squares and products of them in the dynamics and
+# stresses stay finite (1e300 m/s^2 of gravity reached the tables as inf and nan). A value outside is
+# almost always a wrong unit or a typo.
+RANGES: dict[str, tuple[float, float, str]] = {
+    "m": (1e-6, 1e3, "a length"),
+    "kg/m^3": (1e-2, 1e5, "a density"),
+    "Pa": (1.0, 1e13, "a modulus or strength"),
+    "kg": (1e-9, 1e9, "a mass"),
+    "kg m^2": (0.0, 1e9, "a moment of inertia"),
+    "deg": (0.0, 1e7, "an angle"),
+    "s": (0.0, 1e9, "a time"),
+    "rad/s": (0.0, 1e5, "an angular speed"),
+    "rad/s^2": (0.0, 1e9, "an angular acceleration"),
+    "m/s^2": (0.0, 1e6, "an acceleration"),
+    "N": (0.0, 1e12, "a force"),
+    "N m": (0.0, 1e12, "a couple"),
+}
+
+MAX_STATIONS = 100_000
+"""Section stations per link: far finer than any section changes (the default is 101)."""
+
+
+def range_problem(value: float, unit: str, positive: bool = False) -> str | None:
+    """Why ``value`` [``unit``] lies outside the range accepted for its quantity, or None."""
+    if unit not in RANGES:
+        return None
+    smallest, largest, what = RANGES[unit]
+    if abs(value) > largest:
+        return f"must be at most {largest:g} {unit} in size ({what}; check the unit), got {value!r}"
+    if positive and value < smallest:
+        return f"must be at least {smallest:g} {unit} ({what}; check the unit), got {value!r}"
+    return None
+
 
 class Table:
     """A TOML table at dotted ``path`` in scene file ``source`` (its name, for messages)."""
@@ -64,9 +98,12 @@ class Table:
             raise self.error(key, f"must be > 0{suffix}, got {value!r}")
         if minimum is not None and value < minimum:
             raise self.error(key, f"must be >= {minimum:g}{suffix}, got {value!r}")
+        if (problem := range_problem(value, unit, positive)) is not None:
+            raise self.error(key, problem)
         return float(value)
 
-    def integer(self, key: str, default: int | None = None, *, minimum: int | None = None) -> int | None:
+    def integer(self, key: str, default: int | None = None, *, minimum: int | None = None,
+                maximum: int | None = None) -> int | None:
         if key not in self.data:
             return default
         value = self.data[key]
@@ -74,6 +111,8 @@ class Table:
             raise self.error(key, f"must be a whole number, got {_shown(value)}")
         if minimum is not None and value < minimum:
             raise self.error(key, f"must be >= {minimum}, got {value!r}")
+        if maximum is not None and value > maximum:
+            raise self.error(key, f"must be <= {maximum}, got {value!r}")
         return value
 
     def string(self, key: str, default: str | None = None, choices: Iterable[str] | None = None) -> str | None:

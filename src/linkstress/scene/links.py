@@ -123,8 +123,12 @@ def _load_profile(entry: Table, name, path: Path, layer, units, thickness, mater
             "sketch", "this installation cannot read sketches yet (linkstress.importers.read_sketch is "
             "missing); give the link bare joints = [[x, y], ...] instead"
         )
-    if not path.is_file():
-        raise entry.error("sketch", f"file {str(path)!r} not found (paths are relative to the scene file's folder)")
+    try:
+        found = path.is_file()
+    except OSError as error:  # e.g. a name longer than the file system allows
+        raise entry.error("sketch", f"cannot use this path ({error.strerror or error}); give a sketch file's path") from None
+    if not found:
+        raise entry.error("sketch", f"file {_short(str(path))!r} not found (paths are relative to the scene file's folder)")
     try:
         key = (path.resolve(), units)
         if key not in sketches:
@@ -132,6 +136,10 @@ def _load_profile(entry: Table, name, path: Path, layer, units, thickness, mater
         return sketches[key].link(layer).profile(thickness, material, name)
     except InputError as error:
         raise entry.error("sketch", str(error)) from None
+
+
+def _short(text: str) -> str:
+    return text if len(text) <= 200 else text[:100] + "..." + text[-40:]
 
 
 def mass_data(source: LinkSource) -> MassData | None:

@@ -21,7 +21,7 @@ import shapely
 
 from linkstress.kinematics.machine import Machine
 from linkstress.loads import distance_outside
-from linkstress.scene.keys import Table
+from linkstress.scene.keys import MAX_STATIONS, Table
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
 
 LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
@@ -95,7 +95,7 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
         kinematics=table.boolean("kinematics", False),
         forces=table.boolean("forces", False),
         stresses=table.boolean("stresses", False),
-        stations=table.integer("stations", None, minimum=2),
+        stations=table.integer("stations", None, minimum=2, maximum=MAX_STATIONS),
         validate=validate,
         mesh_size=table.number("mesh_size_m", positive=True, unit="m"),
         element_order=order,

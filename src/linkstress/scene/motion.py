@@ -35,8 +35,8 @@ def read_motion(table: Table) -> InputMotion:
         angles = table.numbers("input_angle_deg", "deg")
     else:
         angles = np.array([table.number("input_angle_deg", unit="deg")])
-    speed = _rate(table, "input_speed_rad_s", len(angles))
-    acceleration = _rate(table, "input_acceleration_rad_s2", len(angles))
+    speed = _rate(table, "input_speed_rad_s", len(angles), "rad/s")
+    acceleration = _rate(table, "input_acceleration_rad_s2", len(angles), "rad/s^2")
     return angle_motion(angles, speed, acceleration)
 
 
@@ -73,18 +73,16 @@ def _range(spec: Table, unit: str) -> np.ndarray:
     for key in RANGE_KEYS:
         spec.require(key, "start, stop and num, e.g. {start = 0.0, stop = 360.0, num = 361}")
     start, stop = spec.number("start", unit=unit), spec.number("stop", unit=unit)
-    num = spec.integer("num", minimum=1)
-    if num > MAX_POSITIONS:
-        raise spec.error("num", f"must be <= {MAX_POSITIONS}, got {num}")
+    num = spec.integer("num", minimum=1, maximum=MAX_POSITIONS)
     return angle_range(start, stop, num)
 
 
-def _rate(table: Table, key: str, n: int):
+def _rate(table: Table, key: str, n: int, unit: str):
     if not table.has(key):
         return 0.0
     if isinstance(table.data[key], list):
-        values = table.numbers(key)
+        values = table.numbers(key, unit)
         if len(values) != n:
             raise table.error(key, f"give one number, or a list of {n} numbers (one per input angle)")
         return values
-    return table.number(key)
+    return table.number(key, unit=unit)

@@ -29,22 +29,45 @@ TOP_KEYS = ("title", "notes", "units", "materials", "links", "mechanisms", "moti
 def load_scene(path: str | Path) -> Scene:
     """The scene in file ``path``; a ``SceneError`` naming the key for anything wrong in it."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SceneError(f"scene file {str(path)!r} not found") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SceneError(f"{path.name}: cannot read the scene file ({error})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise SceneError(f"{path.name}: not valid TOML: {error}") from None
+    data = _parsed(path, _text(path))
     try:
         return _scene(Table(data, "", path.name), path)
     except SceneError:
         raise
     except InputError as error:
         raise SceneError(f"{path.name}: {error}") from None
+
+
+def _text(path: Path) -> str:
+    """The scene file's text; a byte-order mark, as some Windows editors write, is dropped."""
+    if path.is_dir():
+        raise SceneError(f"scene file {str(path)!r} is a folder; give the .toml file inside it")
+    try:
+        # utf-8-sig: a byte-order mark is accepted (the CSV reader does the same)
+        text = path.read_text(encoding="utf-8-sig")
+    except FileNotFoundError:
+        raise SceneError(f"scene file {str(path)!r} not found") from None
+    except UnicodeDecodeError as error:
+        raise SceneError(
+            f"{path.name}: not UTF-8 text (byte {error.start}); save the scene file as UTF-8"
+        ) from None
+    except OSError as error:
+        raise SceneError(f"{path.name}: cannot read the scene file ({error.strerror or error})") from None
+    if not text.strip():
+        raise SceneError(f"{path.name}: the scene file is empty; see the README's scene schema")
+    return text
+
+
+def _parsed(path: Path, text: str) -> dict:
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SceneError(f"{path.name}: not valid TOML: {error}") from None
+    except RecursionError:
+        # tomllib recurses once per nesting level of arrays and inline tables
+        raise SceneError(
+            f"{path.name}: arrays or inline tables nested too deep to read; a scene needs at most three levels"
+        ) from None
 
 
 def _scene(top: Table, path: Path) -> Scene:

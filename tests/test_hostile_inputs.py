@@ -1,0 +1,508 @@
+"""Hostile scenes, flags and output paths: one ``linkstress: error:`` line naming the key, flag or file
+and what to do, exit 2, no traceback, no nan or inf printed, no output file, in bounded time.
+
+Every input is generated here: bare-joint four-bars (fast), and bars drawn with ezdxf for the links
+the FEA needs. The four-bar: crank 0.1 m, coupler 0.3 m, output 0.25 m, ground 0.3 m (Grashof).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+import textwrap
+import time
+import tomllib
+from pathlib import Path
+
+import ezdxf
+import pytest
+
+from linkstress.analysis import plan_for
+from linkstress.cli import main
+from linkstress.commands.analyze import MEMORY_LIMIT, memory_estimate
+from linkstress.scene import load_scene
+
+BARS = {"crank": 0.1, "coupler": 0.3, "output": 0.25}
+
+BARE = """
+[links.crank]
+joints = [[0.0, 0.0], [0.1, 0.0]]
+mass = 0.5
+inertia = 0.001
+center_of_mass = [0.05, 0.0]
+
+[links.coupler]
+joints = [[0.0, 0.0], [0.3, 0.0]]
+mass = 1.0
+inertia = 0.01
+center_of_mass = [0.15, 0.0]
+
+[links.output]
+joints = [[0.0, 0.0], [0.25, 0.0]]
+mass = 0.8
+inertia = 0.005
+center_of_mass = [0.125, 0.0]
+
+[links.ground]
+joints = [[0.0, 0.0], [0.3, 0.0]]
+
+[mechanisms.main]
+type = "four-bar"
+crank = "crank"
+coupler = "coupler"
+output = "output"
+ground = "ground"
+
+[motion]
+input_angle_deg = [30.0, 120.0]
+input_speed_rad_s = 10.0
+"""
+
+DRAWN = """
+[materials.steel]
+density = 7850.0
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+
+[links.crank]
+sketch = "bars.dxf"
+layer = "crank"
+thickness = 0.01
+material = "steel"
+
+[links.coupler]
+sketch = "bars.dxf"
+layer = "coupler"
+thickness = 0.01
+material = "steel"
+
+[links.output]
+sketch = "bars.dxf"
+layer = "output"
+thickness = 0.01
+material = "steel"
+
+[links.ground]
+joints = [[0.0, 0.0], [0.3, 0.0]]
+
+[mechanisms.main]
+type = "four-bar"
+crank = "crank"
+coupler = "coupler"
+output = "output"
+ground = "ground"
+
+[motion]
+input_angle_deg = [30.0, 120.0]
+input_speed_rad_s = 10.0
+"""
+
+
+def draw_bars(path: Path, height: float = 0.04, overhang: float = 0.03, hole: float = 0.01) -> Path:
+    """Straight bars (metres, one layer each) with a pin hole and a joint point at each end."""
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    for k, (name, length) in enumerate(BARS.items()):
+        y, h = 0.5 * k, height / 2
+        corners = [(-overhang, y - h), (length + overhang, y - h), (length + overhang, y + h), (-overhang, y + h)]
+        msp.add_lwpolyline(corners, close=True, dxfattribs={"layer": name})
+        for x in (0.0, length):
+            msp.add_circle((x, y), hole / 2, dxfattribs={"layer": name})
+            msp.add_point((x, y), dxfattribs={"layer": name})
+    doc.saveas(path)
+    return path
+
+
+def write_scene(folder: Path, text: str, name: str = "scene.toml") -> Path:
+    path = folder / name
+    path.write_text(textwrap.dedent(text))
+    if "bars.dxf" in text and not (folder / "bars.dxf").exists():
+        draw_bars(folder / "bars.dxf")
+    return path
+
+
+def edited(text: str, old: str, new: str) -> str:
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
+def refused(capsys, argv: list[str], *expected: str, seconds: float = 30.0) -> str:
+    """Run ``linkstress argv`` in this process: exit 2, one error line holding every ``expected``
+    text, nothing but that on stderr, no nan or inf on stdout, within ``seconds``."""
+    start = time.perf_counter()
+    code = main(argv)
+    elapsed = time.perf_counter() - start
+    out, err = capsys.readouterr()
+    assert code == 2, (code, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("linkstress: error: "), err
+    for text in expected:
+        assert text in lines[0], (text, lines[0])
+    assert not re.search(r"\b(nan|inf)\b", out, re.IGNORECASE), out
+    assert elapsed < seconds, elapsed
+    return lines[0]
+
+
+def run_cli(*args: str, cwd: Path, limit_file_bytes: int | None = None) -> subprocess.CompletedProcess:
+    """``python -m linkstress args`` in a subprocess (to see its stderr and warnings whole), optionally
+    under a file-size limit (RLIMIT_FSIZE) as a full disk or a quota would impose."""
+    code = "import runpy, sys\n"
+    if limit_file_bytes is not None:
+        code += f"import resource\nresource.setrlimit(resource.RLIMIT_FSIZE, ({limit_file_bytes}, {limit_file_bytes}))\n"
+    code += "sys.argv = ['linkstress', *sys.argv[1:]]\nrunpy.run_module('linkstress', run_name='__main__')\n"
+    # no bytecode written: under the file-size limit a .pyc write could end the process before linkstress runs
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, cwd=cwd, timeout=120, env=env)
+
+
+def assert_one_error(result: subprocess.CompletedProcess, *expected: str) -> None:
+    assert result.returncode == 2, result.stderr
+    assert "Traceback" not in result.stderr and "Warning" not in result.stderr, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("linkstress: error: "), result.stderr
+    for text in expected:
+        assert text in lines[0], (text, lines[0])
+
+
+# --- physical quantities out of any sane range are refused by key -------------------------------
+
+@pytest.mark.parametrize(
+    ("old", "new", "key", "limit"),
+    [
+        ("input_speed_rad_s = 10.0", "input_speed_rad_s = 1e200", "motion.input_speed_rad_s", "at most 100000 rad/s"),
+        ("input_speed_rad_s = 10.0", "input_speed_rad_s = 10.0\ninput_acceleration_rad_s2 = -1e300",
+         "motion.input_acceleration_rad_s2", "at most 1e+09 rad/s^2"),
+        ("mass = 0.5", "mass = 1e300", "links.crank.mass", "at most 1e+09 kg"),
+        ("mass = 0.5", "mass = 1e-300", "links.crank.mass", "at least 1e-09 kg"),
+        ("inertia = 0.001", "inertia = 1e300", "links.crank.inertia", "at most 1e+09 kg m^2"),
+        ("center_of_mass = [0.05, 0.0]", "center_of_mass = [0.05, 1e300]", "links.crank.center_of_mass[1]", "at most 1000 m"),
+        ("joints = [[0.0, 0.0], [0.1, 0.0]]", "joints = [[0.0, 0.0], [1e300, 0.0]]", "links.crank.joints[1]", "at most 1000 m"),
+        ("joints = [[0.0, 0.0], [0.1, 0.0]]", "joints = [[0.0, 0.0], [0.1, 0.0]]\nthickness = 1e-300",
+         "links.crank.thickness", "at least 1e-06 m"),
+        ("input_angle_deg = [30.0, 120.0]", "input_angle_deg = [30.0, 1e300]", "motion.input_angle_deg[1]", "at most 1e+07 deg"),
+        ("input_speed_rad_s = 10.0", "input_speed_rad_s = 10.0\n[loads]\ngravity_m_s2 = [0, 1e300]",
+         "loads.gravity_m_s2[1]", "at most 1e+06 m/s^2"),
+        ("input_speed_rad_s = 10.0", "input_speed_rad_s = 10.0\n[loads.couples]\noutput = -1e300",
+         "loads.couples.output", "at most 1e+12 N m"),
+        ("input_speed_rad_s = 10.0",
+         "input_speed_rad_s = 10.0\n[[loads.forces]]\nlink = \"coupler\"\nat_m = [0.1, 0.0]\nforce_n = [1e300, 0.0]",
+         "loads.forces[0].force_n[0]", "at most 1e+12 N"),
+        ("[links.crank]", "[materials.steel]\ndensity = 1e300\n\n[links.crank]", "materials.steel.density", "at most 100000 kg/m^3"),
+        ("[links.crank]", "[materials.steel]\ndensity = 7850.0\nyoungs_modulus = 1e300\n\n[links.crank]",
+         "materials.steel.youngs_modulus", "at most 1e+13 Pa"),
+    ],
+    ids=lambda v: v if isinstance(v, str) and "." in v and " " not in v else None,
+)
+def test_a_physical_quantity_outside_its_stated_range_is_refused_naming_the_key(tmp_path, capsys, old, new, key, limit):
+    scene = write_scene(tmp_path, edited(BARE, old, new))
+    refused(capsys, ["analyze", str(scene), "--json", str(tmp_path / "out.json")], f"scene.toml: {key}: must be {limit}",
+            "check the unit")
+    assert not (tmp_path / "out.json").exists()
+
+
+def test_the_ranges_still_take_a_real_machine(tmp_path, capsys):
+    # 2,000 rpm, a 5 kN m couple, 1 g: well inside every range
+    text = edited(BARE, "input_speed_rad_s = 10.0", "input_speed_rad_s = 209.4\n[loads]\ngravity_m_s2 = [0.0, -9.81]\n"
+                  "[loads.couples]\noutput = 5000.0")
+    assert main(["analyze", str(write_scene(tmp_path, text))]) == 0
+
+
+def test_sections_refuses_a_bar_of_1e300_metres(capsys):
+    refused(capsys, ["sections", "--bar", "1e300", "0.5", "0.1", "0.1"], "--bar SPACING: must be at most 1000 m")
+
+
+def test_sections_refuses_a_density_of_1e300(capsys):
+    refused(capsys, ["sections", "--bar", "1", "0.5", "0.1", "0.1", "--density", "1e300"], "--density: must be at most 100000 kg/m^3")
+
+
+def test_an_overflowing_motion_expression_is_one_error_naming_its_keys_and_no_numpy_warning(tmp_path):
+    # 1e200 deg/s: every key is in range, yet omega^2 r overflows; the last guard names what did
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
+                  'input_angle_deg = {expression = "1e200*t", t = [0.0, 0.5]}')
+    write_scene(tmp_path, text)
+    result = run_cli("analyze", "scene.toml", "--json", "out.json", cwd=tmp_path)
+    assert_one_error(result, "scene.toml:", "overflowed (not a finite number)", "motion.input_angle_deg")
+    assert not re.search(r"\b(nan|inf)\b", result.stdout, re.IGNORECASE)
+    assert not (tmp_path / "out.json").exists()
+
+
+# --- work beyond a stated limit is refused before it is done ------------------------------------
+
+def test_sections_refuses_a_hundred_million_stations(capsys):
+    refused(capsys, ["sections", "--bar", "1", "0.5", "0.1", "0.1", "--stations", "100000000"],
+            "--stations: must be at most 100000", seconds=5)
+
+
+@pytest.mark.parametrize(("value", "message"), [
+    ("1000000000", "analysis.stations: must be <= 100000, got 1000000000"),
+    ("1e9", "analysis.stations: must be a whole number, got 1000000000.0"),
+])
+def test_analysis_stations_beyond_the_limit_are_refused(tmp_path, capsys, value, message):
+    scene = write_scene(tmp_path, DRAWN + f"\n[analysis]\nstresses = true\nstations = {value}\n")
+    refused(capsys, ["analyze", str(scene)], message, seconds=10)
+
+
+def test_a_sweep_longer_than_the_schema_allows_is_refused(tmp_path, capsys):
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]", "input_angle_deg = {start = 0.0, stop = 360.0, num = 10000001}")
+    refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "motion.input_angle_deg.num: must be <= 10000000", seconds=10)
+
+
+def test_ten_million_positions_of_joint_forces_are_refused_stating_the_memory_limit(tmp_path, capsys):
+    # 10^7 positions x 4 links x (110 + 230) B = 13.6 GB of arrays against the 6 GB limit
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]", "input_angle_deg = {start = 0.0, stop = 360.0, num = 10000000}")
+    refused(capsys, ["analyze", str(write_scene(tmp_path, text))],
+            "10000000 positions of 4 links need about 13.6 GB of memory, more than the 6 GB limit", seconds=20)
+
+
+def test_ten_million_positions_of_kinematics_alone_still_fit(tmp_path):
+    # the schema's 10^7 positions stay usable: 10^7 x 4 links x 110 B = 4.4 GB < 6 GB
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]", "input_angle_deg = {start = 0.0, stop = 360.0, num = 10000000}")
+    scene = load_scene(write_scene(tmp_path, text + "\n[analysis]\nkinematics = true\n"))
+    assert memory_estimate(scene, plan_for(scene)) == pytest.approx(4.4e9)
+    assert memory_estimate(scene, plan_for(scene)) < MEMORY_LIMIT
+
+
+def test_a_json_of_a_million_positions_is_refused_before_the_run(tmp_path, capsys):
+    # measured: 10^6 positions with forces took 14 GB as JSON records (3.5 kB per link and position)
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]", "input_angle_deg = {start = 0.0, stop = 360.0, num = 1000000}")
+    scene = write_scene(tmp_path, text)
+    refused(capsys, ["analyze", str(scene), "--json", str(tmp_path / "out.json")],
+            "written as JSON or HTML need about 15.4 GB", seconds=10)
+    assert not (tmp_path / "out.json").exists()
+
+
+@pytest.mark.parametrize(("flags", "message"), [
+    (["--mesh-size", "1e-7"], "would need about 1.4e+12 elements of 1e-07 m on its finest mesh, more than the 1e+06"),
+    (["--mesh-size", "inf"], "--mesh-size: must be a finite size > 0 m, got inf"),
+    (["--mesh-size", "nan"], "--mesh-size: must be a finite size > 0 m, got nan"),
+    (["--mesh-size", "1.0"], "1 m is larger than the depth of link 'crank', 0.04 m"),
+    (["--positions", "1000000000000"], "--positions: must be 1 to 3600"),
+    (["--positions", "0"], "--positions: must be 1 to 3600"),
+    (["--mesh-levels", "1000"], "--mesh-levels: use 1 (one mesh) or 3 to 6"),
+    (["--jobs", "100000"], "--jobs: must be 1 to"),
+    (["--jobs", "0"], "--jobs: must be 1 to"),
+])
+def test_validate_refuses_work_beyond_its_stated_limits_before_meshing(tmp_path, capsys, flags, message):
+    # the crank bar: 0.16 m x 0.04 m less two 10 mm holes = 6.24e-3 m^2; an equilateral triangle of
+    # side 1e-7 m covers 4.33e-15 m^2: about 1.4e12 elements, refused before gmsh starts
+    scene = write_scene(tmp_path, DRAWN)
+    refused(capsys, ["validate", str(scene), "--mesh-levels", "1", *flags, "--json", str(tmp_path / "v.json")], message,
+            seconds=20)
+    assert not (tmp_path / "v.json").exists()
+
+
+def test_validate_refuses_a_mesh_size_in_the_scene_beyond_the_limit(tmp_path, capsys):
+    scene = write_scene(tmp_path, DRAWN + "\n[analysis]\nvalidate = [\"crank\"]\nmesh_size_m = 1e-6\n")
+    refused(capsys, ["validate", str(scene), "--mesh-levels", "1"], "link 'crank'", "more than the 1e+06", seconds=20)
+
+
+def test_regress_refuses_a_hundred_thousand_jobs(capsys):
+    refused(capsys, ["regress", "--jobs", "100000"], "--jobs: must be 1 to", seconds=5)
+
+
+# --- validate: bad input is exit 2, not a failed check ------------------------------------------
+
+def test_validate_without_youngs_modulus_is_bad_input_not_a_failed_check(tmp_path, capsys):
+    scene = write_scene(tmp_path, edited(DRAWN, "youngs_modulus = 200e9\n", ""))
+    line = refused(capsys, ["validate", str(scene), "--mesh-levels", "1"],
+                   "materials.steel.youngs_modulus: missing; the FEA of link 'crank' needs it")
+    assert "FAILED" not in line
+
+
+# --- output paths -------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("command", ["analyze", "validate"])
+@pytest.mark.parametrize("flag", ["--json", "--html"])
+def test_an_output_path_that_is_a_folder_is_refused_before_any_work(tmp_path, capsys, command, flag):
+    scene = write_scene(tmp_path, DRAWN)
+    (tmp_path / "out").mkdir()
+    refused(capsys, [command, str(scene), flag, str(tmp_path / "out")], f"{flag}: ", "is a folder; give a file name")
+    assert list((tmp_path / "out").iterdir()) == []
+
+
+def test_an_import_plot_path_that_is_a_folder_is_refused(tmp_path, capsys):
+    draw_bars(tmp_path / "bars.dxf")
+    (tmp_path / "plot").mkdir()
+    refused(capsys, ["import", str(tmp_path / "bars.dxf"), "--plot", str(tmp_path / "plot")], "--plot: ", "is a folder")
+
+
+def test_a_json_pointing_at_the_scene_is_refused_and_the_scene_kept(tmp_path, capsys):
+    scene = write_scene(tmp_path, BARE)
+    refused(capsys, ["analyze", str(scene), "--json", str(scene)], "--json: ", "is an input", "would overwrite it")
+    assert tomllib.loads(scene.read_text())["motion"]["input_speed_rad_s"] == 10.0
+
+
+def test_a_json_pointing_at_the_scene_s_sketch_is_refused_and_the_sketch_kept(tmp_path, capsys):
+    scene = write_scene(tmp_path, DRAWN)
+    sketch = tmp_path / "bars.dxf"
+    before = sketch.read_bytes()
+    refused(capsys, ["analyze", str(scene), "--json", str(sketch)], "--json: ", "bars.dxf", "would overwrite it")
+    assert sketch.read_bytes() == before
+
+
+def test_json_and_html_on_the_same_file_are_refused_before_any_work(tmp_path, capsys):
+    scene = write_scene(tmp_path, BARE)
+    same = str(tmp_path / "report.out")
+    refused(capsys, ["analyze", str(scene), "--json", same, "--html", same], "--json and --html name the same file", seconds=5)
+    assert not Path(same).exists()
+
+
+def test_a_write_beyond_the_file_size_limit_is_one_error_and_leaves_no_file(tmp_path):
+    # 20 kB lets the JSON through (about 3 kB) but not the HTML (its figures): neither may be left
+    write_scene(tmp_path, BARE)
+    result = run_cli("analyze", "scene.toml", "--json", "out.json", "--html", "out.html", cwd=tmp_path,
+                     limit_file_bytes=20_000)
+    assert_one_error(result, "cannot write 'out.html'", "File too large", "nothing written")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
+
+
+# --- scene files --------------------------------------------------------------------------------
+
+def test_a_sketch_path_of_5000_characters_is_one_error_naming_the_key(tmp_path, capsys):
+    scene = write_scene(tmp_path, edited(DRAWN, 'sketch = "bars.dxf"', f'sketch = "{"a" * 5000}.dxf"'))
+    refused(capsys, ["analyze", str(scene)], "links.crank.sketch: cannot use this path (File name too long)")
+
+
+def test_toml_nested_5000_deep_is_one_error(tmp_path, capsys):
+    scene = tmp_path / "scene.toml"
+    scene.write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
+    refused(capsys, ["analyze", str(scene)], "scene.toml: arrays or inline tables nested too deep to read")
+
+
+def test_a_scene_with_a_utf8_byte_order_mark_reads_like_one_without(tmp_path):
+    plain = write_scene(tmp_path, BARE, "plain.toml")
+    marked = tmp_path / "marked.toml"
+    marked.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
+    assert main(["analyze", str(plain), "--json", str(tmp_path / "plain.json")]) == 0
+    assert main(["analyze", str(marked), "--json", str(tmp_path / "marked.json")]) == 0
+    assert json.loads((tmp_path / "plain.json").read_text()) == json.loads((tmp_path / "marked.json").read_text())
+
+
+def test_a_scene_that_is_a_folder_is_one_error(tmp_path, capsys):
+    (tmp_path / "scene.toml").mkdir()
+    refused(capsys, ["analyze", str(tmp_path / "scene.toml")], "is a folder; give the .toml file inside it")
+
+
+def test_a_scene_that_is_not_utf8_is_one_error(tmp_path, capsys):
+    scene = tmp_path / "scene.toml"
+    scene.write_bytes('title = "Gel\u00e4nde"\n'.encode("latin-1") + BARE.encode())
+    refused(capsys, ["analyze", str(scene)], "scene.toml: not UTF-8 text", "save the scene file as UTF-8")
+
+
+def test_an_empty_scene_is_one_error(tmp_path, capsys):
+    scene = tmp_path / "scene.toml"
+    scene.write_text("\n  \n")
+    refused(capsys, ["analyze", str(scene)], "scene.toml: the scene file is empty")
+
+
+@pytest.mark.parametrize(("stored", "message"), [
+    ("{not json", "case seed: reference.json: not valid JSON"),
+    ("[1, 2, 3]", "case seed: reference.json: must be a JSON object {...}, got list"),
+])
+def test_regress_with_a_broken_reference_is_one_error_naming_the_case_and_file(tmp_path, capsys, stored, message):
+    case = tmp_path / "cases" / "seed"
+    case.mkdir(parents=True)
+    write_scene(case, BARE)
+    (case / "reference.json").write_text(stored)
+    refused(capsys, ["regress", str(tmp_path / "cases")], message, "delete it and run regress --update")
+
+
+# --- a wrong type for every key -----------------------------------------------------------------
+
+FULL = DRAWN + """
+[loads]
+gravity_m_s2 = [0.0, -9.81]
+
+[loads.couples]
+output = 2.0
+coupler = {value = 1.0, at_joint = 1}
+
+[[loads.forces]]
+link = "coupler"
+at_m = [0.1, 0.0]
+force_n = [10.0, 0.0]
+
+[analysis]
+kinematics = true
+forces = true
+stresses = true
+stations = 21
+validate = ["crank"]
+mesh_size_m = 0.01
+element_order = 2
+body_load_near_holes = false
+"""
+FULL = edited(FULL, "[materials.steel]", 'title = "hostile"\nnotes = ["n"]\nunits = "m"\n\n[materials.steel]')
+FULL = edited(FULL, "[links.ground]\njoints = [[0.0, 0.0], [0.3, 0.0]]",
+              "[links.ground]\njoints = [[0.0, 0.0], [0.3, 0.0]]\nmass = 1.0\ninertia = 0.1\ncenter_of_mass = [0.1, 0.0]")
+FULL = edited(FULL, 'ground = "ground"', 'ground = "ground"\nbranch = "open"')
+FULL = edited(FULL, "input_speed_rad_s = 10.0", 'input_speed_rad_s = 10.0\ninput_acceleration_rad_s2 = 0.0\nactuator = "crank"')
+
+
+def toml_value(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    return "{" + ", ".join(f"{json.dumps(k)} = {toml_value(v)}" for k, v in value.items()) + "}"
+
+
+def leaves(data: dict, path: tuple = ()):
+    """(path, value) of every key whose value is not a table of further keys."""
+    for key, value in data.items():
+        if isinstance(value, dict):
+            yield from leaves(value, (*path, key))
+        else:
+            yield (*path, key), value
+
+
+def wrong_types(value: object) -> list[object]:
+    """Values of every other TOML type: a string where a number goes, a table where a list goes,
+    booleans for numbers (true is not 1) and numbers for booleans."""
+    if isinstance(value, bool):
+        return [1, "true"]
+    if isinstance(value, (int, float)):
+        return ["1", True, {"a": 1}]
+    if isinstance(value, str):
+        return [1, True, ["x"]]
+    if isinstance(value, list):
+        return [{"a": 1}, "x", True]
+    return [1, "x"]
+
+
+def wrong_type_cases():
+    data = tomllib.loads(textwrap.dedent(FULL))
+    for path, value in leaves(data):
+        for wrong in wrong_types(value):
+            if path == ("notes",) and isinstance(wrong, str):
+                continue  # notes may be one string
+            yield pytest.param(path, wrong, id=f"{'.'.join(path)}={toml_value(wrong)}")
+
+
+def with_value(data: dict, path: tuple, value: object) -> dict:
+    copy = json.loads(json.dumps(data))
+    node = copy
+    for key in path[:-1]:
+        node = node[key]
+    node[path[-1]] = value
+    return copy
+
+
+def test_the_full_scene_is_valid(tmp_path):
+    assert main(["analyze", str(write_scene(tmp_path, FULL)), "--explain"]) == 0
+
+
+@pytest.mark.parametrize(("path", "wrong"), list(wrong_type_cases()))
+def test_a_wrong_type_for_any_key_is_one_message_naming_it(tmp_path, capsys, path, wrong):
+    data = with_value(tomllib.loads(textwrap.dedent(FULL)), path, wrong)
+    draw_bars(tmp_path / "bars.dxf")
+    scene = tmp_path / "scene.toml"
+    scene.write_text("".join(f"{json.dumps(k)} = {toml_value(v)}\n" for k, v in data.items()))
+    refused(capsys, ["analyze", str(scene), "--explain"], f"scene.toml: {'.'.join(path)}")
