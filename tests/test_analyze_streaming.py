@@ -1,4 +1,4 @@
-"""Long sweeps in bounded memory (issue 16): the analysis keeps per-position reductions of the section
+"""Long sweeps in bounded memory: the analysis keeps per-position reductions of the section
 stresses, ``analyze --json`` is written block by block, and the arrays along a link are recomputed
 where they are needed (a block of records with ``--stations``, the positions the HTML draws)."""
 
@@ -127,7 +127,7 @@ def test_the_html_recomputes_the_arrays_along_a_link_only_at_the_positions_it_dr
 
 @pytest.mark.slow
 def test_a_200000_position_sweep_with_stresses_stays_under_600_mb(tmp_path):
-    # Before issue 16 the sweep held every link's (P, S) arrays of N, V, M, von Mises and fibre y:
+    # A sweep used to hold every link's (P, S) arrays of N, V, M, von Mises and fibre y:
     # 3 links x 101 stations x 5 x 8 bytes = 12 kB per position, 2.4 GB here (2.7 GB peak measured).
     # Now per position: kinematics, joint forces, load coefficients and the reductions (about
     # 1.3 kB, 1.36 GB peak at 1,000,000 positions).

@@ -1,4 +1,4 @@
-"""A sweep never steps over a toggle or change point silently (issue 16).
+"""A sweep never steps over a toggle or change point silently.
 
 The closed form keeps one root; at a change point the two assembly modes meet, so a sweep that
 samples either side of it continues in the other mode. The step is flagged on the row after it.

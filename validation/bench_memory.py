@@ -8,13 +8,12 @@ positions, with and without ``--json``, in a fresh child process: its peak resid
 ``analyze`` in it (the interpreter's start and imports left out). The analysis keeps per-position
 reductions and the JSON is written block by block (``report.records.stream_position_records``), so
 the peak grows with the sweep only by the kinematics, the joint forces and those reductions (about
-1.3 kB per position); the target (issue 16) is under 2 GB at 1,000,000 positions with ``--json``.
+1.3 kB per position); the target is under 2 GB at 1,000,000 positions with ``--json``.
 The JSON file is written to a temporary folder and removed; its size is printed.
 
-Measured on the shared two-core machine of issue 16 (load average in the hundreds, so the times
-are long): 1e4 positions 146 MB (6.5 s), with --json 157 MB (22 s); 1e5 269 MB (11.5 s), with
+Measured on a shared two-core machine (load average in the hundreds, so the times are long): 1e4 positions 146 MB (6.5 s), with --json 157 MB (22 s); 1e5 269 MB (11.5 s), with
 --json 276 MB (254 s, 521 MB of JSON); 1e6 1,398 MB (168 s), with --json 1,356 MB peak (35 min,
-5.2 GB of JSON; ``/usr/bin/time -v``). Before issue 16, 1e5 took 1,422 MB and 4,819 MB with --json.
+5.2 GB of JSON; ``/usr/bin/time -v``). When the sweep held its arrays along the links, 1e5 took 1,422 MB and 4,819 MB with --json.
 Writing the JSON dominates a long sweep: ``json.dumps`` with indentation runs in Python, about
 2 ms per position of the seed.
 """
