@@ -345,8 +345,7 @@ def pin_hole_words(h: HolePeak, angles: NDArray[np.float64]) -> str:
     return (
         f"pin hole at joint {h.joint} (d = {h.diameter:.4g} m, centre ({h.centre[0]:.4g}, {h.centre[1]:.4g}) m, "
         f"member frame): Kt x nominal estimate {r['estimate_pa']:.4g} Pa against the FEA's {r['fea_peak_pa']:.4g} Pa "
-        f"at that hole, at input angle {r['input_angle_deg']:.4g} deg ({r['error_pct']:+.3g} %; the estimate "
-        "leaves out any couple carried through a pin)"
+        f"at that hole, at input angle {r['input_angle_deg']:.4g} deg ({r['error_pct']:+.3g} %)"
     )
 
 

@@ -114,8 +114,8 @@ SOURCE = (
     "(at most 10 d; a round end's diameter), for a close-fitting pin; Kt from linkstress plane-stress FEA "
     "of pin-loaded lugs with square ends (over d/H, end distance e/H), round ends concentric with the hole "
     "(over d/H, shank width w/H) and holes far from the edges (validation/pin_hole_kt.py), read per "
-    "position by the direction of the pin force; a couple carried through the pin (a keyed shaft) is not "
-    "included"
+    "position by the direction of the pin force; a pin that carries a couple (a driving torque, a keyed "
+    "shaft) is outside the tables"
 )
 SQUARE, ROUND, OTHER, OPEN = 0, 1, 2, 3
 SHAPE_NAMES = ("square", "round", "other", "open")
@@ -372,13 +372,26 @@ def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleE
         diameter = 2 * float(np.sqrt(areas[link.joint_holes[j]] / np.pi))
         depth = float(top[k] - bottom[k])
         force = loads.pin_forces[:, j] + borne.get(link.joint_holes[j], 0.0)
-        estimates.append(_estimate(j, diameter, depth, outline, force, link.thickness))
+        estimates.append(_estimate(j, diameter, depth, outline, force, loads.joint_couples[:, j], link.thickness))
     return tuple(estimates)
 
 
+COUPLE_SHARE = 0.05
+"""A couple C carried through a pin of radius r with force F matters above C = COUPLE_SHARE F r: its
+shear on the rim, C / (2 pi r^2 t), is then more than about 1 % of the bearing pressure 2 F / (pi r t),
+and it adds to the peak (at the seed crank's driven pivot the FEA peak is 13 times the bearing
+estimate)."""
+COUPLE_REASON = (
+    "a couple is carried through this pin (a driving torque or keyed shaft): the Kt tables hold the pin's "
+    "bearing alone; linkstress validate gives the FEA peak"
+)
+
+
 def _estimate(joint: int, diameter: float, depth: float, outline: HoleOutline, force: NDArray[np.float64],
-              thickness: float) -> PinHoleEstimate:
-    """The estimate at one hole for pin forces ``force`` (P, 2) [N], member frame."""
+              couple: NDArray[np.float64], thickness: float) -> PinHoleEstimate:
+    """The estimate at one hole for pin forces ``force`` (P, 2) [N], member frame, and the couple
+    ``couple`` (P,) [N m] carried through the pin (a driving torque, a keyed shaft): the tables hold
+    bearing alone, so a position whose couple matters is outside them."""
     grid = np.mod(np.arctan2(force[:, 1], force[:, 0]) * DIRECTIONS / (2 * np.pi), DIRECTIONS)
     below = np.floor(grid).astype(int) % DIRECTIONS
     above = (below + 1) % DIRECTIONS
@@ -389,7 +402,11 @@ def _estimate(joint: int, diameter: float, depth: float, outline: HoleOutline, f
     nearest = np.where(share < 0.5, below, above)
     outside = (outline.outside[below] & (share < 1)) | (outline.outside[above] & (share > 0))
     reasons = np.where(outline.outside[below], outline.reason[below], outline.reason[above])
-    nominal = np.hypot(force[:, 0], force[:, 1]) / ((width - diameter) * thickness)
+    magnitude = np.hypot(force[:, 0], force[:, 1])
+    carried = np.abs(couple) > COUPLE_SHARE * magnitude * diameter / 2
+    outside = outside | carried
+    reasons = np.where(carried, COUPLE_REASON, reasons)
+    nominal = magnitude / ((width - diameter) * thickness)
     estimate = kts * nominal
     inside = np.flatnonzero(~outside)
     kt = float(kts[inside[np.argmax(estimate[inside])]]) if inside.size else None
