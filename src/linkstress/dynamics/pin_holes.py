@@ -153,13 +153,33 @@ class PinHoleEstimate:
     kt: float | None
     width: NDArray[np.float64]
     end_distance: NDArray[np.float64]
-    shape: tuple[str, ...]
+    shape_code: NDArray[np.int8]
     nominal: NDArray[np.float64]
     kts: NDArray[np.float64]
     estimate: NDArray[np.float64]
     outside: NDArray[np.bool_]
-    reasons: tuple[str | None, ...]
+    reason_code: NDArray[np.int8]
+    reason_texts: tuple[str | None, ...]
     source: str = SOURCE
+
+    @property
+    def shape(self) -> tuple[str, ...]:
+        """The end shape's name at every position (small sweeps; ``shapes_in`` for a block)."""
+        return tuple(self.shapes_in(slice(None)))
+
+    @property
+    def reasons(self) -> tuple[str | None, ...]:
+        """Why Kt is outside the tables at every position, None inside (``reasons_in`` for a block)."""
+        return tuple(self.reasons_in(slice(None)))
+
+    def shapes_in(self, positions) -> list[str]:
+        """The end shape's name at ``positions`` (a slice, mask or indices): codes per position keep a
+        long sweep's memory at a byte each."""
+        return np.array(SHAPE_NAMES, dtype=object)[self.shape_code[positions]].tolist()
+
+    def reasons_in(self, positions) -> list[str | None]:
+        """Why Kt is outside the tables at ``positions``, None where inside."""
+        return np.array(self.reason_texts, dtype=object)[self.reason_code[positions]].tolist()
 
     def largest(self, positions) -> float | None:
         """The largest estimate [Pa] inside the tables over ``positions`` (a mask or indices), None if none."""
@@ -401,22 +421,24 @@ def _estimate(joint: int, diameter: float, depth: float, outline: HoleOutline, f
     kts = (1 - share) * outline.kt[below] + share * outline.kt[above]
     nearest = np.where(share < 0.5, below, above)
     outside = (outline.outside[below] & (share < 1)) | (outline.outside[above] & (share > 0))
-    reasons = np.where(outline.outside[below], outline.reason[below], outline.reason[above])
+    # A position's reason is that of the direction it reads it from (a code into ``texts``).
+    texts = (*outline.reason.tolist(), COUPLE_REASON, None)
     magnitude = np.hypot(force[:, 0], force[:, 1])
     carried = np.abs(couple) > COUPLE_SHARE * magnitude * diameter / 2
+    codes = np.where(carried, DIRECTIONS, np.where(outline.outside[below], below, above)).astype(np.int8)
     outside = outside | carried
-    reasons = np.where(carried, COUPLE_REASON, reasons)
+    codes[~outside] = DIRECTIONS + 1
     nominal = magnitude / ((width - diameter) * thickness)
     estimate = kts * nominal
     inside = np.flatnonzero(~outside)
     kt = float(kts[inside[np.argmax(estimate[inside])]]) if inside.size else None
-    shape = tuple(np.array(SHAPE_NAMES, dtype=object)[outline.shape[nearest]].tolist())  # the four names, shared
+    shape = outline.shape[nearest].astype(np.int8)
     source = SOURCE
     if outside.any():
         source += (f"; OUTSIDE the Kt tables at {int(outside.sum())} of {len(outside)} positions "
                    "(kt_outside_table, kt_outside_reason): no estimate there and none in the safety factors")
     return PinHoleEstimate(joint, diameter, depth, kt, width, end, shape, nominal, kts, estimate,
-                           outside.astype(bool), tuple(reasons.tolist()), source)
+                           outside.astype(bool), codes, texts, source)
 
 
 def _borne_forces(link: LinkProfile, loads: LinkLoadCase) -> dict[int, NDArray[np.float64]]:

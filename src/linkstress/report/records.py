@@ -170,10 +170,10 @@ def _pin_hole_lists(hole) -> dict[str, object]:
         "basis": hole.source,
         "kt_at_position": partial(_inside_rows, hole.kts, hole.outside),
         "kt_outside_table": hole.outside,
-        "kt_outside_reason": np.asarray(hole.reasons, dtype=object),
+        "kt_outside_reason": hole.reasons_in,
         "width_m": hole.width,
         "end_distance_m": hole.end_distance,
-        "end_shape": np.asarray(hole.shape, dtype=object),
+        "end_shape": hole.shapes_in,
     }
 
 
