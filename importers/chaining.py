@@ -65,6 +65,26 @@ class Rings:
         )
 
 
+MAX_CLOSE_PAIRS = 1_000_000
+"""Pairs of points within the gap tolerance of each other that a drawing may hold. Each is a repeat
+to drop, and a cluster of n points makes n^2 / 2 of them: 30,000 POINTs on one spot took 2.2 GB."""
+
+
+def close_pairs(points: NDArray[np.float64], tolerance: float, what: str) -> NDArray[np.intp]:
+    """(M, 2) index pairs i < j of ``points`` (N, D) within ``tolerance`` of each other; refused,
+    naming ``what`` the points are, beyond MAX_CLOSE_PAIRS (counted by the k-d tree before any is
+    listed)."""
+    tree = cKDTree(points)
+    count = (int(tree.count_neighbors(tree, tolerance)) - len(points)) // 2
+    if count > MAX_CLOSE_PAIRS:
+        raise SketchError(
+            f"{count:,} pairs of {what} lie within the gap tolerance ({tolerance:.3g} drawing units) of each "
+            f"other, more than {MAX_CLOSE_PAIRS:,}: the drawing repeats them on one spot or holds detail "
+            "finer than the tolerance; clean the drawing, or give a smaller --tolerance"
+        )
+    return tree.query_pairs(tolerance, output_type="ndarray")
+
+
 def circle_of(circles: NDArray[np.float64], tolerance: float) -> tuple[float, float, float] | None:
     """(cx, cy, r) when every row is the same circle within ``tolerance``, else None."""
     if not np.isfinite(circles).all() or np.ptp(circles, axis=0).max() > tolerance:

@@ -20,12 +20,11 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from scipy.spatial import cKDTree
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
 from linkstress.errors import SketchError
-from linkstress.importers.chaining import Ends, Report, Rings, chain, closed_rings
+from linkstress.importers.chaining import Ends, Report, Rings, chain, close_pairs, closed_rings
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.primitives import Origin
 
@@ -144,7 +143,7 @@ def _duplicates(pieces: Pieces, idx: NDArray[np.intp], tolerance: float, report:
     a, b = np.where(swap[:, None], last, first), np.where(swap[:, None], first, last)
     lo, hi = np.minimum.reduceat(xy, np.cumsum(counts) - counts), np.maximum.reduceat(xy, np.cumsum(counts) - counts)
     signature = np.where(pieces.closed[idx][:, None], np.hstack([lo, hi, mean]), np.hstack([a, b, mean]))
-    pairs = cKDTree(signature).query_pairs(tolerance, output_type="ndarray")
+    pairs = close_pairs(signature, tolerance, "curves")
     if not len(pairs):
         return twice
     pairs = np.sort(idx[pairs], axis=1)

@@ -17,10 +17,10 @@ from types import MappingProxyType
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from scipy.spatial import cKDTree
 from shapely.geometry import Point, Polygon
 
 from linkstress.errors import SketchError
+from linkstress.importers.chaining import close_pairs
 from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
 from linkstress.importers.flatten import Tolerance, flatten
@@ -303,10 +303,16 @@ def _unique(points, tolerance, origins, name, fixes: list[str]) -> NDArray[np.bo
     keep = np.ones(len(points), bool)
     if len(points) < 2:
         return keep
-    pairs = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
-    if len(pairs):
-        keep[np.max(pairs, axis=1)] = False
-        i, j = np.sort(pairs[0])
+    # Exact repeats first (a sort), so that a pile of POINTs on one spot makes no pairs.
+    _, first, inverse = np.unique(points, axis=0, return_index=True, return_inverse=True)
+    keep[:] = False
+    keep[first] = True
+    pairs = first[close_pairs(points[first], tolerance, "POINTs")]
+    keep[np.max(pairs, axis=1)] = False
+    if not keep.all():
+        repeat = int(np.flatnonzero(~keep)[0])
+        partner = pairs[np.max(pairs, axis=1) == repeat]
+        i, j = (np.sort(partner[0]) if len(partner) else (first[inverse.ravel()[repeat]], repeat))
         fixes.append(
             f"link {name!r}: dropped {int((~keep).sum())} POINT(s) repeating another, e.g. "
             f"{describe(origins[j])} repeats {describe(origins[i])}"

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import json
 import math
+import random
+import resource
 import subprocess
 import sys
 import time
@@ -366,3 +368,37 @@ def test_a_non_finite_result_is_not_written(tmp_path, monkeypatch, capsys):
     captured = capsys.readouterr()
     assert captured.out == "" and not (tmp_path / "links.json").exists()
     assert captured.err.startswith("linkstress: error: sketch.dxf: the results hold a non-finite number; nothing written")
+
+
+# -- piles of repeats -------------------------------------------------------------------------------
+
+
+def test_thirty_thousand_points_on_one_spot_are_dropped_as_repeats_in_bounded_memory(tmp_path):
+    # They made 450 million close pairs (2.2 GB); exact repeats are now dropped by a sort first.
+    def draw(msp):
+        rectangle(msp, 0, 0, 0.1, 0.05)
+        for _ in range(30_000):
+            msp.add_point((0.01, 0.01))
+
+    sketch = drawing(tmp_path, draw=draw)
+    done = subprocess.run(
+        [sys.executable, "-m", "linkstress", "import", str(sketch)], capture_output=True, text=True, timeout=60,
+        preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (2 * 2**30, resource.RLIM_INFINITY)),
+    )
+    assert done.returncode == 0, done.stderr
+    assert "dropped 29999 POINT(s) repeating another" in done.stdout
+
+
+def test_a_cloud_of_points_within_the_gap_tolerance_is_refused_naming_the_flag(tmp_path):
+    # 30,000 distinct POINTs within 0.1 micrometre of one spot on a 100 mm plate (tolerance 1e-4 x
+    # its size, 0.011 mm): 450 million close pairs, counted without listing them.
+    rng = random.Random(7)
+
+    def draw(msp):
+        rectangle(msp, 0, 0, 0.1, 0.05)
+        for _ in range(30_000):
+            msp.add_point((0.01 + rng.uniform(-1e-7, 1e-7), 0.01 + rng.uniform(-1e-7, 1e-7)))
+
+    message = refused(tmp_path, drawing(tmp_path, draw=draw))
+    assert "pairs of POINTs lie within the gap tolerance" in message and "more than 1,000,000" in message
+    assert message.endswith("give a smaller --tolerance")
