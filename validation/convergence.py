@@ -174,13 +174,17 @@ class ConvergenceStudy:
         return _relative(self.richardson.error, self.values[-1])
 
 
+REFINEMENT_RATIO = 1.5
+"""Each mesh of a refinement study is this much finer than the last."""
+
+
 def convergence_study(
     link: LinkProfile,
     loads: LinkLoadCase,
     settings: MeshSettings,
     points: ArrayLike,
     levels: int = 3,
-    ratio: float = 1.5,
+    ratio: float = REFINEMENT_RATIO,
     tolerance: float = CONVERGED_CHANGE,
 ) -> ConvergenceStudy:
     """Solve ``link`` on ``levels`` meshes from ``settings``, each ``ratio`` finer, and follow the

@@ -28,8 +28,6 @@ MAX_COMPARED_POSITIONS = 3600
 MAX_ELEMENTS = 1_000_000
 """Triangles on a link's finest mesh: quadratic ones give about 4 million unknowns, some GB to factorise."""
 JOBS_PER_PROCESSOR = 4
-REFINEMENT_RATIO = 1.5
-"""Each level of a refinement study is this much finer (``convergence_study``'s ratio)."""
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -105,8 +103,8 @@ def check_flags(args: argparse.Namespace) -> None:
     """The numeric flags, each within the limit this machine can carry out."""
     if args.mesh_levels != 1 and not 3 <= args.mesh_levels <= MAX_MESH_LEVELS:
         raise InputError(
-            f"--mesh-levels: use 1 (one mesh) or 3 to {MAX_MESH_LEVELS} (a refinement study, each level 1.5 times "
-            f"finer), got {args.mesh_levels}"
+            f"--mesh-levels: use 1 (one mesh) or 3 to {MAX_MESH_LEVELS} (a refinement study, each level finer than "
+            f"the last), got {args.mesh_levels}"
         )
     if args.positions is not None and not 1 <= args.positions <= MAX_COMPARED_POSITIONS:
         raise InputError(f"--positions: must be 1 to {MAX_COMPARED_POSITIONS} (each is an FEA load case), got {args.positions}")
@@ -139,6 +137,7 @@ def check_meshes(scene: Scene, names: tuple[str, ...], size: float | None, level
     """Refuse, before meshing, an element size coarser than a link's depth or one whose finest mesh
     would hold more than MAX_ELEMENTS triangles (estimated from the link's area)."""
     from linkstress.validation.compare import ELEMENTS_PER_DEPTH, comparison_stations, default_mesh
+    from linkstress.validation.convergence import REFINEMENT_RATIO
     from linkstress.validation.validate_scene import LINEAR_REFINEMENT
 
     size = size or (scene.analysis.mesh_size if scene.analysis is not None else None)
