@@ -285,3 +285,15 @@ def test_the_seed_cranks_driven_pivot_gives_no_estimate_and_no_pin_hole_factor()
     crank = run_analysis(scene).stresses["crank"]
     o2, a = crank.pin_holes
     assert o2.outside.all() and "couple" in o2.reasons[0] and not a.outside.any()
+
+
+def test_a_blocks_arrays_carry_the_pin_hole_estimates_of_that_block_only():
+    # StressSummary.at recomputes a block of a sweep: its pin holes must hold that block's positions in
+    # every per-position field, as the whole sweep's do at the same indices.
+    scene = load_scene(REPO / "validation" / "cases" / "six_bar" / "scene.toml")
+    summary = run_analysis(scene).stresses["rocker"]
+    block = slice(5, 9)
+    for whole, part in zip(summary.pin_holes, summary.at(block).pin_holes):
+        for field in ("width", "end_distance", "shape_code", "nominal", "kts", "estimate", "outside", "reason_code"):
+            assert np.array_equal(getattr(part, field), getattr(whole, field)[block]), field
+        assert part.reasons == whole.reasons[block] and part.shape == whole.shape[block]

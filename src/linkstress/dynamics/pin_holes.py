@@ -36,7 +36,7 @@ FEA of pushed lugs puts the peak at the bearing contact, 17 % above the pulled l
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -180,6 +180,15 @@ class PinHoleEstimate:
     def reasons_in(self, positions) -> list[str | None]:
         """Why Kt is outside the tables at ``positions``, None where inside."""
         return np.array(self.reason_texts, dtype=object)[self.reason_code[positions]].tolist()
+
+    def at(self, positions: slice) -> "PinHoleEstimate":
+        """The estimate at the consecutive ``positions`` only: every per-position field sliced."""
+        return replace(
+            self, width=self.width[positions], end_distance=self.end_distance[positions],
+            shape_code=self.shape_code[positions], nominal=self.nominal[positions], kts=self.kts[positions],
+            estimate=self.estimate[positions], outside=self.outside[positions],
+            reason_code=self.reason_code[positions],
+        )
 
     def largest(self, positions) -> float | None:
         """The largest estimate [Pa] inside the tables over ``positions`` (a mask or indices), None if none."""

@@ -49,7 +49,7 @@ positions are evaluated again where they are asked for (``StressSummary.at``).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -323,10 +323,7 @@ class _Sweep:
     def stresses(self, p: slice) -> SectionStresses:
         """``SectionStresses`` of the consecutive positions ``p``, evaluated as one block."""
         forces, fibres = self.evaluate(p)
-        holes = tuple(
-            replace(h, nominal=h.nominal[p], estimate=None if h.estimate is None else h.estimate[p])
-            for h in self.pin_holes
-        )
+        holes = tuple(h.at(p) for h in self.pin_holes)
         return SectionStresses(
             self.table, forces, fibres.von_mises, fibres.u, self.near_hole, holes, self.shape,
             self.coefficients[p][:, [FREE_Y, ALPHA]],
