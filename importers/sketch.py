@@ -300,12 +300,11 @@ def _owners(shells: list[Polygon], points: NDArray[np.float64]) -> NDArray[np.in
 
 def _unique(points, tolerance, origins, name, fixes: list[str]) -> NDArray[np.bool_]:
     """Which points to keep: of points closer than ``tolerance``, the first."""
-    keep = np.ones(len(points), bool)
     if len(points) < 2:
-        return keep
+        return np.ones(len(points), bool)
     # Exact repeats first (a sort), so that a pile of POINTs on one spot makes no pairs.
     _, first, inverse = np.unique(points, axis=0, return_index=True, return_inverse=True)
-    keep[:] = False
+    keep = np.zeros(len(points), bool)
     keep[first] = True
     pairs = first[close_pairs(points[first], tolerance, "POINTs")]
     keep[np.max(pairs, axis=1)] = False
