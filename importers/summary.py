@@ -1,4 +1,4 @@
-"""A sketch's links as text tables and as the JSON of DESIGN.md (``linkstress import``).
+"""A sketch's links as text tables and as the JSON of docs/design.md (``linkstress import``).
 
 Areas and moments are per unit thickness, in the sketch frame; each profile U(x), L(x) is in the
 member frame of the link's first two joints (origin at joint 0, +x toward joint 1).
@@ -18,7 +18,7 @@ NO_PROFILE = "a profile U(x), L(x) needs a member frame, which needs two joints;
 
 
 def link_json(link: ImportedLink) -> dict:
-    """One link: DESIGN.md's keys (area_m2, centroid_m, polar_moment_area_m4, joints_m, holes, profile)
+    """One link: docs/design.md's keys (area_m2, centroid_m, polar_moment_area_m4, joints_m, holes, profile)
     plus layer, joint_rules, largest_gap_m and the member frame of the profile."""
     profile = link.profile(1.0)
     props = profile.area_properties
@@ -53,7 +53,7 @@ def link_json(link: ImportedLink) -> dict:
 
 
 def sketch_json(sketch: Sketch) -> dict:
-    """``{"links": [...]}`` of DESIGN.md, with what was read, assumed, ignored and fixed."""
+    """``{"links": [...]}`` of docs/design.md, with what was read, assumed, ignored and fixed."""
     return {
         "sketch": str(sketch.path),
         "format": sketch.format,

@@ -72,7 +72,7 @@ def test_json_has_the_design_shape_and_the_seeds_values(tmp_path, capsys):
     assert set(first["links"]) == {"crank", "coupler", "output", "ground"}
     coupler = first["links"]["coupler"]
     assert set(coupler) == {"angle_deg", "omega_rad_s", "alpha_rad_s2", "acc_G_m_s2"}
-    # The seed's published kinematics (../shared/reference/seed-ansys-fourbar.md), 3 decimals.
+    # The seed's published kinematics (docs/reference/seed-ansys-fourbar.md), 3 decimals.
     assert coupler["acc_G_m_s2"] == pytest.approx([-0.758, -0.605], abs=5e-4)
     assert coupler["alpha_rad_s2"] == pytest.approx(0.459, abs=5e-4)
     assert first["links"]["output"]["alpha_rad_s2"] == pytest.approx(0.695, abs=5e-4)

@@ -1,4 +1,4 @@
-"""``linkstress import``: tables, the JSON of DESIGN.md, the picture, and exit 2 on bad input with
+"""``linkstress import``: tables, the JSON of docs/design.md, the picture, and exit 2 on bad input with
 no output file written."""
 
 from __future__ import annotations

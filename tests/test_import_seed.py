@@ -1,6 +1,6 @@
 """The seed's ANSYS four-bar sketch: the first regression case and the README demo.
 
-Source: shared/reference/seed-ansys-fourbar.md (KSAM thesis, section 6.3.5): four steel bars 0.5 m
+Source: docs/reference/seed-ansys-fourbar.md (KSAM thesis, section 6.3.5): four steel bars 0.5 m
 high, lengths 1.2 / 1.7 / 1.7 / 2.2 m, each with 20 mm pin holes at mid-height 0.1 m from its ends.
 """
 

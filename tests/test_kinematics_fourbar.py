@@ -22,7 +22,7 @@ from linkstress.kinematics.linkage_class import classify, feasible_input_ranges,
 
 pytestmark = pytest.mark.filterwarnings("error")  # no overflow or invalid value, even in filler
 
-# Norton, Design of Machinery, problems 4-1/6-1/7-1 row g (../shared/reference/textbook-fourbar.md):
+# Norton, Design of Machinery, problems 4-1/6-1/7-1 row g (docs/reference/textbook-fourbar.md):
 # ground 6, crank 8, coupler 8, output 9 cm; theta2 = 25 deg, omega2 = 100 rad/s, alpha2 = 18 rad/s^2.
 TEXTBOOK = {
     "open": (343.68511, 7.23605, 76.357225, 146.870417, -23510.09997, -19783.12970),

@@ -12,7 +12,7 @@ from linkstress.kinematics import solve_machine
 from linkstress.scene import load_scene
 
 SEED = """
-    # The seed's ANSYS four-bar (../shared/reference/seed-ansys-fourbar.md) with explicit masses.
+    # The seed's ANSYS four-bar (docs/reference/seed-ansys-fourbar.md) with explicit masses.
     [materials.steel]
     density = 7850.0
     youngs_modulus = 200e9

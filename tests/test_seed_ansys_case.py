@@ -1,4 +1,4 @@
-"""The seed's ANSYS four-bar (../shared/reference/seed-ansys-fourbar.md) through the whole engine.
+"""The seed's ANSYS four-bar (docs/reference/seed-ansys-fourbar.md) through the whole engine.
 
 The original program printed the right kinematics and forces (the reference below) but wrong
 section stresses: it applied the far joint's force at every station, added T12 to every link's

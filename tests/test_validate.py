@@ -1,6 +1,6 @@
 """linkstress validate: beam sections against plane-stress FEA of the same links, same loads.
 
-The seed ANSYS case (../shared/reference/seed-ansys-fourbar.md) must show, for crank, coupler and
+The seed ANSYS case (docs/reference/seed-ansys-fourbar.md) must show, for crank, coupler and
 output, section resultants within 0.5 % and nominal von Mises within 3 % of the converged FEA; a
 curved (banana) coupler must run and say where straight-beam theory falls short; a link whose FEA
 cannot run gets an error entry while the others finish.

@@ -1,6 +1,6 @@
 """Beam sections against plane-stress FEA of the same link under the same loads.
 
-Three comparisons per link and position (DESIGN.md, "FEA cross-check"):
+Three comparisons per link and position (docs/design.md, "FEA cross-check"):
 
 - section resultants: N, V, M integrated over FEA cuts at the comparison stations against the
   beam's free-body values; error = largest difference over the stations, relative to the largest

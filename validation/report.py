@@ -1,4 +1,4 @@
-"""Reports of a validation: DESIGN.md's ``validate`` JSON, terminal text, and HTML sections.
+"""Reports of a validation: docs/design.md's ``validate`` JSON, terminal text, and HTML sections.
 
 Errors are percentages; a link's scalar values are the worst over the compared positions, with the
 per-position values beside them. Each maximum is given with the input angle [deg] and the place

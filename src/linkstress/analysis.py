@@ -1,6 +1,6 @@
 """What a scene asks for, and computing it: kinematics, joint forces, section stresses.
 
-Without an [analysis] table a scene gets everything its data allows (DESIGN.md, "Scene file"):
+Without an [analysis] table a scene gets everything its data allows (docs/design.md, "Scene file"):
 kinematics always, forces when every moving link has mass data, section stresses for the moving
 links that have a profile and a material. With the table, exactly what it names, and a named stage
 whose data is missing is an error that says which keys would supply it.

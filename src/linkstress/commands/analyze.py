@@ -3,7 +3,7 @@ section stresses of a scene's machine at every input position.
 
 stdout: each mechanism's class (Grashof, Barker), toggles, feasible input range and limit
 positions; the motion of every link; joint forces and the driving torque; the largest section
-stress per link; the infeasible positions and why. ``--json`` writes DESIGN.md's ``analyze`` JSON
+stress per link; the infeasible positions and why. ``--json`` writes docs/design.md's ``analyze`` JSON
 (see ``linkstress.report.records``); ``--explain`` prints what will be computed and stops.
 """
 

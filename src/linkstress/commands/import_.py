@@ -26,7 +26,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="endpoint gap tolerance as a fraction of the drawing size (default 1e-4; 1e-2 for the old iLogic CSV)")
     parser.add_argument("--sagitta", type=float, metavar="FRACTION",
                         help="chord tolerance of arcs as a fraction of each arc's radius (default 1e-4)")
-    parser.add_argument("--json", metavar="OUT", help="write the links as JSON (DESIGN.md's import shape)")
+    parser.add_argument("--json", metavar="OUT", help="write the links as JSON (docs/design.md's import shape)")
     parser.add_argument("--plot", metavar="OUT.png", help="draw outline, holes, joints, member axis and U(x)/L(x)")
     parser.set_defaults(run=run)
 

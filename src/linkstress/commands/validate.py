@@ -43,7 +43,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
     )
     parser.add_argument("scene", type=Path, metavar="SCENE", help="scene file (TOML)")
-    parser.add_argument("--json", type=Path, metavar="OUT", help="write DESIGN.md's validate JSON to OUT")
+    parser.add_argument("--json", type=Path, metavar="OUT", help="write docs/design.md's validate JSON to OUT")
     parser.add_argument("--html", type=Path, metavar="OUT", help="write a self-contained HTML report to OUT")
     parser.add_argument("--vtu", type=Path, metavar="DIR", help="write the FEA fields (VTU + PVD per link) into DIR")
     parser.add_argument("--positions", type=int, default=None, metavar="N",

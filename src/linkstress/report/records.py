@@ -1,4 +1,4 @@
-"""JSON records of an analysis: DESIGN.md's ``analyze`` shape, extended, never renamed.
+"""JSON records of an analysis: docs/design.md's ``analyze`` shape, extended, never renamed.
 
 Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``warnings`` (only where the step into
 this position passed a loop's toggle or change point: one message each, see

@@ -1,6 +1,6 @@
 """Writes ``ansys_four_bars.dxf``: the seed's four steel bars of the ANSYS check, drawn in metres.
 
-Source: ../../../../shared/reference/seed-ansys-fourbar.md (KSAM thesis, section 6.3.5). Each bar is a
+Source: docs/reference/seed-ansys-fourbar.md (KSAM thesis, section 6.3.5). Each bar is a
 rectangle 0.5 m high (a closed LWPOLYLINE) with a 20 mm pin hole (CIRCLE) at mid-height 0.1 m from
 each end and a POINT at each hole's centre, on a layer named after the link. The bars lie
 horizontally, one above the other 1 m apart (crank lowest), each with its first joint on x = 0.
