@@ -1,8 +1,7 @@
 """The original program's (KSAM) section stresses on midpoint strips: the baseline ``bench`` measures.
 
-A faithful port of what the KSAM thesis describes (section 6.3.3, and annex 12.3 ``Link.centroid``,
-KSAM thesis), deliberately not vectorised, like
-``strip_sum``: its cost is part of what is measured.
+A faithful port of what the KSAM thesis describes (section 6.3.3, and annex 12.3 ``Link.centroid``),
+deliberately not vectorised, like ``strip_sum``: its cost is part of what is measured.
 
 - Bounds: U(x) and L(x) are piecewise functions evaluated one abscissa at a time (the original's
   concatenated ``Function`` objects); here a bisection over the link's exact bounding functions.
