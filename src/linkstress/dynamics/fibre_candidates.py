@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.dynamics.fibre_peaks import cubic_peak, has_cubic_peak, single_chord_peak
-from linkstress.dynamics.internal_forces import ALPHA, FREE_Y, ForceBasis, InternalForces
+from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces
 from linkstress.sections import SectionTable
 
 BODY_TERM = 0.1925
@@ -65,7 +65,9 @@ class SectionShape:
     """What the fibre search needs of the sections, independent of the loads: per station, and the
     chords of split sections, and the chord ends at holes (station, offset u, C). ``half``: a single
     chord's half-depth c (zero elsewhere); ``corrected_half``: c on the single chords that get the
-    body-load term (zero elsewhere)."""
+    body-load term (zero elsewhere); ``body_gain`` (4, S): the body load across the section,
+    b = rho (g - a(c)) . n [N/m^3] at the axis point c, per unit of (g - a_O)_x, (g - a_O)_y, alpha
+    and omega^2 (``body_gains``)."""
 
     x: NDArray[np.float64]
     inv_area: NDArray[np.float64]
@@ -75,14 +77,15 @@ class SectionShape:
     half: NDArray[np.float64]
     corrected_half: NDArray[np.float64]
     shear_gain: NDArray[np.float64]
-    density: float
+    body_gain: NDArray[np.float64]
     split: _Chords
     hole_ends: _HoleEdges
 
     @classmethod
-    def of(cls, table: SectionTable, density: float, body_term: NDArray[np.bool_]) -> "SectionShape":
+    def of(cls, table: SectionTable, body_gain: NDArray[np.float64], body_term: NDArray[np.bool_]) -> "SectionShape":
         """The shape of ``table``'s sections; the single chords of the stations ``body_term`` (S,)
-        get the body-load term."""
+        get the body-load term, with the body load across them ``body_gain`` (4, S) per unit of the
+        body-load coefficients (``body_gains``)."""
         solid = (table.area > 0) & (table.second_moment > 0)
         yna = table.neutral_axis
         half = (table.top - table.bottom) / 2
@@ -103,27 +106,29 @@ class SectionShape:
             corrected_half=np.where(single & body_term, half, 0.0),
             # (8/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
             shear_gain=np.where(single, (8 / 9) * inv_inertia**2 * half**4, 0.0),
-            density=density,
+            body_gain=body_gain,
             split=_Chords(at, ua, ub, c),
             hole_ends=_HoleEdges.of(np.flatnonzero(solid & (table.n_chords > 1)), at, k, table.n_chords[at], ua, ub, c),
         )
 
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
         """Per unit load coefficient, (Q, S) each: the mean and half the difference of sigma at the
-        top and bottom fibres, N / A + M u / I and the body-load term +-0.4 b_y c,
-        b_y = rho ((g - a_O)_y - alpha x); and 0.1925 b_y c on the single chords that take the term
+        top and bottom fibres, N / A + M u / I and the body-load term +-0.4 b c (b the body load
+        across the section, ``body_gain``); and 0.1925 b c on the single chords that take the term
         (zero elsewhere), for ``interior_candidates``."""
         along = basis.normal * self.inv_area
         mean = along + basis.moment * (self.inv_inertia * self.middle)
         spread = basis.moment * (self.inv_inertia * self.reach)
-        # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
-        lever = 0.4 * self.density * self.corrected_half
-        spread[FREE_Y] += lever
-        spread[ALPHA] -= self.x * lever
+        # delta_sigma at the top fibre is 0.4 b c (minus it at the bottom)
+        spread[BODY] += 0.4 * self.corrected_half * self.body_gain
         body = np.zeros_like(mean)
-        body[FREE_Y] = lever * (BODY_TERM / 0.4)
-        body[ALPHA] = -self.x * lever * (BODY_TERM / 0.4)
+        body[BODY] = BODY_TERM * self.corrected_half * self.body_gain
         return mean, spread, body
+
+    @property
+    def body_columns(self) -> NDArray[np.bool_]:
+        """(4,): the body-load coefficients that reach a section taking the body-load term."""
+        return (self.body_gain[:, self.corrected_half > 0] != 0).any(axis=1)
 
     def inverse_square_half(self) -> NDArray[np.float64]:
         """(S,) 1 / c^2 on the single chords that get the body-load term, zero elsewhere: b_y times
@@ -214,7 +219,7 @@ class SectionShape:
         half = self.half[at]
         c = half * half
         rows = flat // len(self.x)
-        body = self.body_load(coefficients[rows, FREE_Y], coefficients[rows, ALPHA], at) * self.corrected_half[at]
+        body = self.body_load(coefficients[rows], at) * self.corrected_half[at]
         plain = body == 0
         if plain.any():
             k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))
@@ -249,10 +254,20 @@ class SectionShape:
             at,
         )
 
-    def body_load(self, free_y, alpha, at) -> NDArray[np.float64]:
-        """b_y = rho ((g - a_O)_y - alpha x) [N/m^3] at stations ``at``, from the load coefficients
-        (g - a_O)_y and alpha (arrays that broadcast with ``at``)."""
-        return self.density * (free_y - alpha * self.x[at])
+    def body_load(self, coefficients, at) -> NDArray[np.float64]:
+        """The body load across the section b [N/m^3] at stations ``at`` (n,), from rows of the load
+        coefficients (n, Q) (one per station)."""
+        return (coefficients[:, BODY] * self.body_gain[:, at].T).sum(axis=1)
+
+
+def body_gains(origin: NDArray[np.float64], normal: NDArray[np.float64], density: float) -> NDArray[np.float64]:
+    """(4, S): the d'Alembert load across each section, b = rho (g - a_O - alpha k x c + omega^2 c) . n
+    [N/m^3] at its axis point c (S, 2) [m, load frame] with unit normal n (S, 2), per unit of
+    (g - a_O)_x, (g - a_O)_y, alpha and omega^2 (the last four ``load_coefficients``). On a member
+    along the load frame's x (c = (x, 0), n = (0, 1)) it is rho ((g - a_O)_y - alpha x)."""
+    cx, cy = origin.T
+    nx, ny = normal.T
+    return density * np.stack([nx, ny, cy * nx - cx * ny, cx * nx + cy * ny])
 
 
 def _von_mises(n, m, w, c, u):
