@@ -92,7 +92,7 @@ class CurvedSections:
         gap = 1 - k * w
         if not (gap > 0).all():
             bad = np.broadcast_to(v, np.broadcast_shapes(v.shape, gap.shape))[~(gap > 0)][0]
-            raise GeometryError(f"fibre v = {bad!r} m lies at or beyond its cut's centre of curvature")
+            raise GeometryError(f"fibre v = {bad:.6g} m lies at or beyond its cut's centre of curvature")
         return w / (gap * stiffness) - k / area
 
     def neutral_axis_shift(self) -> NDArray[np.float64]:
@@ -117,16 +117,18 @@ def curved_sections(table: SectionTable, curvature: ArrayLike) -> CurvedSections
     kappa = np.broadcast_to(np.asarray(curvature, float), table.x.shape).copy()
     if not np.isfinite(kappa).all():
         bad = np.flatnonzero(~np.isfinite(kappa))[0]
-        raise GeometryError(f"station x = {table.x[bad]!r} m: curvature must be finite, got {kappa[bad]!r} 1/m")
+        raise GeometryError(
+            f"station x = {table.x[bad]:.6g} m: curvature must be finite, got {float(kappa[bad])!r} 1/m"
+        )
     present = np.arange(table.lower.shape[1])[None, :] < table.n_chords[:, None]
     reach = np.where(present, np.maximum(kappa[:, None] * table.lower, kappa[:, None] * table.upper), 0.0)
     past = (reach >= 1).any(axis=1)
     if past.any():
         i = np.flatnonzero(past)[0]
         raise GeometryError(
-            f"station x = {table.x[i]!r} m: the section reaches past its centre of curvature: material at "
-            f"v = {table.bottom[i]!r}..{table.top[i]!r} m, centre at v = {1 / kappa[i]!r} m "
-            f"(curvature {kappa[i]!r} 1/m); a curved member's cut must stop short of its centre"
+            f"station x = {table.x[i]:.6g} m: the section reaches past its centre of curvature: material at "
+            f"v = {table.bottom[i]:.6g}..{table.top[i]:.6g} m, centre at v = {1 / kappa[i]:.6g} m "
+            f"(curvature {kappa[i]:.6g} 1/m); a curved member's cut must stop short of its centre"
         )
     centroid = table.neutral_axis
     k = kappa / (1 - kappa * centroid)
