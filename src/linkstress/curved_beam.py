@@ -162,7 +162,8 @@ def cubic_kernel(z: ArrayLike) -> NDArray[np.float64]:
 
 
 def theory_of(curvature: ArrayLike, depth: ArrayLike) -> NDArray[np.str_]:
-    """"curved" where |``curvature``| [1/m] x ``depth`` [m] exceeds ``CURVED_BEAM_LIMIT`` (a radius
-    under ten section depths), else "straight"; elementwise."""
+    """"curved" where |``curvature``| [1/m] x ``depth`` [m] (the cut's extent across the member, outer
+    fibre to outer fibre) exceeds ``CURVED_BEAM_LIMIT`` (a radius under ten section depths), else
+    "straight"; elementwise."""
     curved = np.abs(np.asarray(curvature, float)) * np.asarray(depth, float) > CURVED_BEAM_LIMIT
     return np.where(curved, "curved", "straight")
