@@ -16,6 +16,7 @@ from numpy.typing import NDArray
 
 from linkstress.dynamics.fibre_peaks import cubic_peak, has_cubic_peak, single_chord_peak
 from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces
+from linkstress.curved_beam import CurvedSections, curved_sections
 from linkstress.sections import SectionTable
 
 BODY_TERM = 0.1925
@@ -309,3 +310,88 @@ class Fibres:
         flat = flat[wins]
         best[flat] = f[wins]
         self.u.reshape(-1)[flat] = u[wins]
+
+
+CURVED_SAMPLES = 17
+"""Fibres per chord at which a curved-beam section's von Mises is evaluated, ends included."""
+
+
+@dataclass(frozen=True)
+class CurvedFibres:
+    """The stations ``at`` (C,) of a member that take curved-beam normal stress (Winkler-Bach,
+    ``linkstress.curved_beam``): sigma = N / A + M g(v), with Jourawski's tau = V Q(v) / (I t).
+
+    Their von Mises is not the quartic in v of a straight section, so it is evaluated at
+    ``CURVED_SAMPLES`` fibres per chord, ends included: ``v`` (C, F) [m], with ``gain`` (C, F)
+    [1/m^3] (g) and ``shear_gain`` (C, F) [1/m^2] (Q / (I t)) there. The chords' ends are exact (free
+    edges: tau = 0, where bending puts the largest stress); an interior maximum (where shear matters)
+    is the largest of the samples.
+    """
+
+    at: NDArray[np.intp]
+    sections: CurvedSections
+    inv_area: NDArray[np.float64]
+    v: NDArray[np.float64]
+    gain: NDArray[np.float64]
+    shear_gain: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, table: SectionTable, curvature: NDArray[np.float64], curved: NDArray[np.bool_]) -> "CurvedFibres | None":
+        """Those of ``table``'s stations ``curved`` (S,) with ``curvature`` (S,) [1/m]; None if there are none."""
+        at = np.flatnonzero(curved)
+        if not len(at):
+            return None
+        sections = curved_sections(table, np.where(curved, curvature, 0.0))
+        fractions = np.linspace(0.0, 1.0, CURVED_SAMPLES)
+        present = np.arange(table.lower.shape[1])[None, :] < table.n_chords[:, None]
+        # padding chords repeat the first chord's samples
+        lower = np.where(present, table.lower, table.lower[:, :1])[at]
+        upper = np.where(present, table.upper, table.upper[:, :1])[at]
+        v = (lower[:, :, None] + (upper - lower)[:, :, None] * fractions).reshape(len(at), -1)
+        fibres = np.zeros((len(table.x), v.shape[1]))
+        fibres[at] = v
+        first_moment = table.first_moment(fibres)[at]
+        shear_gain = first_moment / (table.second_moment[at, None] * table.thickness)
+        return cls(at, sections, 1.0 / table.area[at], v, sections.gain(v, at), shear_gain)
+
+    def sigma(self, normal, moment, fibre_y) -> NDArray[np.float64]:
+        """(P, C) [Pa]: sigma at fibres ``fibre_y`` (P, C) [m] of these stations, from N and M (P, C)."""
+        gain = self.sections.gain(fibre_y.T, self.at).T
+        return normal * self.inv_area + moment * gain
+
+    def fibres(self, forces: InternalForces, fibres: "Fibres", table: SectionTable) -> None:
+        """Put the largest von Mises of these stations, and its offset u from the centroid, into
+        ``fibres`` (over whatever the straight-beam search found there): the largest sample, and
+        where that is inside a chord, the vertex of the parabola through it and its two neighbours,
+        evaluated exactly, if larger."""
+        at = self.at
+        n = forces.normal[:, at] * self.inv_area
+        sigma = n[:, :, None] + forces.moment[:, at, None] * self.gain
+        tau = forces.shear[:, at, None] * self.shear_gain
+        von_mises = np.sqrt(sigma * sigma + 3 * tau * tau)
+        k = von_mises.argmax(axis=2)
+        best = np.take_along_axis(von_mises, k[:, :, None], axis=2)[:, :, 0]
+        station = np.arange(len(at))[None, :]
+        v = self.v[station, k]
+        inner = (k % CURVED_SAMPLES > 0) & (k % CURVED_SAMPLES < CURVED_SAMPLES - 1)
+        if inner.any():
+            below = np.take_along_axis(von_mises, np.where(inner, k - 1, k)[:, :, None], axis=2)[:, :, 0]
+            above = np.take_along_axis(von_mises, np.where(inner, k + 1, k)[:, :, None], axis=2)[:, :, 0]
+            step = self.v[station, np.where(inner, k + 1, k)] - v
+            bend = below - 2 * best + above
+            shift = np.where(inner & (bend < 0), 0.5 * step * (below - above) / np.where(bend < 0, bend, -1.0), 0.0)
+            vertex = v + shift
+            rows, cols = np.nonzero(shift != 0)
+            if len(rows):
+                y = np.zeros((len(table.x), len(rows)))
+                y[at[cols], np.arange(len(rows))] = vertex[rows, cols]
+                q = table.first_moment(y)[at[cols], np.arange(len(rows))] / (table.second_moment[at[cols]] * table.thickness)
+                g = self.sections.gain(vertex[rows, cols], at[cols])
+                sigma = n[rows, cols] + forces.moment[rows, at[cols]] * g
+                tau = forces.shear[rows, at[cols]] * q
+                refined = np.sqrt(sigma * sigma + 3 * tau * tau)
+                wins = refined > best[rows, cols]
+                best[rows[wins], cols[wins]] = refined[wins]
+                v[rows[wins], cols[wins]] = vertex[rows[wins], cols[wins]]
+        fibres.von_mises[:, at] = best
+        fibres.u[:, at] = v - table.neutral_axis[at]

@@ -54,7 +54,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.dynamics.fibre_candidates import Fibres, SectionShape, body_gains, fibre_sigma
+from linkstress.curved_beam import theory_of
+from linkstress.dynamics.fibre_candidates import CurvedFibres, Fibres, SectionShape, body_gains, fibre_sigma
 from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces, load_coefficients, member_force_basis
 from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
@@ -89,6 +90,8 @@ class SectionStresses:
     [rad^2/s^2]), for sigma's body-load term."""
     cuts: MemberCuts
     """The member's sections: where each station is (``cuts.points``), and its flags."""
+    curved: CurvedFibres | None = None
+    """The stations that take curved-beam normal stress (Winkler-Bach), if any."""
 
     @property
     def sigma(self) -> NDArray[np.float64]:
@@ -97,7 +100,11 @@ class SectionStresses:
         shape, forces = self.shape, self.forces
         u = self.fibre_y - self.sections.neutral_axis
         beta = (self.body_load @ shape.body_gain) * shape.inverse_square_half()
-        return fibre_sigma(forces.normal * shape.inv_area, forces.moment * shape.inv_inertia, u, beta, shape.half)
+        sigma = fibre_sigma(forces.normal * shape.inv_area, forces.moment * shape.inv_inertia, u, beta, shape.half)
+        if self.curved is not None:
+            at = self.curved.at
+            sigma[:, at] = self.curved.sigma(forces.normal[:, at], forces.moment[:, at], self.fibre_y[:, at])
+        return sigma
 
     @property
     def tau(self) -> NDArray[np.float64]:
@@ -354,7 +361,7 @@ class _Sweep:
     fibre_bases: tuple[NDArray[np.float64], ...]
     coefficients: NDArray[np.float64]
     pin_holes: tuple[PinHoleEstimate, ...]
-    curved: None = None
+    curved: CurvedFibres | None
 
     @classmethod
     def of(
@@ -362,11 +369,15 @@ class _Sweep:
         pin_holes: tuple[PinHoleEstimate, ...] = (),
     ) -> "_Sweep":
         near_hole = cuts.nominal
-        body_term = np.ones_like(near_hole) if body_load_near_holes else ~near_hole
-        shape = SectionShape.of(cuts.table, body_gains(cuts.origin, cuts.normal, link.density), body_term)
+        table = cuts.table
+        curved = theory_of(cuts.curvature, table.top - table.bottom) == "curved"
+        # the body-load term refines the straight beam; a curved section takes Winkler-Bach without it
+        body_term = (np.ones_like(near_hole) if body_load_near_holes else ~near_hole) & ~curved
+        shape = SectionShape.of(table, body_gains(cuts.origin, cuts.normal, link.density), body_term)
         basis = member_force_basis(link, loads, cuts)
         return cls(
             link, loads, cuts, near_hole, basis, shape, shape.fibre_basis(basis), load_coefficients(loads), pin_holes,
+            CurvedFibres.of(table, cuts.curvature, curved),
         )
 
     @property
@@ -406,6 +417,8 @@ class _Sweep:
         shape.single_interiors(forces, c, at_single, fibres)
         shape.hole_end_fibres(forces, fibres, slice(None))
         shape.split_interiors(forces, at_split, chord, fibres)
+        if self.curved is not None:
+            self.curved.fibres(forces, fibres, self.table)
         fibres.u += self.table.neutral_axis  # now the fibre's y
         return forces, fibres
 
@@ -414,7 +427,7 @@ class _Sweep:
         forces, fibres = self.evaluate(p)
         return SectionStresses(
             self.table, forces, fibres.von_mises, fibres.u, self.near_hole, tuple(h.at(p) for h in self.pin_holes), self.shape,
-            self.coefficients[p][:, BODY], self.cuts,
+            self.coefficients[p][:, BODY], self.cuts, self.curved,
         )
 
 
