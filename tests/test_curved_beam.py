@@ -53,7 +53,7 @@ def textbook_ring(kappa: float, v: np.ndarray, table, n: float, m: float) -> tup
         e = big_r - r_n
         m_tb = Decimal(m) if kappa > 0 else -Decimal(m)
         r = [abs(centre - Decimal(x)) for x in v]
-        sigma = [Decimal(n) / area + m_tb * (r_n - ri_) / (area * e * ri_) for ri_ in r]
+        sigma = [Decimal(n) / area + m_tb * (r_n - radius) / (area * e * radius) for radius in r]
         return np.array([float(s) for s in sigma]), float(e), float(area * e * big_r**2 / r_n)
 
 

@@ -3,11 +3,12 @@
 A cut square to a member's curved centreline is a section of chords [a_k, b_k] in a coordinate v
 along the cut (``SectionTable``: ``lower``, ``upper``, centroid v_bar = ``neutral_axis``, area A).
 The member's signed curvature kappa [1/m] puts its centre of curvature on the cut at v = 1/kappa
-(kappa > 0: toward +v). Plane sections stay plane and turn about that centre, so a fibre's length
-is proportional to its distance 1 - kappa v from it, and the normal strain (and stress) is
-(c0 + c1 v) / (1 - kappa v): a combination alpha + beta g(v) of 1 and the hyperbola
-g(v) = v / (1 - kappa v). The two constants follow from the resultants, int sigma dA = N and
-int sigma (v - v_bar) dA = M (M about the centroid, positive putting +v fibres in tension):
+(kappa > 0: toward +v). Plane sections stay plane and turn about that centre, so a fibre's stretch
+is linear in v and its length proportional to 1 - kappa v (its distance from the centre, times
+|kappa|): the normal strain (and stress) is (c0 + c1 v) / (1 - kappa v), a combination
+alpha + beta g(v) of 1 and the hyperbola g(v) = v / (1 - kappa v). The two constants follow from
+the resultants, int sigma dA = N and int sigma (v - v_bar) dA = M (M about the centroid, positive
+putting +v fibres in tension):
 
     sigma(v) = N / A + M (g(v) - g_bar) / J,  g_bar = (1/A) int g dA,  J = int g (v - v_bar) dA.
 
@@ -17,6 +18,9 @@ w = v - v_bar, where the centre of curvature is at w = 1/k with k = kappa / (1 -
 
     g(w) = w / (1 - k w),  J = int w^2 / (1 - k w) dA = I + k L,  L = int w^3 / (1 - k w) dA,
     g_bar = k J / A        (g = w + k w g and int w dA = 0).
+
+(With g(v) = v / (1 - kappa v) about the cut's origin the mean is v_bar / c + g_bar / c^2 and the
+stiffness J / c^2, c = 1 - kappa v_bar: the same gain (g - g_bar) / J.)
 
 So sigma = N/A + M (g(w) / J - k / A). With k = 0 this is N/A + M w / I, the straight beam, with the
 table's own I; the curved part enters only through k L, with no 1/k anywhere. On a chord,
