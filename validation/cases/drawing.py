@@ -91,29 +91,42 @@ def bent_link(
 
 def arc_link(
     msp, layer: str, centre: tuple[float, float], radius: float, start_deg: float, end_deg: float,
-    depth: float, lug: float, hole: float,
+    depth: float, lug: float, fillet: float, hole: float,
 ) -> None:
     """A circular-arc bar: its centre line is the arc of ``radius`` about ``centre`` from
     ``start_deg`` counter-clockwise to ``end_deg`` (less than 360 degrees), its edges the concentric
     arcs ``depth`` apart; at each end of the centre line a round lug of diameter ``lug`` (larger
-    than ``depth``) with a pin hole of diameter ``hole`` and a POINT at its centre."""
+    than ``depth``), joined to both edges by fillets of radius ``fillet`` (> 0), with a pin hole of
+    diameter ``hole`` and a POINT at its centre."""
     c = _vec(centre)
     a = lug / 2
-    joints = [c + radius * _unit(start_deg), c + radius * _unit(end_deg)]
-    # Where an edge of radius rho meets a lug circle (radius a, centre on the centre line), seen from
-    # the arc's centre: the half-angle beta from the lug's centre, by the law of cosines.
-    beta = {rho: math.degrees(math.acos((rho**2 + radius**2 - a**2) / (2 * rho * radius)))
-            for rho in (radius + depth / 2, radius - depth / 2)}
-    outer, inner = radius + depth / 2, radius - depth / 2
     attrs = {"layer": layer}
-    msp.add_arc(_pt(c), outer, start_deg + beta[outer], end_deg - beta[outer], dxfattribs=attrs)
-    msp.add_arc(_pt(c), inner, start_deg + beta[inner], end_deg - beta[inner], dxfattribs=attrs)
-    for joint, edge_deg, sign in ((joints[0], start_deg, 1), (joints[1], end_deg, -1)):
-        ends = [c + rho * _unit(edge_deg + sign * beta[rho]) for rho in (outer, inner)]
-        first, last = (ends[1], ends[0]) if sign > 0 else (ends[0], ends[1])
+    edges = {"outer": (radius + depth / 2, radius + depth / 2 + fillet), "inner": (radius - depth / 2, radius - depth / 2 - fillet)}
+    # A fillet's centre is ``fillet`` off its edge (outside the bar) and a + fillet from the lug's
+    # centre, which is ``radius`` from the arc's: gamma is its angle from the lug, seen from the arc's centre.
+    gamma = {
+        side: math.degrees(math.acos((rho_f**2 + radius**2 - (a + fillet) ** 2) / (2 * rho_f * radius)))
+        for side, (_, rho_f) in edges.items()
+    }
+    for side, (rho, _) in edges.items():
+        msp.add_arc(_pt(c), rho, start_deg + gamma[side], end_deg - gamma[side], dxfattribs=attrs)
+    joints = []
+    for edge_deg, sign in ((start_deg, 1), (end_deg, -1)):
+        joint = c + radius * _unit(edge_deg)
+        joints.append(_pt(joint))
+        on_lug = {}
+        for side, (rho, rho_f) in edges.items():
+            angle = edge_deg + sign * gamma[side]
+            f_centre = c + rho_f * _unit(angle)
+            on_lug[side] = joint + a * (f_centre - joint) / _norm(f_centre - joint)
+            ends = sorted([_deg(c + rho * _unit(angle) - f_centre), _deg(on_lug[side] - f_centre)])
+            # The fillet is the short way round its centre between its two tangent points.
+            first, last = ends if ends[1] - ends[0] < 180 else ends[::-1]
+            msp.add_arc(_pt(f_centre), fillet, first, last, dxfattribs=attrs)
         # The lug's free arc runs counter-clockwise about the joint from one edge to the other, away from the bar.
+        first, last = (on_lug["inner"], on_lug["outer"]) if sign > 0 else (on_lug["outer"], on_lug["inner"])
         msp.add_arc(_pt(joint), a, _deg(first - joint), _deg(last - joint), dxfattribs=attrs)
-    _pins(msp, layer, [tuple(j) for j in joints], hole)
+    _pins(msp, layer, joints, hole)
 
 
 def _vec(p) -> np.ndarray:

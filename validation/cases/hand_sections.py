@@ -206,11 +206,13 @@ class Converged:
 
 
 def converged_fea(
-    link: LinkProfile, loads: LinkLoadCase, cuts: list[Cut], regions, base: MeshSettings, max_levels: int = 6,
+    link: LinkProfile, loads: LinkLoadCase, cuts: list[Cut], regions, base: MeshSettings,
+    tolerance: float = CONVERGED, min_levels: int = 3, max_levels: int = 7,
 ) -> Converged:
-    """Refine ``base`` by REFINEMENT_RATIO until two consecutive meshes agree within CONVERGED on
-    every fibre von Mises at ``cuts`` and every peak of ``regions`` (name -> function of the nodes
-    (Q, 2) giving a mask), P2 elements; raises RuntimeError if ``max_levels`` do not converge."""
+    """Refine ``base`` by REFINEMENT_RATIO until two consecutive meshes agree within ``tolerance``
+    on every fibre von Mises at ``cuts`` and every peak of ``regions`` (name -> function of the
+    nodes (Q, 2) giving a mask), after at least ``min_levels`` meshes (a study, as validate's);
+    P2 elements. Raises RuntimeError if ``max_levels`` meshes do not converge."""
     previous, dofs, changes = None, [], []
     for level in range(max_levels):
         result = solve_link(link, loads, base.refined(REFINEMENT_RATIO**level))
@@ -220,7 +222,7 @@ def converged_fea(
         dofs.append(result.dofs)
         if previous is not None:
             changes.append(float(np.max(np.abs(figures[0] - previous[0]) / figures[1])))
-            if changes[-1] < CONVERGED:
+            if changes[-1] < tolerance and level + 1 >= min_levels:
                 return Converged(result, at_cuts, peaks, dofs, [math.nan, *changes])
         previous = figures
     raise RuntimeError(f"link {link.name!r}: not converged within {max_levels} meshes (changes {changes})")
