@@ -2,9 +2,9 @@
 radial cuts, and the banana coupler (``../banana_coupler``) at its crown. At each cut the hand N, V,
 M from the pin forces linkstress computes, the straight-beam and Winkler-Bach hoop stresses at the
 inner and outer fibre, and the converged plane-stress FEA there; at the two positions of the
-sweep where the hand crown moment is largest and smallest (most positive, most negative).
+sweep where the hand crown moment is largest and smallest (signed).
 
-Run ``python truth.py`` in this folder (about a minute). Conventions: ``../hand_sections.py``;
+Run ``python truth.py`` in this folder (about 10 s). Conventions: ``../hand_sections.py``;
 here s points along the centre line toward the coupler's joint B (decreasing polar angle), so
 n is the outward radial direction: y = r - R, and M > 0 puts the outer fibre in tension.
 """

@@ -2,7 +2,7 @@
 straight-beam N, V, M and fibre stresses from the pin forces linkstress computes, against the
 converged plane-stress FEA at the same fibres; and the FEA's peaks at the pin holes and the fillet.
 
-Run ``python truth.py`` in this folder (about a minute). Hand and FEA conventions:
+Run ``python truth.py`` in this folder (about 10 s). Hand and FEA conventions:
 ``validation/cases/hand_sections.py``.
 """
 
@@ -61,16 +61,20 @@ def main() -> None:
             f = rotation @ loads.pin_forces[k, j]
             print(f"  pin force on the bell crank at {name}: ({f[0]:.2f}, {f[1]:.2f}) N, ground frame")
         print("  cut          hand N [N]  FEA N [N]  hand V [N]  hand M [N m]  FEA M [N m]"
-              "  fibre  hand sigma [MPa]  FEA sigma [MPa]  hand vM [MPa]  FEA vM [MPa]  vM diff [%]")
+              "  fibre           hand sigma [MPa]  FEA sigma [MPa]  hand vM [MPa]  FEA vM [MPa]  vM diff [%]")
         for cut in cuts:
             hand = hand_resultants(link, loads, cut)
             sigma = straight_fibres(hand, cut.depth, link.thickness)[k]
             at = fea.cuts[cut.name]
-            for i, fibre in enumerate(("y=-h/2", "y=+h/2")):
+            # The inner fibre is the one on the fillet's side of the arm.
+            ends = cut.points(np.array([-cut.depth / 2, cut.depth / 2]))
+            inner = int(np.argmin(np.hypot(*(ends - fillet_centre).T)))
+            for i in range(2):
+                fibre = f"{'inner' if i == inner else 'outer'} (y={'-+'[i]}h/2)"
                 lead = (f"  {cut.name:<11}  {hand.normal[k]:10.2f}  {at.resultants.normal[k]:9.2f}  {hand.shear[k]:10.2f}"
                         f"  {hand.moment[k]:12.4f}  {at.resultants.moment[k]:11.4f}") if i == 0 else " " * 73
                 diff = 100 * (abs(sigma[i]) / at.von_mises[k, i] - 1)
-                print(f"{lead}  {fibre}  {sigma[i] / 1e6:16.3f}  {at.sigma[k, i] / 1e6:15.3f}"
+                print(f"{lead}  {fibre:<14}  {sigma[i] / 1e6:16.3f}  {at.sigma[k, i] / 1e6:15.3f}"
                       f"  {abs(sigma[i]) / 1e6:13.3f}  {at.von_mises[k, i] / 1e6:12.3f}  {diff:11.2f}")
         for name, peak in fea.peaks.items():
             x, y = peak.at[k]
