@@ -101,7 +101,11 @@ def arc_link(
     c = _vec(centre)
     a = lug / 2
     attrs = {"layer": layer}
-    edges = {"outer": (radius + depth / 2, radius + depth / 2 + fillet), "inner": (radius - depth / 2, radius - depth / 2 - fillet)}
+    # Each edge's radius and its fillets' centres' radius about the arc's centre.
+    edges = {
+        "outer": (radius + depth / 2, radius + depth / 2 + fillet),
+        "inner": (radius - depth / 2, radius - depth / 2 - fillet),
+    }
     # A fillet's centre is ``fillet`` off its edge (outside the bar) and a + fillet from the lug's
     # centre, which is ``radius`` from the arc's: gamma is its angle from the lug, seen from the arc's centre.
     gamma = {

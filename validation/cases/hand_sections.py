@@ -105,7 +105,10 @@ def hand_resultants(link: LinkProfile, loads: LinkLoadCase, cut: Cut) -> Resulta
     joints = frame.to_local(link.joints)
     beyond = (joints - c) @ s > 0
     force = loads.pin_forces[:, beyond].sum(axis=1)
-    moment = _cross(joints[beyond] - c, loads.pin_forces[:, beyond]).sum(axis=1) + loads.joint_couples[:, beyond].sum(axis=1)
+    moment = (
+        _cross(joints[beyond] - c, loads.pin_forces[:, beyond]).sum(axis=1)
+        + loads.joint_couples[:, beyond].sum(axis=1)
+    )
     for pf in loads.point_forces:
         if (pf.at - c) @ s > 0:
             force = force + pf.force

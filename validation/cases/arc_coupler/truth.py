@@ -83,7 +83,8 @@ def report(coupler: ArcCoupler) -> None:
                         f"  {hand.moment[k]:12.4f}  {at.resultants.moment[k]:11.4f}") if i == 0 else " " * 69
                 hoop = at.sigma[k, i]
                 print(f"{lead}  {fibre}  {straight[i] / 1e6:14.3f}  {curved[i] / 1e6:18.3f}  {hoop / 1e6:14.3f}"
-                      f"  {at.von_mises[k, i] / 1e6:12.3f}  {100 * (straight[i] / hoop - 1):18.2f}  {100 * (curved[i] / hoop - 1):13.2f}")
+                      f"  {at.von_mises[k, i] / 1e6:12.3f}  {100 * (straight[i] / hoop - 1):18.2f}"
+                      f"  {100 * (curved[i] / hoop - 1):13.2f}")
     print()
 
 

@@ -78,7 +78,8 @@ def main() -> None:
                       f"  {abs(sigma[i]) / 1e6:13.3f}  {at.von_mises[k, i] / 1e6:12.3f}  {diff:11.2f}")
         for name, peak in fea.peaks.items():
             x, y = peak.at[k]
-            print(f"  FEA peak von Mises, {name}: {peak.value[k] / 1e6:.2f} MPa at ({1e3 * x:.2f}, {1e3 * y:.2f}) mm, member frame")
+            print(f"  FEA peak von Mises, {name}: {peak.value[k] / 1e6:.2f} MPa at "
+                  f"({1e3 * x:.2f}, {1e3 * y:.2f}) mm, member frame")
 
 
 def _near(centre: np.ndarray, radius: float):
