@@ -54,6 +54,8 @@ def test_the_bell_crank_machine_analyses_every_position_with_forces_and_stresses
         assert set(r["mechanisms"]) == {"main", "second"}
         assert all(r["links"][name]["max_von_mises_pa"] > 0 for name in ("crank", "coupler", "bellcrank", "rod2", "out2"))
     assert analysis.forces.link_loads["bellcrank"].frame_joints == (1, 2)  # O4 -> B, the main loop's output
+    # Straight arms: the bell crank's cuts a depth clear of O4 and B cross arm O4 -> B alone.
+    assert not any(analysis.curved(name) for name in ("crank", "coupler", "bellcrank", "rod2", "out2"))
 
 
 def test_the_bell_cranks_pin_c_carries_the_second_loops_load(bell_crank):
