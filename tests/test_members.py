@@ -232,8 +232,8 @@ def test_a_ring_segment_pulled_at_its_pins_takes_winkler_bachs_stress_at_its_cro
     stress = section_stresses(link, loads, np.array([member.length / 2]), member=member)
     h, area, radius = ro - ri, (ro - ri) * 0.01, (ri + ro) / 2
     arm = radius - radius * math.cos(math.radians(60.0))
-    assert stress.forces.normal[0, 0] == pytest.approx(p, rel=1e-6)
-    assert stress.forces.moment[0, 0] == pytest.approx(p * arm, rel=1e-5)
+    assert stress.forces.normal[0, 0] == pytest.approx(p, rel=1e-4)
+    assert stress.forces.moment[0, 0] == pytest.approx(p * arm, rel=1e-4)
     assert stress.curved is not None and stress.cuts.curvature[0] * radius == pytest.approx(1.0, abs=3e-3)
     r_n = h / math.log(ro / ri)
     e = radius - r_n
@@ -258,3 +258,45 @@ def test_each_pin_hole_of_a_bell_crank_reports_the_depth_of_its_arm():
     holes = pin_hole_estimates(crank, loads, member_depths(members))
     assert [h.joint for h in holes] == [0, 1, 2]
     assert [h.depth for h in holes] == pytest.approx([WIDTH] * 3, rel=1e-6)
+
+
+def u_link(gap: float) -> LinkProfile:
+    """Two 100 mm legs 20 mm wide with ``gap`` [m] between them, joined by a half circle, 6 mm pin
+    holes at the legs' feet."""
+    spread = gap + 0.02
+    legs = [LineString([(0, 0), (0, 0.1)]), LineString([(spread, 0), (spread, 0.1)])]
+    t = np.linspace(math.pi, 0.0, 181)
+    bend = LineString(np.column_stack([spread / 2 + spread / 2 * np.cos(t), 0.1 + spread / 2 * np.sin(t)]))
+    body = unary_union([g.buffer(0.01, quad_segs=32) for g in (*legs, bend)])
+    body = body.difference(Point(0, 0).buffer(0.003)).difference(Point(spread, 0).buffer(0.003))
+    return LinkProfile(body, np.array([[0.0, 0.0], [spread, 0.0]]), 0.005, STRUCTURAL_STEEL, name="u")
+
+
+def test_a_bend_whose_inside_nearly_reaches_its_centre_of_curvature_is_nominal_there():
+    # A U with a 2 mm gap: its bend's centreline radius is 11 mm and its inner edge 1 mm from the
+    # centre, so the cuts there reach 91 % of the way to it, where Winkler-Bach's section would pass
+    # through the centre: those sections are nominal (straight-beam), the legs' are not, and nothing
+    # fails.
+    link = u_link(0.002)
+    member = frame_member(link, (0, 1))
+    assert member.curved and member.length == pytest.approx(0.2 + math.pi * 0.011, rel=5e-2)
+    stations = member.stations(101)
+    cuts = member.cuts(stations)
+    bend = (stations > 0.105) & (stations < 0.1 + math.pi * 0.011 - 0.005)
+    assert cuts.tight[bend].sum() >= bend.sum() // 3 and cuts.nominal[cuts.tight].all()
+    assert not cuts.tight[(stations > 0.03) & (stations < 0.07)].any()
+    stress = section_stresses(link, static_loads(2, {0: (-100.0, 0.0), 1: (100.0, 0.0)}), stations, member=member)
+    assert np.isfinite(stress.von_mises).all()
+    assert stress.curved is None or not np.isin(np.flatnonzero(cuts.tight), stress.curved.at).any()
+
+
+def test_a_u_shaped_link_is_traced_round_its_bend():
+    # Two 100 mm legs 60 mm apart joined by a half circle, 20 mm wide, pins at the legs' feet: the
+    # line between the pins runs outside the material, the centreline up one leg, round the bend and
+    # down the other (2 x 100 + pi x 30 = 294 mm).
+    link = u_link(0.04)
+    member = frame_member(link, (0, 1))
+    assert member.curved and member.length == pytest.approx(0.2 + math.pi * 0.03, rel=5e-3)
+    cuts = member.cuts(member.stations(101))
+    clear = ~cuts.nominal
+    np.testing.assert_allclose((cuts.table.top - cuts.table.bottom)[clear], 0.02, rtol=5e-3)

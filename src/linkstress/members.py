@@ -8,7 +8,7 @@ member frame of the link's frame joints (``LinkLoadCase.frame_joints``).
 Axis. A member's axis is the straight line through its joints, or, where the material between them
 curves (a banana or arc bar), the material's centreline: the midpoints of the cuts normal to it,
 found by moving points from the midline of straight cuts onto the midpoints of their normal cuts a
-few times (``CENTRELINE_PASSES``). Beyond a joint that ends the tree (a leaf), the axis runs on
+few times. Beyond a joint that ends the tree (a leaf), the axis runs on
 straight along its end tangent to the outline (the free end); at a joint shared with another member
 it stops. Stations are arc lengths s [m] along the axis, s = 0 at joint i.
 
@@ -29,6 +29,7 @@ member's axis: there the values are nominal.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -54,9 +55,19 @@ REGULAR_WIDTH = 2.0
 """A first-midline cut wider than this many times the median runs along a lug or another arm."""
 CENTRELINE_POINTS = 121
 """Points of a curved member's centreline between its joints."""
-CENTRELINE_PASSES = 4
-"""Moves of the centreline points onto the midpoints of their normal cuts: each pass takes the
-midline of straight cuts on a 96 degree arc about ten times closer to the true centreline."""
+MARCH_STEP = 0.1
+"""Steps of the centreline's tracing, in section depths."""
+POLISH_PASSES = 20
+"""Moves of the traced centreline's points onto the midpoints of the cuts square to it (the chord
+between their neighbours), which straighten the kink of the tracing's first steps."""
+ARRIVAL_COS = math.cos(math.radians(45.0))
+"""Within half a width of its end joint, a tracing heading within 45 degrees of it has arrived (its
+last steps would run through the joint's lug)."""
+START_RAYS = 72
+"""Directions tried for where a bar leaves its joint."""
+OUTSIDE_SHARE = 0.05
+"""A member whose joint-to-joint line runs outside the material for more than this share of its
+length is curved (a C or U), whatever its first midline says."""
 CURVATURE_REACH = 1.0
 """Half the span, in section depths, of the three centreline points whose circle gives the axis's
 curvature at a station (exact on a circular arc; averages the outline's flattening elsewhere)."""
@@ -191,7 +202,9 @@ def cut_lines(
         va, vb = (a[station, edge] * n[station, 0]).sum(axis=1), (b[station, edge] * n[station, 0]).sum(axis=1)
         v = va + (vb - va) * (fa / (fa - fb))
         found.append((station + first, v, edges.outer[edge]))
-    station, v, outer = (np.concatenate(parts) for parts in zip(*found))
+    station, v, outer = (
+        (np.concatenate(parts) for parts in zip(*found)) if found else (np.zeros(0, int), np.zeros(0), np.zeros(0, bool))
+    )
     if not left_limit:
         missed = np.setdiff1d(np.arange(len(origin)), station)
         if len(missed):
@@ -205,6 +218,8 @@ def cut_lines(
 def through_axis(lines: CutLines, count: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.intp]]:
     """Per station, the interval [bottom, top] (S,) [m] of the outline's filled shape on the cut line
     that holds the axis point (v = 0), or the nearest one; and how many intervals the line meets."""
+    if count == 0:
+        return np.zeros(0), np.zeros(0), np.zeros(0, int)
     outer = lines.outer
     station = lines.station[outer][::2]
     lo, hi = lines.v[outer][::2], lines.v[outer][1::2]
@@ -306,9 +321,19 @@ class MemberCuts:
         return np.column_stack([-self.tangent[:, 1], self.tangent[:, 0]])
 
     @property
+    def tight(self) -> NDArray[np.bool_]:
+        """(S,): sections that reach within ``TIGHT`` of their radius of their centre of curvature
+        (the inside of a hook), where no beam theory holds."""
+        table = self.table
+        present = np.arange(table.lower.shape[1])[None, :] < table.n_chords[:, None]
+        kappa = self.curvature[:, None]
+        reach = np.where(present, np.maximum(kappa * table.lower, kappa * table.upper), 0.0)
+        return reach.max(axis=1) >= 1 - TIGHT
+
+    @property
     def nominal(self) -> NDArray[np.bool_]:
-        """(S,): stations near a hole or at a junction, where beam values are nominal."""
-        return self.near_hole | self.junction
+        """(S,): stations near a hole, at a junction or ``tight``, where beam values are nominal."""
+        return self.near_hole | self.junction | self.tight
 
     @property
     def ends(self) -> NDArray[np.float64]:
@@ -384,17 +409,28 @@ class Member:
             d = self.path[-1] - self.path[0]
             return origin, np.broadcast_to(d / np.hypot(*d), origin.shape).copy(), np.zeros(len(s))
         h = min(CURVATURE_REACH * self.depth, self.length / 3)
-        centre = np.clip(s, h, self.length - h)
-        a, b, c = self.point_at(centre - h), self.point_at(centre), self.point_at(centre + h)
+        # the circles keep a section depth clear of the joints, where the centreline runs through a lug
+        margin = min(h + self.depth, self.length / 2)
+        centre = np.clip(s, margin, self.length - margin)
+        # the path's own vertices (on the centreline) nearest to s - h, s, s + h: a chord's interpolated
+        # points lie inside the arc by its sagitta
+        a, b, c = (self.path[self._vertex(x)] for x in (centre - h, centre, centre + h))
         ab, ac = b - a, c - a
         cross = ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0]
         size = np.hypot(*ab.T) * np.hypot(*(c - b).T) * np.hypot(*ac.T)
-        curvature = np.where((s >= 0) & (s <= self.length), 2 * cross / size, 0.0)
-        tangent = ac / np.hypot(*ac.T)[:, None]
+        bend = np.divide(2 * cross, size, out=np.zeros(len(s)), where=size > 0)
+        curvature = np.where((s >= 0) & (s <= self.length), bend, 0.0)
+        around = self.point_at(np.minimum(s + h / 2, self.length)) - self.point_at(np.maximum(s - h / 2, 0.0))
+        tangent = around / np.hypot(*around.T)[:, None]
         before, after = s < 0, s > self.length
         tangent[before] = self._end_tangent(0)
         tangent[after] = self._end_tangent(-1)
         return origin, tangent, curvature
+
+    def _vertex(self, s: NDArray[np.float64]) -> NDArray[np.intp]:
+        """The index of the path vertex nearest to each arc length ``s``."""
+        k = np.clip(np.searchsorted(self.arc, s), 1, len(self.arc) - 1)
+        return np.where(s - self.arc[k - 1] < self.arc[k] - s, k - 1, k)
 
     def _end_tangent(self, end: int) -> NDArray[np.float64]:
         d = self.path[1] - self.path[0] if end == 0 else self.path[-1] - self.path[-2]
@@ -476,6 +512,9 @@ def _straight_cuts(member: Member, s: NDArray[np.float64], tangent: NDArray[np.f
     return vertical_lines(member.link, member.joints, s), _to_load_frame(local, joint, tangent)
 
 
+TIGHT = 0.1
+"""A curved section whose material comes within this fraction of its radius of the centre of
+curvature is no beam: its values are nominal (straight-beam), as near holes."""
 NEAR_SLACK = 1e-9
 """A station exactly one depth from a pin (the midpoint of a bar as long as two depths) is not near it."""
 
@@ -543,7 +582,7 @@ def _member(link, pair, frame_joints, edges: Edges, joints, degree) -> Member:
     i, j = pair
     a, b = joints[i], joints[j]
     path, depth, wander = centreline(edges, a, b, vertical_lines(link, pair, _first_midline(a, b)))
-    curved = wander > CURVED_WANDER
+    curved = len(path) > 2
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
     length = float(arc[-1])
     if len(joints) == 2 and not curved:
@@ -564,6 +603,67 @@ def _reach(edges: Edges, point, direction) -> float:
     return float(top[0])
 
 
+def _march(edges: Edges, a, b, start: tuple[NDArray[np.float64], float] | None = None) -> NDArray[np.float64] | None:
+    """The centreline (K, 2) [m] from ``a`` to ``b`` traced in steps of ``MARCH_STEP`` of the bar's
+    width, starting along ``start`` (a direction and the bar's width [m]; by default along the bar,
+    ``_bar_start``): each step looks a step ahead along the last chord,
+    moves to the midpoint of the cut square to it there, and takes the chord to that point as the
+    next direction; None if it does not arrive at ``b`` (``ARRIVAL_COS``) before it has run half the
+    outline's perimeter."""
+    direction, width = start or _bar_start(edges, a, b)
+    tangent = np.asarray(direction, float) / np.hypot(*direction)
+    step = MARCH_STEP * width
+    point, points = np.asarray(a, float), [np.asarray(a, float)]
+    for _ in range(int(edges.outline.exterior.length / 2 / step) + 1):
+        gap = b - point
+        distance = np.hypot(*gap)
+        # arrived: a step away, or within the lug (half a width) heading into it
+        if distance <= 1.5 * step or (distance <= width / 2 and gap @ tangent >= distance * ARRIVAL_COS):
+            return np.vstack([*points, b])
+        ahead = point + step * tangent
+        lines = cut_lines(edges, ahead[None, :], tangent[None, :])
+        if not len(lines.station):
+            return None  # stepped off the material
+        bottom, top, _ = through_axis(lines, 1)
+        middle = ahead + (bottom[0] + top[0]) / 2 * np.array([-tangent[1], tangent[0]])
+        chord = middle - point
+        tangent = chord / np.hypot(*chord)
+        point = middle
+        points.append(point)
+    return None
+
+
+def _bar_start(edges: Edges, a, b) -> tuple[NDArray[np.float64], float]:
+    """The direction (2,) in which the bar leaves joint ``a`` toward ``b``, and its width [m] there: of
+    ``START_RAYS`` rays from a, the one along which the material runs farthest, weighted by (1 + cos)
+    / 2 of its angle to b (so a bar running on past a joint goes toward b); the width is that of the
+    cut square to it, a third of that run along."""
+    angles = 2 * np.pi * np.arange(START_RAYS) / START_RAYS
+    rays = np.column_stack([np.cos(angles), np.sin(angles)])
+    # a cut square to the ray's normal lies along the ray: its top is how far the material runs
+    lines = cut_lines(edges, np.broadcast_to(a, rays.shape).copy(), np.column_stack([rays[:, 1], -rays[:, 0]]))
+    _, run, _ = through_axis(lines, START_RAYS)
+    toward = (b - a) / np.hypot(*(b - a))
+    k = int(np.argmax(run * (1 + rays @ toward) / 2))
+    across = a + rays[k] * run[k] / 3
+    bottom, top, _ = through_axis(cut_lines(edges, across[None, :], rays[k][None, :]), 1)
+    return rays[k], float(top[0] - bottom[0])
+
+
+def _outside_share(edges: Edges, a, b) -> float:
+    """The share [-] of the straight line from ``a`` to ``b`` that runs outside the outline (holes
+    filled)."""
+    line = LineString([a, b])
+    return float(line.difference(Polygon(edges.outline.exterior)).length / line.length)
+
+
+def _widths(edges: Edges, path: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(K - 2,) [m]: the widths of the cuts square to ``path`` at its inner points."""
+    chord = path[2:] - path[:-2]
+    bottom, top, _ = through_axis(cut_lines(edges, path[1:-1], chord / np.hypot(*chord.T)[:, None]), len(path) - 2)
+    return top - bottom
+
+
 def _first_midline(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
     """Distances [m] from ``a`` toward ``b`` of the centreline's points between them."""
     return float(np.hypot(*(b - a))) * np.arange(1, CENTRELINE_POINTS + 1) / (CENTRELINE_POINTS + 1)
@@ -580,7 +680,8 @@ def centreline(
     ``REGULAR_WIDTH`` times the usual (median) width cut along a lug or another arm and are left out;
     the rest, more than their width from each joint (a lug's rounded end says nothing of the bar's
     axis), measure the spread about their least-squares line. A straight member keeps the line a-b;
-    a curved one moves its points onto the midpoints of their normal cuts ``CENTRELINE_PASSES`` times."""
+    so is one whose joint-to-joint line stays in the material (``OUTSIDE_SHARE``). A curved one's
+    centreline is traced from a along the bar (``_march``; from b if that does not arrive)."""
     span = b - a
     length = float(np.hypot(*span))
     along = span / length
@@ -593,21 +694,39 @@ def centreline(
     usual = np.median(width[far]) if far.any() else np.median(width)
     regular = width <= REGULAR_WIDTH * usual
     clear = regular & far
-    if clear.sum() < 3:
-        return np.array([a, b]), float(width.min()), 0.0
-    local = (points[clear] - a) @ np.column_stack([along, [-along[1], along[0]]])
-    residual = local[:, 1] - np.polyval(np.polyfit(local[:, 0], local[:, 1], 1), local[:, 0])
-    depth = float(width[clear].min())
-    wander = float(np.ptp(residual)) / depth
-    if wander <= CURVED_WANDER:
+    outside = _outside_share(edges, a, b)
+    depth, wander = float(width.min()), 0.0
+    if clear.sum() >= 3:
+        local = (points[clear] - a) @ np.column_stack([along, [-along[1], along[0]]])
+        residual = local[:, 1] - np.polyval(np.polyfit(local[:, 0], local[:, 1], 1), local[:, 0])
+        depth = float(width[clear].min())
+        wander = float(np.ptp(residual)) / depth
+    if wander <= CURVED_WANDER and outside <= OUTSIDE_SHARE:
         return np.array([a, b]), depth, wander
-    points = points[regular]
-    for _ in range(CENTRELINE_PASSES):
-        full = np.vstack([a, points, b])
-        chord = full[2:] - full[:-2]
+    # from either joint, toward the first midline's points clear of the joints, else along the bar
+    tries = [(a, b, None), (b, a, None)]
+    if clear.sum() >= 3:
+        tries = [(a, b, (points[clear][0] - a, usual)), (b, a, (points[clear][-1] - b, usual)), *tries]
+    for start, end, heading in tries:
+        path = _march(edges, start, end, heading)
+        if path is not None:
+            path = path if start is a else path[::-1]
+            break
+    else:
+        return np.array([a, b]), depth, wander
+    usual = float(np.median(_widths(edges, path)))
+    # how far the traced centreline strays from the line a-b, in depths
+    wander = max(wander, float(np.abs((path - a) @ np.array([-along[1], along[0]])).max()) / usual)
+    # a section depth from each joint: the points there cut through a lug
+    inner = np.flatnonzero((np.hypot(*(path - a).T) > usual) & (np.hypot(*(path - b).T) > usual))
+    inner = inner[(inner > 0) & (inner < len(path) - 1)]
+    for _ in range(POLISH_PASSES):
+        chord = path[inner + 1] - path[inner - 1]
         tangent = chord / np.hypot(*chord.T)[:, None]
-        bottom, top, _ = through_axis(cut_lines(edges, points, tangent), len(points))
-        points = points + ((bottom + top) / 2)[:, None] * np.column_stack([-tangent[:, 1], tangent[:, 0]])
-    far = (np.hypot(*(points - a).T) > top - bottom) & (np.hypot(*(points - b).T) > top - bottom)
-    depth = float((top - bottom)[far].min()) if far.any() else depth
+        bottom, top, _ = through_axis(cut_lines(edges, path[inner], tangent), len(inner))
+        path[inner] += ((bottom + top) / 2)[:, None] * np.column_stack([-tangent[:, 1], tangent[:, 0]])
+    points = path[1:-1]
+    width = _widths(edges, path)
+    far = (np.hypot(*(points - a).T) > width) & (np.hypot(*(points - b).T) > width)
+    depth = float(width[far].min()) if far.any() else depth
     return np.vstack([a, points, b]), depth, wander

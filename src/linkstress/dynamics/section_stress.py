@@ -380,7 +380,7 @@ class _Sweep:
         cuts = member.cuts(stations)
         near_hole = cuts.nominal
         table = cuts.table
-        curved = theory_of(cuts.curvature, table.top - table.bottom) == "curved"
+        curved = (theory_of(cuts.curvature, table.top - table.bottom) == "curved") & ~cuts.tight
         # the body-load term refines the straight beam; a curved section takes Winkler-Bach without it
         body_term = (np.ones_like(near_hole) if body_load_near_holes else ~near_hole) & ~curved
         shape = SectionShape.of(table, body_gains(cuts.origin, cuts.normal, link.density), body_term)
