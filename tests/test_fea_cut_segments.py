@@ -4,6 +4,7 @@ from outline to outline, stopping short of material its infinite line would cros
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ from linkstress.curves import circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
+from linkstress.validation.convergence import convergence_study
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_fea import solve_link
 from linkstress.validation.mesh import MeshSettings, mesh_region
@@ -160,3 +162,15 @@ def test_resultants_over_a_cut_that_was_not_meshed_or_across_a_slanted_tangent_a
         result.cut_resultants(segments[:1] + 0.01, tangents[:1], segments[:1].mean(axis=1))
     with pytest.raises(FEAError, match=r"link 'bar': the tangent .* is not normal to it"):
         result.cut_resultants(segments[1:2], tangents[:1], segments[1:2].mean(axis=1))
+
+
+def test_a_refinement_study_follows_the_resultants_over_the_cut_segments_after_the_stations(tilted_bar):
+    bar, force, loads, tangents, segments, result = tilted_bar
+    settings = replace(result.plane.settings, station_size=0.004)
+    centres = segments.mean(axis=1)
+    study = convergence_study(bar, loads, settings, np.zeros((0, 2)), cut_axes=(tangents, centres))
+    assert study.resultants.shape == (3, 3, len(force), 1 + len(segments))  # levels, N V M, P, station + cuts
+    finest = study.finest.cut_resultants(segments, tangents, centres)
+    np.testing.assert_array_equal(study.resultants[-1, 2, :, 1:], finest.moment)
+    with pytest.raises(FEAError, match="cut segments needs their tangents and reference points"):
+        convergence_study(bar, loads, settings, np.zeros((0, 2)))

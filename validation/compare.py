@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,7 +46,7 @@ from linkstress.validation.convergence import (
     convergence_study,
 )
 from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import LinkFEAResult, SectionResultants, solve_link
+from linkstress.validation.link_fea import CutResultants, LinkFEAResult, SectionResultants, solve_link
 from linkstress.validation.mesh import MeshSettings
 from linkstress.validation.recovery import von_mises
 
@@ -214,6 +215,92 @@ class LinkComparison:
         return None if self.study is None else self.study.relative_error
 
 
+@dataclass(frozen=True)
+class MemberComparison:
+    """One member of a link (the arm between its ``joints``) against the FEA over Pc positions, at
+    S compared stations along its axis; load frame, SI units.
+
+    ``cuts``: the member's ``MemberCuts`` there (``members.py``: ``origin``, ``tangent``, ``normal``
+    (S, 2), ``table`` with chords in v along ``normal``, ``ends`` (S, 2, 2) the cut segments);
+    ``forces`` (3, Pc, S): the beam's N [N], V [N], M [N m]; ``von_mises`` (Pc, S) [Pa]: the beam's
+    at its critical fibre ``fibre_v`` (Pc, S) [m, along ``normal`` from ``origin``];
+    ``fea_resultants``: the FEA's over the same cut segments about each section's centroid;
+    ``fea_von_mises`` (Pc, S) [Pa]: the FEA's at the beam's critical fibre; ``away`` (S,): the
+    nominal stations, a section depth from pins and junctions.
+    """
+
+    joints: tuple[int, int]
+    cuts: object
+    forces: NDArray[np.float64]
+    von_mises: NDArray[np.float64]
+    fibre_v: NDArray[np.float64]
+    fea_resultants: CutResultants
+    fea_von_mises: NDArray[np.float64]
+    away: NDArray[np.bool_]
+
+    @property
+    def depth(self) -> float:
+        """The member's largest section depth [m] (outer fibre to outer fibre) at the stations."""
+        table = self.cuts.table
+        return float((table.top - table.bottom).max())
+
+    @property
+    def resultant_error(self) -> NDArray[np.float64]:
+        """(Pc,) [-]: largest N, V, M difference over the stations, relative to the member's largest."""
+        f = self.fea_resultants
+        return resultant_error(np.stack([f.normal, f.shear, f.moment]), self.forces, self.depth)
+
+    @property
+    def nominal_error(self) -> NDArray[np.float64] | None:
+        """(Pc,) [-] over the stations away from pins and junctions; None when there is none."""
+        if not self.away.any():
+            return None
+        beam, fea = self.von_mises[:, self.away], self.fea_von_mises[:, self.away]
+        return relative(np.abs(fea - beam).max(axis=1), beam.max(axis=1))
+
+    @property
+    def beam_max(self) -> NDArray[np.float64]:
+        """(Pc,) [Pa]: the beam's largest von Mises over the member's compared stations."""
+        return self.von_mises.max(axis=1)
+
+
+def cut_axes(cuts) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The tangents (S, 2) and the section centroids (S, 2) [m, load frame] of ``MemberCuts``: the
+    axes across which, and the points about which, its cut resultants are taken."""
+    centroid = cuts.origin + cuts.table.neutral_axis[:, None] * cuts.normal
+    return np.asarray(cuts.tangent, float), centroid
+
+
+def fibre_points(cuts, fibre_v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Points (P, S, 2) [m, load frame] of the fibres ``fibre_v`` (P, S) [m along each cut's normal]."""
+    return cuts.origin[None] + fibre_v[..., None] * cuts.normal[None]
+
+
+def compare_member(
+    fea: LinkFEAResult,
+    joints: tuple[int, int],
+    cuts,
+    forces: NDArray[np.float64],
+    beam_von_mises: NDArray[np.float64],
+    fibre_v: NDArray[np.float64],
+) -> MemberComparison:
+    """The member between ``joints`` against ``fea`` (solved at the Pc compared positions, with the
+    member's cut segments ``cuts.ends`` meshed): the FEA's resultants over the segments and its von
+    Mises at the beam's critical fibres, beside the beam's ``forces`` (3, Pc, S) [N, N, N m] and
+    ``beam_von_mises`` (Pc, S) [Pa] at ``fibre_v`` (Pc, S) [m]."""
+    tangent, centroid = cut_axes(cuts)
+    resultants = fea.cut_resultants(cuts.ends, tangent, centroid)
+    n_pos, count = fibre_v.shape
+    sampled = von_mises(fea.stress_at(fibre_points(cuts, fibre_v).reshape(-1, 2)))  # every position's fibres
+    rows = np.arange(n_pos)
+    fea_vm = sampled.reshape(n_pos, n_pos, count)[rows, rows]
+    away = ~(np.asarray(cuts.near_hole, bool) | np.asarray(cuts.junction, bool))
+    return MemberComparison(
+        tuple(joints), cuts, np.asarray(forces, float), np.asarray(beam_von_mises, float), fibre_v, resultants,
+        fea_vm, away,
+    )
+
+
 def relative(difference: NDArray[np.float64], scale: NDArray[np.float64]) -> NDArray[np.float64]:
     """difference / scale, 0 where nothing is loaded (scale 0)."""
     return np.divide(difference, scale, out=np.zeros_like(difference), where=scale > 0)
@@ -284,13 +371,69 @@ def choose_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int
     return ComparisonStations(x, note)
 
 
-def _holes_along(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Centres x (H,) [m, member frame] and equivalent radii (H,) [m] of the link's holes."""
+def member_stations(
+    cuts_at: Callable[[NDArray[np.float64]], object],
+    length: float,
+    holes: tuple[NDArray[np.float64], NDArray[np.float64]],
+    other_axes: Sequence[NDArray[np.float64]] = (),
+    count: int = COMPARISON_STATIONS,
+) -> ComparisonStations:
+    """Stations s [m, arc length from the member's first joint] along a member whose axis is
+    ``length`` [m] long between its joints, ``cuts_at(s)`` giving its ``MemberCuts``: ``count`` cell
+    centres and the midpoint, those whose cut segment keeps HOLE_CLEARANCE radii from every hole
+    (``holes`` = centres (H, 2) [m, load frame], equivalent radii (H,) [m]) and whose axis point is at
+    least its section depth from every other member's axis (``other_axes``: polylines (K, 2) [m]),
+    where the arms of a bell crank meet. On a member too short for that, the midpoint when its cut
+    misses the holes (CUT_CLEARANCE), with a note; raises FEAError when not even that does."""
+    candidates = np.unique(np.round(np.append(length * (np.arange(count) + 0.5) / count, length / 2), 12))
+    cuts = cuts_at(candidates)
+    centres, radii = holes
+    clearance = _segment_distance(np.asarray(centres, float).reshape(-1, 2), cuts.ends) / radii  # (S, H) [radii]
+    depth = cuts.table.top - cuts.table.bottom
+    gap = np.full(len(candidates), np.inf)
+    for axis in other_axes:
+        pieces = np.stack([axis[:-1], axis[1:]], axis=1)
+        gap = np.minimum(gap, _segment_distance(cuts.origin, pieces).min(axis=0))
+    keep = (clearance > HOLE_CLEARANCE).all(axis=1) & (gap >= depth)
+    if keep.any():
+        return ComparisonStations(candidates[keep])
+    middle = int(np.argmin(np.abs(candidates - length / 2)))
+    if not (clearance[middle] > CUT_CLEARANCE).all():
+        raise FEAError(
+            f"the member's midpoint cut at s = {candidates[middle]:.6g} m passes {clearance[middle].min():.3g} hole "
+            "radii from a hole's centre and no other station keeps clear of the holes and the other members: "
+            "there is nowhere to compare section resultants"
+        )
+    note = (
+        f"the member is short for its holes and junctions: no station is {HOLE_CLEARANCE:g} hole radii from every "
+        f"hole and a section depth from the other members, so it is compared at its midpoint s = "
+        f"{candidates[middle]:.4g} m, {clearance[middle].min():.3g} radii from the nearest hole"
+    )
+    return ComparisonStations(candidates[middle:middle + 1], note)
+
+
+def hole_circles(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Centres (H, 2) [m, member frame of ``frame_joints``] and equivalent radii (H,) [m] of the link's holes."""
     frame = link.frame(*frame_joints)
     holes = [Polygon(ring) for ring in link.outline.interiors]
-    centres = np.array([frame.to_local(h.centroid.coords[0])[0] for h in holes]).reshape(-1)
+    centres = np.array([frame.to_local(h.centroid.coords[0]) for h in holes]).reshape(-1, 2)
     radii = np.array([math.sqrt(h.area / math.pi) for h in holes]).reshape(-1)
     return centres, radii
+
+
+def _segment_distance(points: NDArray[np.float64], segments: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Distances (S, H) [m] from each of ``points`` (H, 2) to each segment (S, 2, 2)."""
+    start = segments[:, None, 0]
+    along = segments[:, None, 1] - start
+    length2 = np.maximum((along * along).sum(axis=-1), np.finfo(float).tiny)
+    u = np.clip(((points[None] - start) * along).sum(axis=-1) / length2, 0.0, 1.0)
+    return np.hypot(*np.moveaxis(start + u[..., None] * along - points[None], -1, 0))
+
+
+def _holes_along(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Centres x (H,) [m, member frame] and equivalent radii (H,) [m] of the link's holes."""
+    centres, radii = hole_circles(link, frame_joints)
+    return centres[:, 0], radii
 
 
 def default_mesh(link: LinkProfile, frame_joints: tuple[int, int], stations: NDArray[np.float64], size: float | None = None) -> MeshSettings:
