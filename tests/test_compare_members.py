@@ -3,7 +3,7 @@ over the member's cut segments, von Mises at the beam's critical fibre."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -16,12 +16,13 @@ from linkstress.sections import SectionTable
 from linkstress.validation.compare import (
     choose_stations,
     compare_link,
-    compare_member,
-    default_mesh,
+    MemberBeam,
     hole_circles,
     member_stations,
+    resultant_error,
 )
 from linkstress.validation.errors import FEAError
+from linkstress.validation.report import member_record, member_words
 
 
 @dataclass(frozen=True)
@@ -111,23 +112,45 @@ def pinned_pair(force: np.ndarray, length: float) -> LinkLoadCase:
     return LinkLoadCase((0, 1), np.stack([-force, force], axis=1), couples, np.zeros(n), np.zeros(n), zero, zero)
 
 
-def test_a_straight_member_over_its_cut_segments_gives_the_links_comparison():
-    # The one member of a straight bar, its cuts the vertical stations, meshed both ways on one
-    # mesh: resultant and nominal errors and the beam's largest are the link comparison's.
+@pytest.fixture(scope="module")
+def bar_case():
+    """A straight bar under static pin loads at two positions, its stations and its beam there."""
     bar = straight_bar(0.4, 0.05, 0.03, 0.01, STRUCTURAL_STEEL, hole_diameter=0.016)
     phi = np.radians([30.0, 200.0])
     loads = pinned_pair(1500.0 * np.column_stack([np.cos(phi), np.sin(phi)]), 0.4)
     stations = choose_stations(bar, (0, 1)).x
     beam = section_stresses(bar, loads, stations)
-    cuts = frame_cuts(beam.sections, beam.near_hole)
-    mesh = replace(default_mesh(bar, (0, 1), stations), cuts=tuple(map(tuple, cuts.ends.tolist())))
-    link = compare_link("bar", bar, loads, np.arange(2), mesh, levels=1, stations=stations)
     forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
-    member = compare_member(link.fea, (0, 1), cuts, forces, beam.von_mises, beam.fibre_y)
-    np.testing.assert_allclose(member.resultant_error, link.resultant_error, rtol=1e-9)
-    np.testing.assert_allclose(member.nominal_error, link.nominal_error, rtol=1e-9)
-    np.testing.assert_array_equal(member.beam_max, link.beam_max)
-    assert member.resultant_error.max() < 5e-3
+    member = MemberBeam((0, 1), frame_cuts(beam.sections, beam.near_hole), forces, beam.von_mises, beam.fibre_y)
+    return bar, loads, stations, member
+
+
+def test_a_straight_member_over_its_cut_segments_gives_what_the_stations_give(bar_case):
+    # The one member of a straight bar, its cuts the vertical stations, both meshed on one mesh:
+    # the member's resultant and nominal errors are the stations' (and the link's, the worst member's).
+    bar, loads, stations, member = bar_case
+    c = compare_link("bar", bar, loads, np.arange(2), levels=1, stations=stations, members=[member])
+    (compared,) = c.members
+    f = c.fea_resultants
+    depth = float((c.beam.sections.top - c.beam.sections.bottom).max())
+    by_stations = resultant_error(
+        np.stack([f.normal, f.shear, f.moment]), np.stack([c.beam.forces.normal, c.beam.forces.shear, c.beam.forces.moment]), depth,
+    )
+    np.testing.assert_allclose(compared.resultant_error, by_stations, rtol=1e-9)
+    np.testing.assert_allclose(compared.fea_von_mises, c.fea_von_mises, rtol=1e-12)
+    np.testing.assert_array_equal(c.resultant_error, compared.resultant_error)
+    np.testing.assert_array_equal(c.nominal_error, compared.nominal_error)
+    np.testing.assert_array_equal(compared.beam_max, c.beam_max)
+    assert compared.joints == (0, 1) and compared.resultant_error.max() < 5e-3
+
+
+def test_a_refinement_study_judges_the_members_resultants_over_their_cuts(bar_case):
+    bar, loads, stations, member = bar_case
+    c = compare_link("bar", bar, loads, np.arange(2), levels=3, stations=stations, members=[member])
+    finer, coarser = c.study.resultants[-1][..., len(stations):], c.study.resultants[-2][..., len(stations):]
+    expected = resultant_error(finer, coarser, member.depth)
+    np.testing.assert_allclose(c.convergence["resultants"].change, expected, rtol=1e-12)
+    assert c.convergence["nominal"] is not None and c.converged is not None
 
 
 def test_hole_circles_are_the_pin_holes_in_the_load_frame():
@@ -135,3 +158,19 @@ def test_hole_circles_are_the_pin_holes_in_the_load_frame():
     centres, radii = hole_circles(bar, (1, 0))  # the frame from joint 1 towards joint 0
     np.testing.assert_allclose(centres, [[0.4, 0.0], [0.0, 0.0]], atol=1e-9)
     np.testing.assert_allclose(radii, 0.008, rtol=1e-4)  # equal-area radius of the flattened circle
+
+
+def test_each_member_reports_its_joints_beam_maximum_and_worst_errors(bar_case):
+    bar, loads, stations, member = bar_case
+    c = compare_link("bar", bar, loads, np.arange(2), levels=1, stations=stations, members=[member])
+    (compared,) = c.members
+    record = member_record(compared)
+    assert record == {
+        "joints": [0, 1],
+        "beam_max_von_mises_pa": float(member.von_mises.max()),
+        "nominal_error_pct": float(100 * compared.nominal_error.max()),
+        "resultant_error_pct": float(100 * compared.resultant_error.max()),
+    }
+    words = member_words(compared)
+    assert words.startswith(f"member joints 0-1: beam maximum {member.von_mises.max() / 1e6:.4g} MPa")
+    assert f"resultants within {record['resultant_error_pct']:.3g} %" in words

@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -132,7 +132,8 @@ class LinkComparison:
     ``fea_von_mises`` (Pc, S) the FEA von Mises at the beam's critical fibre of each station;
     ``away`` (S,) the stations used for the nominal comparison; ``study`` the mesh refinement study
     (None with a single mesh level); ``station_note`` why the stations are not the usual ones ("" when
-    they are).
+    they are); ``members`` each member compared along its own axis (none: the link is compared along
+    the frame's x only). With members, the link's errors are the worst over them.
     """
 
     name: str
@@ -147,6 +148,7 @@ class LinkComparison:
     fea_seconds: float
     study: ConvergenceStudy | None
     station_note: str = ""
+    members: tuple[MemberComparison, ...] = ()
 
     @property
     def convergence(self) -> dict[str, Convergence | None] | None:
@@ -157,11 +159,25 @@ class LinkComparison:
         if self.study is None:
             return None
         s = self.study
-        depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
-        resultants = Convergence(resultant_error(s.resultants[-1], s.resultants[-2], depth), RESULTANT_CONVERGED_CHANGE)
-        nominal = Convergence(s.change, CONVERGED_CHANGE) if self.away.any() else None
+        resultants = Convergence(self._resultant_change(), RESULTANT_CONVERGED_CHANGE)
+        compared = any(m.beam.away.any() for m in self.members) if self.members else self.away.any()
+        nominal = Convergence(s.change, CONVERGED_CHANGE) if compared else None
         peak = Convergence(s.peak_change, PEAK_CONVERGED_CHANGE, s.peak_changes[-2])
         return {"resultants": resultants, "nominal": nominal, "peak": peak}
+
+    def _resultant_change(self) -> NDArray[np.float64]:
+        """(Pc,) [-]: the resultants' change between the two finest meshes, measured as
+        ``resultant_error`` is: over the stations, or the worst over the members' cuts."""
+        finer, coarser = self.study.resultants[-1], self.study.resultants[-2]
+        if not self.members:
+            depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
+            return resultant_error(finer, coarser, depth)
+        counts = [len(m.beam.cuts.ends) for m in self.members]
+        stops = len(self.stations) + np.cumsum(counts)
+        return np.max([
+            resultant_error(finer[..., stop - count:stop], coarser[..., stop - count:stop], m.beam.depth)
+            for m, count, stop in zip(self.members, counts, stops)
+        ], axis=0)
 
     @property
     def converged(self) -> bool | None:
@@ -180,7 +196,10 @@ class LinkComparison:
 
     @property
     def resultant_error(self) -> NDArray[np.float64]:
-        """(Pc,) [-]: largest N, V, M difference over the stations, relative to the link's largest."""
+        """(Pc,) [-]: largest N, V, M difference over the stations, relative to the link's largest;
+        with members, the worst over them (each relative to its own largest)."""
+        if self.members:
+            return np.max([m.resultant_error for m in self.members], axis=0)
         b, f = self.beam.forces, self.fea_resultants
         depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
         return resultant_error(
@@ -189,7 +208,11 @@ class LinkComparison:
 
     @property
     def nominal_error(self) -> NDArray[np.float64] | None:
-        """(Pc,) [-] over the stations away from holes; None when every station is near one."""
+        """(Pc,) [-] over the stations away from holes; None when every station is near one; with
+        members, the worst over those that have a nominal station."""
+        if self.members:
+            errors = [e for e in (m.nominal_error for m in self.members) if e is not None]
+            return np.max(errors, axis=0) if errors else None
         if not self.away.any():
             return None
         beam = self.beam.von_mises[:, self.away]
@@ -216,17 +239,15 @@ class LinkComparison:
 
 
 @dataclass(frozen=True)
-class MemberComparison:
-    """One member of a link (the arm between its ``joints``) against the FEA over Pc positions, at
-    S compared stations along its axis; load frame, SI units.
+class MemberBeam:
+    """The beam's values along one member of a link (the arm between its ``joints``) at S compared
+    stations and Pc compared positions; load frame, SI units.
 
     ``cuts``: the member's ``MemberCuts`` there (``members.py``: ``origin``, ``tangent``, ``normal``
-    (S, 2), ``table`` with chords in v along ``normal``, ``ends`` (S, 2, 2) the cut segments);
-    ``forces`` (3, Pc, S): the beam's N [N], V [N], M [N m]; ``von_mises`` (Pc, S) [Pa]: the beam's
-    at its critical fibre ``fibre_v`` (Pc, S) [m, along ``normal`` from ``origin``];
-    ``fea_resultants``: the FEA's over the same cut segments about each section's centroid;
-    ``fea_von_mises`` (Pc, S) [Pa]: the FEA's at the beam's critical fibre; ``away`` (S,): the
-    nominal stations, a section depth from pins and junctions.
+    (S, 2), ``table`` with chords in v along ``normal``, ``ends`` (S, 2, 2) the cut segments,
+    ``near_hole`` and ``junction`` (S,)); ``forces`` (3, Pc, S): N [N], V [N], M [N m];
+    ``von_mises`` (Pc, S) [Pa] at the critical fibre ``fibre_v`` (Pc, S) [m, along ``normal`` from
+    ``origin``]; ``note``: why the stations are not the usual ones ("" when they are).
     """
 
     joints: tuple[int, int]
@@ -234,9 +255,12 @@ class MemberComparison:
     forces: NDArray[np.float64]
     von_mises: NDArray[np.float64]
     fibre_v: NDArray[np.float64]
-    fea_resultants: CutResultants
-    fea_von_mises: NDArray[np.float64]
-    away: NDArray[np.bool_]
+    note: str = ""
+
+    @property
+    def away(self) -> NDArray[np.bool_]:
+        """(S,): the nominal stations, a section depth from pins and junctions."""
+        return ~(np.asarray(self.cuts.near_hole, bool) | np.asarray(self.cuts.junction, bool))
 
     @property
     def depth(self) -> float:
@@ -245,60 +269,60 @@ class MemberComparison:
         return float((table.top - table.bottom).max())
 
     @property
+    def axes(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The tangents (S, 2) and the section centroids (S, 2) [m]: the axes across which, and the
+        points about which, the cut resultants are taken."""
+        cuts = self.cuts
+        return np.asarray(cuts.tangent, float), cuts.origin + cuts.table.neutral_axis[:, None] * cuts.normal
+
+    @property
+    def fibres(self) -> NDArray[np.float64]:
+        """Points (Pc, S, 2) [m] of the critical fibres."""
+        return self.cuts.origin[None] + self.fibre_v[..., None] * self.cuts.normal[None]
+
+
+@dataclass(frozen=True)
+class MemberComparison:
+    """One member's ``beam`` values against the FEA: ``fea_resultants`` over the same cut segments
+    about each section's centroid, ``fea_von_mises`` (Pc, S) [Pa] at the beam's critical fibres."""
+
+    beam: MemberBeam
+    fea_resultants: CutResultants
+    fea_von_mises: NDArray[np.float64]
+
+    @property
+    def joints(self) -> tuple[int, int]:
+        return self.beam.joints
+
+    @property
     def resultant_error(self) -> NDArray[np.float64]:
         """(Pc,) [-]: largest N, V, M difference over the stations, relative to the member's largest."""
         f = self.fea_resultants
-        return resultant_error(np.stack([f.normal, f.shear, f.moment]), self.forces, self.depth)
+        return resultant_error(np.stack([f.normal, f.shear, f.moment]), self.beam.forces, self.beam.depth)
 
     @property
     def nominal_error(self) -> NDArray[np.float64] | None:
         """(Pc,) [-] over the stations away from pins and junctions; None when there is none."""
-        if not self.away.any():
+        away = self.beam.away
+        if not away.any():
             return None
-        beam, fea = self.von_mises[:, self.away], self.fea_von_mises[:, self.away]
+        beam, fea = self.beam.von_mises[:, away], self.fea_von_mises[:, away]
         return relative(np.abs(fea - beam).max(axis=1), beam.max(axis=1))
 
     @property
     def beam_max(self) -> NDArray[np.float64]:
         """(Pc,) [Pa]: the beam's largest von Mises over the member's compared stations."""
-        return self.von_mises.max(axis=1)
+        return self.beam.von_mises.max(axis=1)
 
 
-def cut_axes(cuts) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The tangents (S, 2) and the section centroids (S, 2) [m, load frame] of ``MemberCuts``: the
-    axes across which, and the points about which, its cut resultants are taken."""
-    centroid = cuts.origin + cuts.table.neutral_axis[:, None] * cuts.normal
-    return np.asarray(cuts.tangent, float), centroid
-
-
-def fibre_points(cuts, fibre_v: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Points (P, S, 2) [m, load frame] of the fibres ``fibre_v`` (P, S) [m along each cut's normal]."""
-    return cuts.origin[None] + fibre_v[..., None] * cuts.normal[None]
-
-
-def compare_member(
-    fea: LinkFEAResult,
-    joints: tuple[int, int],
-    cuts,
-    forces: NDArray[np.float64],
-    beam_von_mises: NDArray[np.float64],
-    fibre_v: NDArray[np.float64],
-) -> MemberComparison:
-    """The member between ``joints`` against ``fea`` (solved at the Pc compared positions, with the
-    member's cut segments ``cuts.ends`` meshed): the FEA's resultants over the segments and its von
-    Mises at the beam's critical fibres, beside the beam's ``forces`` (3, Pc, S) [N, N, N m] and
-    ``beam_von_mises`` (Pc, S) [Pa] at ``fibre_v`` (Pc, S) [m]."""
-    tangent, centroid = cut_axes(cuts)
-    resultants = fea.cut_resultants(cuts.ends, tangent, centroid)
-    n_pos, count = fibre_v.shape
-    sampled = von_mises(fea.stress_at(fibre_points(cuts, fibre_v).reshape(-1, 2)))  # every position's fibres
+def compare_member(fea: LinkFEAResult, beam: MemberBeam) -> MemberComparison:
+    """One member's ``beam`` values against ``fea`` (solved at the same Pc positions, with the
+    member's cut segments ``beam.cuts.ends`` meshed)."""
+    resultants = fea.cut_resultants(beam.cuts.ends, *beam.axes)
+    n_pos, count = beam.fibre_v.shape
+    sampled = von_mises(fea.stress_at(beam.fibres.reshape(-1, 2)))  # every position's fibres at every position
     rows = np.arange(n_pos)
-    fea_vm = sampled.reshape(n_pos, n_pos, count)[rows, rows]
-    away = ~(np.asarray(cuts.near_hole, bool) | np.asarray(cuts.junction, bool))
-    return MemberComparison(
-        tuple(joints), cuts, np.asarray(forces, float), np.asarray(beam_von_mises, float), fibre_v, resultants,
-        fea_vm, away,
-    )
+    return MemberComparison(beam, resultants, sampled.reshape(n_pos, n_pos, count)[rows, rows])
 
 
 def relative(difference: NDArray[np.float64], scale: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -436,11 +460,19 @@ def _holes_along(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDAr
     return centres[:, 0], radii
 
 
-def default_mesh(link: LinkProfile, frame_joints: tuple[int, int], stations: NDArray[np.float64], size: float | None = None) -> MeshSettings:
+def default_mesh(
+    link: LinkProfile,
+    frame_joints: tuple[int, int],
+    stations: NDArray[np.float64],
+    size: float | None = None,
+    members: Sequence[MemberBeam] = (),
+) -> MeshSettings:
     """Mesh settings sized from the link: about ELEMENTS_PER_DEPTH elements across its slenderest
-    compared section, ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
+    compared section (at ``stations`` and the ``members``' cuts), ELEMENTS_PER_HOLE_DIAMETER along
+    a pin hole's diameter."""
     table = link.sections(stations, *frame_joints)
-    depth = float((table.top - table.bottom).min())
+    depths = [table.top - table.bottom, *(m.cuts.table.top - m.cuts.table.bottom for m in members)]
+    depth = float(np.concatenate(depths).min())
     size = size or depth / ELEMENTS_PER_DEPTH
     diameters = [2 * math.sqrt(Polygon(r).area / math.pi) for r in link.outline.interiors]
     hole = min(diameters) / ELEMENTS_PER_HOLE_DIAMETER if diameters else size / 4
@@ -457,17 +489,22 @@ def compare_link(
     stations: NDArray[np.float64] | None = None,
     body_load_near_holes: bool = False,
     station_note: str = "",
+    members: Sequence[MemberBeam] = (),
 ) -> LinkComparison:
     """Compare link ``name`` at sweep ``positions``; ``levels`` >= 3 runs a refinement study and
     compares with its finest mesh, 1 compares with ``mesh`` alone; the beam's sections take the
     body-load term near holes too with ``body_load_near_holes``; ``station_note`` says why the
-    ``stations`` are not the usual ones (``choose_stations``)."""
+    ``stations`` are not the usual ones (``choose_stations``). ``members``: the beam along each
+    member of the link at those positions, compared over its cut segments (meshed with ``mesh``'s
+    sizes) and at its critical fibres."""
     frame_joints = loads.frame_joints
     if stations is None:
         chosen = choose_stations(link, frame_joints)
         stations, station_note = chosen.x, chosen.note
     stations = np.asarray(stations, float)
-    mesh = mesh or default_mesh(link, frame_joints, stations)
+    mesh = mesh or default_mesh(link, frame_joints, stations, members=members)
+    segments = np.concatenate([np.zeros((0, 2, 2)), *(m.cuts.ends for m in members)])
+    mesh = replace(mesh, cuts=segments.tolist())
     selected = loads.at(positions)
     start = time.perf_counter()
     beam = section_stresses(link, selected, stations, body_load_near_holes)
@@ -477,8 +514,10 @@ def compare_link(
     points = np.column_stack([np.broadcast_to(stations, beam.fibre_y.shape).ravel(), beam.fibre_y.ravel()])
     study = None
     if levels >= 3:
-        nominal = np.unique(points[np.tile(away, len(positions))], axis=0)
-        study = convergence_study(link, selected, mesh, nominal, levels=levels)
+        member_points = [m.fibres[:, m.away].reshape(-1, 2) for m in members]
+        nominal = np.unique(np.concatenate([points[np.tile(away, len(positions))], *member_points]), axis=0)
+        axes = [np.concatenate([np.zeros((0, 2)), *parts]) for parts in zip(*(m.axes for m in members))] or None
+        study = convergence_study(link, selected, mesh, nominal, levels=levels, cut_axes=axes)
         fea = study.finest
     else:
         fea = solve_link(link, selected, mesh)
@@ -489,5 +528,5 @@ def compare_link(
     fea_vm = sampled.reshape(len(positions), len(positions), count)[rows, rows]
     return LinkComparison(
         name, np.asarray(positions), stations, away, beam, fea, fea.section_resultants(stations), fea_vm,
-        beam_seconds, fea_seconds, study, station_note,
+        beam_seconds, fea_seconds, study, station_note, tuple(compare_member(fea, m) for m in members),
     )

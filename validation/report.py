@@ -27,7 +27,7 @@ from linkstress.report.figures import stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
-from linkstress.validation.compare import HolePeak, LinkComparison
+from linkstress.validation.compare import HolePeak, LinkComparison, MemberComparison
 from linkstress.validation.convergence import CONVERGED_CHANGE, PEAK_CONVERGED_CHANGE, RESULTANT_CONVERGED_CHANGE
 from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT, ValidationResult
 
@@ -75,6 +75,7 @@ def link_record(result: ValidationResult, name: str) -> dict:
         "pin_holes": [pin_hole_record(h, angles) for h in c.hole_peaks],
         "fea_yield_safety_factor": factor,
         "fea_yield_safety_factor_reason": reason,
+        "members": [member_record(m) for m in c.members],
         "stations_m": c.stations.tolist(),
         "stations_note": c.station_note or None,
         "nominal_stations_m": c.stations[c.away].tolist(),
@@ -88,6 +89,27 @@ def link_record(result: ValidationResult, name: str) -> dict:
             "resultant_error_pct": (100 * c.resultant_error).tolist(),
         },
     }
+
+
+def member_record(m: MemberComparison) -> dict:
+    """The ``validate`` JSON entry of one member of a link (worst values over the compared positions)."""
+    return {
+        "joints": list(m.joints),
+        "beam_max_von_mises_pa": float(m.beam_max.max()),
+        "nominal_error_pct": None if m.nominal_error is None else float(100 * m.nominal_error.max()),
+        "resultant_error_pct": float(100 * m.resultant_error.max()),
+    }
+
+
+def member_words(m: MemberComparison) -> str:
+    """One member's comparison in a line: its joints, the beam's largest and the worst errors."""
+    record = member_record(m)
+    nominal = record["nominal_error_pct"]
+    return (
+        f"member joints {m.joints[0]}-{m.joints[1]}: beam maximum {record['beam_max_von_mises_pa'] / 1e6:.4g} MPa, "
+        f"resultants within {record['resultant_error_pct']:.3g} %, "
+        + ("no nominal station (every one near a pin or a junction)" if nominal is None else f"nominal within {nominal:.3g} %")
+    )
 
 
 @dataclass(frozen=True)
@@ -283,6 +305,9 @@ def link_lines(result: ValidationResult, name: str, c: LinkComparison) -> list[s
     ]
     if c.station_note:
         lines.append(c.station_note)
+    if len(c.members) > 1:
+        lines += [member_words(m) for m in c.members]
+    lines += [f"member joints {m.joints[0]}-{m.joints[1]}: {m.beam.note}" for m in c.members if m.beam.note]
     lines += [pin_hole_words(h, angles) for h in c.hole_peaks]
     bend = curvature_note(c)
     if bend:
