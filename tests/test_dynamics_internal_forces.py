@@ -190,27 +190,34 @@ def test_section_maximum_is_exact_against_dense_fibres(pin, alpha, omega, ax, bo
         assert vm_at == pytest.approx(result.von_mises[0, s], rel=1e-9, abs=1e-9)
 
 
-def test_sections_split_by_a_curved_links_outline_take_the_largest_of_their_chords_maxima():
-    # The banana coupler's cuts near its ends meet the material twice; at some positions each chord's
-    # interior maximum lands at a different fibre, and the section keeps the larger (checked against
-    # 4001 fibres per chord at the first positions of the shipped sweep).
+def test_every_section_of_the_banana_coupler_takes_the_largest_von_mises_of_dense_fibres():
+    # The banana coupler is sectioned normal to its curved centreline: its cuts between the pins take
+    # Winkler-Bach's sigma (sampled fibres, the best refined by a parabola), the straight cuts past the
+    # pins (through the lugs, split by the holes) the straight beam's closed-form chord maxima (those
+    # with the body-load term are another test's). Each against 4001 fibres per chord at the first
+    # positions of the shipped sweep: never above, and within 1e-4 below.
     scene = load_scene(CASES / "banana_coupler" / "scene.toml")
     result = run_analysis(scene, Plan(forces=True, stresses=("coupler",), stations=200, validate=(), notes=()))
     stress = result.stresses["coupler"].at(slice(None))
-    table, f = stress.sections, stress.forces
+    table, f, curved = stress.sections, stress.forces, stress.curved
+    assert 150 < len(curved.at) < 200
     split = np.flatnonzero(table.n_chords > 1)
-    assert len(split) > 0
-    for s in split:
+    assert len(np.setdiff1d(split, curved.at)) > 0
+    for s in np.flatnonzero(stress.shape.corrected_half == 0):
         chords = table.chords(s)
         ys = np.concatenate([np.linspace(a, b, 4001) for a, b in chords])
         # Q(y): first moment about the neutral axis of the material above y
         above = np.clip(chords[None, :, :], ys[:, None, None], None) - table.neutral_axis[s]
         q = table.thickness * ((above[:, :, 1] ** 2 - above[:, :, 0] ** 2) / 2).sum(axis=1)
+        if s in curved.at:
+            gain = curved.sections.gain(ys, np.full(len(ys), s))
+        else:
+            gain = (ys - table.neutral_axis[s]) / table.second_moment[s]
         for p in range(6):
-            sigma = f.normal[p, s] / table.area[s] + f.moment[p, s] * (ys - table.neutral_axis[s]) / table.second_moment[s]
+            sigma = f.normal[p, s] / table.area[s] + f.moment[p, s] * gain
             tau = f.shear[p, s] * q / (table.second_moment[s] * table.thickness)
             dense = np.sqrt(sigma**2 + 3 * tau**2).max()
-            assert dense * (1 - 1e-12) <= stress.von_mises[p, s] <= dense * (1 + 1e-6)
+            assert dense * (1 - 1e-4) <= stress.von_mises[p, s] <= dense * (1 + 1e-6)
 
 
 @pytest.mark.parametrize("body_load_near_holes", [False, True])

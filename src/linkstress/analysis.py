@@ -16,9 +16,10 @@ from numpy.typing import NDArray
 
 from linkstress.curvature import Curvature, link_curvature
 from linkstress.dynamics.machine_forces import MachineForces, machine_forces
-from linkstress.dynamics.section_stress import StressSummary, default_stations, links_section_stresses
+from linkstress.dynamics.section_stress import StressSummary, links_section_stresses
 from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
+from linkstress.members import link_members
 from linkstress.scene import Scene
 from linkstress.threads import blas_alone
 
@@ -146,7 +147,8 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
         jobs = []
         for name in plan.stresses:
             profile, loads = scene.links[name].profile, forces.link_loads[name]
-            jobs.append((profile, loads, default_stations(profile, loads.frame_joints, plan.stations)))
+            members = link_members(profile, loads.frame_joints, scene.links[name].members)
+            jobs.append((profile, loads, members, plan.stations))
         stresses = dict(zip(plan.stresses, links_section_stresses(jobs, plan.body_load_near_holes)))
         curvature = {name: link_curvature(scene.links[name].profile, forces.link_loads[name].frame_joints) for name in plan.stresses}
         seconds["stresses"] = time.perf_counter() - start

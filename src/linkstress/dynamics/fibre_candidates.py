@@ -15,7 +15,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.dynamics.fibre_peaks import cubic_peak, has_cubic_peak, single_chord_peak
-from linkstress.dynamics.internal_forces import ALPHA, FREE_Y, ForceBasis, InternalForces
+from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces
+from linkstress.curved_beam import CurvedSections, curved_sections
 from linkstress.sections import SectionTable
 
 BODY_TERM = 0.1925
@@ -65,7 +66,9 @@ class SectionShape:
     """What the fibre search needs of the sections, independent of the loads: per station, and the
     chords of split sections, and the chord ends at holes (station, offset u, C). ``half``: a single
     chord's half-depth c (zero elsewhere); ``corrected_half``: c on the single chords that get the
-    body-load term (zero elsewhere)."""
+    body-load term (zero elsewhere); ``body_gain`` (4, S): the body load across the section,
+    b = rho (g - a(c)) . n [N/m^3] at the axis point c, per unit of (g - a_O)_x, (g - a_O)_y, alpha
+    and omega^2 (``body_gains``)."""
 
     x: NDArray[np.float64]
     inv_area: NDArray[np.float64]
@@ -75,14 +78,15 @@ class SectionShape:
     half: NDArray[np.float64]
     corrected_half: NDArray[np.float64]
     shear_gain: NDArray[np.float64]
-    density: float
+    body_gain: NDArray[np.float64]
     split: _Chords
     hole_ends: _HoleEdges
 
     @classmethod
-    def of(cls, table: SectionTable, density: float, body_term: NDArray[np.bool_]) -> "SectionShape":
+    def of(cls, table: SectionTable, body_gain: NDArray[np.float64], body_term: NDArray[np.bool_]) -> "SectionShape":
         """The shape of ``table``'s sections; the single chords of the stations ``body_term`` (S,)
-        get the body-load term."""
+        get the body-load term, with the body load across them ``body_gain`` (4, S) per unit of the
+        body-load coefficients (``body_gains``)."""
         solid = (table.area > 0) & (table.second_moment > 0)
         yna = table.neutral_axis
         half = (table.top - table.bottom) / 2
@@ -103,27 +107,29 @@ class SectionShape:
             corrected_half=np.where(single & body_term, half, 0.0),
             # (8/9) w^2 c^4 per V^2 on single chords (zero elsewhere), for interior_candidates
             shear_gain=np.where(single, (8 / 9) * inv_inertia**2 * half**4, 0.0),
-            density=density,
+            body_gain=body_gain,
             split=_Chords(at, ua, ub, c),
             hole_ends=_HoleEdges.of(np.flatnonzero(solid & (table.n_chords > 1)), at, k, table.n_chords[at], ua, ub, c),
         )
 
     def fibre_basis(self, basis: ForceBasis) -> tuple[NDArray[np.float64], ...]:
         """Per unit load coefficient, (Q, S) each: the mean and half the difference of sigma at the
-        top and bottom fibres, N / A + M u / I and the body-load term +-0.4 b_y c,
-        b_y = rho ((g - a_O)_y - alpha x); and 0.1925 b_y c on the single chords that take the term
+        top and bottom fibres, N / A + M u / I and the body-load term +-0.4 b c (b the body load
+        across the section, ``body_gain``); and 0.1925 b c on the single chords that take the term
         (zero elsewhere), for ``interior_candidates``."""
         along = basis.normal * self.inv_area
         mean = along + basis.moment * (self.inv_inertia * self.middle)
         spread = basis.moment * (self.inv_inertia * self.reach)
-        # delta_sigma at the top fibre is 0.4 b_y c (minus it at the bottom), b_y = rho (free - alpha x)
-        lever = 0.4 * self.density * self.corrected_half
-        spread[FREE_Y] += lever
-        spread[ALPHA] -= self.x * lever
+        # delta_sigma at the top fibre is 0.4 b c (minus it at the bottom)
+        spread[BODY] += 0.4 * self.corrected_half * self.body_gain
         body = np.zeros_like(mean)
-        body[FREE_Y] = lever * (BODY_TERM / 0.4)
-        body[ALPHA] = -self.x * lever * (BODY_TERM / 0.4)
+        body[BODY] = BODY_TERM * self.corrected_half * self.body_gain
         return mean, spread, body
+
+    @property
+    def body_columns(self) -> NDArray[np.bool_]:
+        """(4,): the body-load coefficients that reach a section taking the body-load term."""
+        return (self.body_gain[:, self.corrected_half > 0] != 0).any(axis=1)
 
     def inverse_square_half(self) -> NDArray[np.float64]:
         """(S,) 1 / c^2 on the single chords that get the body-load term, zero elsewhere: b_y times
@@ -214,7 +220,7 @@ class SectionShape:
         half = self.half[at]
         c = half * half
         rows = flat // len(self.x)
-        body = self.body_load(coefficients[rows, FREE_Y], coefficients[rows, ALPHA], at) * self.corrected_half[at]
+        body = self.body_load(coefficients[rows], at) * self.corrected_half[at]
         plain = body == 0
         if plain.any():
             k = np.flatnonzero(plain & has_cubic_peak(n, m, w, c))
@@ -249,10 +255,20 @@ class SectionShape:
             at,
         )
 
-    def body_load(self, free_y, alpha, at) -> NDArray[np.float64]:
-        """b_y = rho ((g - a_O)_y - alpha x) [N/m^3] at stations ``at``, from the load coefficients
-        (g - a_O)_y and alpha (arrays that broadcast with ``at``)."""
-        return self.density * (free_y - alpha * self.x[at])
+    def body_load(self, coefficients, at) -> NDArray[np.float64]:
+        """The body load across the section b [N/m^3] at stations ``at`` (n,), from rows of the load
+        coefficients (n, Q) (one per station)."""
+        return (coefficients[:, BODY] * self.body_gain[:, at].T).sum(axis=1)
+
+
+def body_gains(origin: NDArray[np.float64], normal: NDArray[np.float64], density: float) -> NDArray[np.float64]:
+    """(4, S): the d'Alembert load across each section, b = rho (g - a_O - alpha k x c + omega^2 c) . n
+    [N/m^3] at its axis point c (S, 2) [m, load frame] with unit normal n (S, 2), per unit of
+    (g - a_O)_x, (g - a_O)_y, alpha and omega^2 (the last four ``load_coefficients``). On a member
+    along the load frame's x (c = (x, 0), n = (0, 1)) it is rho ((g - a_O)_y - alpha x)."""
+    cx, cy = origin.T
+    nx, ny = normal.T
+    return density * np.stack([nx, ny, cy * nx - cx * ny, cx * nx + cy * ny])
 
 
 def _von_mises(n, m, w, c, u):
@@ -294,3 +310,88 @@ class Fibres:
         flat = flat[wins]
         best[flat] = f[wins]
         self.u.reshape(-1)[flat] = u[wins]
+
+
+CURVED_SAMPLES = 17
+"""Fibres per chord at which a curved-beam section's von Mises is evaluated, ends included."""
+
+
+@dataclass(frozen=True)
+class CurvedFibres:
+    """The stations ``at`` (C,) of a member that take curved-beam normal stress (Winkler-Bach,
+    ``linkstress.curved_beam``): sigma = N / A + M g(v), with Jourawski's tau = V Q(v) / (I t).
+
+    Their von Mises is not the quartic in v of a straight section, so it is evaluated at
+    ``CURVED_SAMPLES`` fibres per chord, ends included: ``v`` (C, F) [m], with ``gain`` (C, F)
+    [1/m^3] (g) and ``shear_gain`` (C, F) [1/m^2] (Q / (I t)) there. The chords' ends are exact (free
+    edges: tau = 0, where bending puts the largest stress); an interior maximum (where shear matters)
+    is the largest of the samples.
+    """
+
+    at: NDArray[np.intp]
+    sections: CurvedSections
+    inv_area: NDArray[np.float64]
+    v: NDArray[np.float64]
+    gain: NDArray[np.float64]
+    shear_gain: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, table: SectionTable, curvature: NDArray[np.float64], curved: NDArray[np.bool_]) -> "CurvedFibres | None":
+        """Those of ``table``'s stations ``curved`` (S,) with ``curvature`` (S,) [1/m]; None if there are none."""
+        at = np.flatnonzero(curved)
+        if not len(at):
+            return None
+        sections = curved_sections(table, np.where(curved, curvature, 0.0))
+        fractions = np.linspace(0.0, 1.0, CURVED_SAMPLES)
+        present = np.arange(table.lower.shape[1])[None, :] < table.n_chords[:, None]
+        # padding chords repeat the first chord's samples
+        lower = np.where(present, table.lower, table.lower[:, :1])[at]
+        upper = np.where(present, table.upper, table.upper[:, :1])[at]
+        v = (lower[:, :, None] + (upper - lower)[:, :, None] * fractions).reshape(len(at), -1)
+        fibres = np.zeros((len(table.x), v.shape[1]))
+        fibres[at] = v
+        first_moment = table.first_moment(fibres)[at]
+        shear_gain = first_moment / (table.second_moment[at, None] * table.thickness)
+        return cls(at, sections, 1.0 / table.area[at], v, sections.gain(v, at), shear_gain)
+
+    def sigma(self, normal, moment, fibre_y) -> NDArray[np.float64]:
+        """(P, C) [Pa]: sigma at fibres ``fibre_y`` (P, C) [m] of these stations, from N and M (P, C)."""
+        gain = self.sections.gain(fibre_y.T, self.at).T
+        return normal * self.inv_area + moment * gain
+
+    def fibres(self, forces: InternalForces, fibres: "Fibres", table: SectionTable) -> None:
+        """Put the largest von Mises of these stations, and its offset u from the centroid, into
+        ``fibres`` (over whatever the straight-beam search found there): the largest sample, and
+        where that is inside a chord, the vertex of the parabola through it and its two neighbours,
+        evaluated exactly, if larger."""
+        at = self.at
+        n = forces.normal[:, at] * self.inv_area
+        sigma = n[:, :, None] + forces.moment[:, at, None] * self.gain
+        tau = forces.shear[:, at, None] * self.shear_gain
+        von_mises = np.sqrt(sigma * sigma + 3 * tau * tau)
+        k = von_mises.argmax(axis=2)
+        best = np.take_along_axis(von_mises, k[:, :, None], axis=2)[:, :, 0]
+        station = np.arange(len(at))[None, :]
+        v = self.v[station, k]
+        inner = (k % CURVED_SAMPLES > 0) & (k % CURVED_SAMPLES < CURVED_SAMPLES - 1)
+        if inner.any():
+            below = np.take_along_axis(von_mises, np.where(inner, k - 1, k)[:, :, None], axis=2)[:, :, 0]
+            above = np.take_along_axis(von_mises, np.where(inner, k + 1, k)[:, :, None], axis=2)[:, :, 0]
+            step = self.v[station, np.where(inner, k + 1, k)] - v
+            bend = below - 2 * best + above
+            shift = np.where(inner & (bend < 0), 0.5 * step * (below - above) / np.where(bend < 0, bend, -1.0), 0.0)
+            vertex = v + shift
+            rows, cols = np.nonzero(shift != 0)
+            if len(rows):
+                y = np.zeros((len(table.x), len(rows)))
+                y[at[cols], np.arange(len(rows))] = vertex[rows, cols]
+                q = table.first_moment(y)[at[cols], np.arange(len(rows))] / (table.second_moment[at[cols]] * table.thickness)
+                g = self.sections.gain(vertex[rows, cols], at[cols])
+                sigma = n[rows, cols] + forces.moment[rows, at[cols]] * g
+                tau = forces.shear[rows, at[cols]] * q
+                refined = np.sqrt(sigma * sigma + 3 * tau * tau)
+                wins = refined > best[rows, cols]
+                best[rows[wins], cols[wins]] = refined[wins]
+                v[rows[wins], cols[wins]] = vertex[rows[wins], cols[wins]]
+        fibres.von_mises[:, at] = best
+        fibres.u[:, at] = v - table.neutral_axis[at]

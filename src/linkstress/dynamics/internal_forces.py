@@ -25,6 +25,7 @@ import shapely
 from numpy.typing import NDArray
 
 from linkstress.loads import LinkLoadCase
+from linkstress.members import MemberCuts
 from linkstress.profile import LinkProfile
 from linkstress.region_moments import RegionMoments, region_moments
 from linkstress.sections import SectionTable
@@ -45,8 +46,10 @@ class InternalForces:
     mismatch: NDArray[np.float64]
 
 
-FREE_Y, ALPHA = -3, -2
-"""Columns of ``load_coefficients``: (g - a_O)_y [m/s^2] and alpha [rad/s^2]."""
+FREE_X, FREE_Y, ALPHA, OMEGA2 = -4, -3, -2, -1
+"""Columns of ``load_coefficients``: (g - a_O)_x, (g - a_O)_y [m/s^2], alpha [rad/s^2], omega^2 [rad^2/s^2]."""
+BODY = slice(FREE_X, None)
+"""The columns the d'Alembert body load is linear in."""
 
 
 def load_coefficients(loads: LinkLoadCase) -> NDArray[np.float64]:
@@ -154,6 +157,29 @@ def force_basis(
     )
     left = basis[:, :, :-1]
     return ForceBasis(-left[0], -left[1], left[2], basis[:, :, -1], cut)
+
+
+def member_force_basis(link: LinkProfile, loads: LinkLoadCase, cuts: MemberCuts) -> ForceBasis:
+    """The ``ForceBasis`` at the sections of one member (``linkstress.members``), load frame, from the
+    free body of each cut's left piece (the one that holds the member's joint i): with F_L and M_L
+    (about the section's centroid) the resultant of every load on that piece, d'Alembert load
+    included, N = -F_L . t, V = -F_L . n and M = M_L (t along the member axis, n across it). On a
+    straight member along the load frame's x these are the (N, V) = -F_L of ``force_basis``."""
+    joints = link.frame(*loads.frame_joints).to_local(link.joints)
+    points = np.array([pf.at for pf in loads.point_forces], float).reshape(-1, 2)
+    cut = cuts.cut_points
+    on_side = np.vstack([cuts.on_left(joints), np.ones(len(joints), bool)])
+    points_on_side = np.vstack([cuts.on_left(points), np.ones(len(points), bool)])
+    whole = cuts.total_moments[:, None]
+    basis = load_basis(
+        loads, joints, on_side, points_on_side, np.hstack([cuts.left_moments, whole]),
+        np.vstack([cut, np.zeros(2)]), link.density * link.thickness,
+    )
+    left = basis[:, :, :-1]
+    t, n = cuts.tangent.T, cuts.normal.T
+    normal = -(left[0] * t[0] + left[1] * t[1])
+    shear = -(left[0] * n[0] + left[1] * n[1])
+    return ForceBasis(normal, shear, left[2], basis[:, :, -1], cut)
 
 
 def internal_forces(

@@ -384,10 +384,13 @@ def _simplified_boundary(outline: Polygon, tolerance: float) -> Boundary:
     return Boundary.from_rings([np.asarray(r.coords)[:-1] for r in (simple.exterior, *simple.interiors)])
 
 
-def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleEstimate, ...]:
+def pin_hole_estimates(
+    link: LinkProfile, loads: LinkLoadCase, depths: dict[int, float] | None = None,
+) -> tuple[PinHoleEstimate, ...]:
     """The estimate at every joint of ``link`` that is the centre of a pin hole, per position, of the
     force its pin bears: the pin force plus any point force given in that hole (a pin's load given as
-    a force)."""
+    a force). ``depths`` [m]: per joint, the section depth through it across the member it sits on
+    (``section_stress.member_depths``); by default the cut across the load frame's axis."""
     outlines = link_outlines(link, loads.frame_joints)
     if not outlines:
         return ()
@@ -399,7 +402,7 @@ def pin_hole_estimates(link: LinkProfile, loads: LinkLoadCase) -> tuple[PinHoleE
     estimates = []
     for k, (j, outline) in enumerate(outlines.items()):
         diameter = 2 * float(np.sqrt(areas[link.joint_holes[j]] / np.pi))
-        depth = float(top[k] - bottom[k])
+        depth = depths[j] if depths and j in depths else float(top[k] - bottom[k])
         force = loads.pin_forces[:, j] + borne.get(link.joint_holes[j], 0.0)
         estimates.append(_estimate(j, diameter, depth, outline, force, loads.joint_couples[:, j], link.thickness))
     return tuple(estimates)

@@ -54,10 +54,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.dynamics.fibre_candidates import Fibres, SectionShape, fibre_sigma
-from linkstress.dynamics.internal_forces import ALPHA, FREE_Y, ForceBasis, InternalForces, force_basis, load_coefficients
+from linkstress.curved_beam import theory_of
+from linkstress.dynamics.fibre_candidates import CurvedFibres, Fibres, SectionShape, body_gains, fibre_sigma
+from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces, load_coefficients, member_force_basis
 from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
+from linkstress.members import Member, MemberCuts, frame_member
 from linkstress.profile import LinkProfile
 from linkstress.sections import SectionTable
 from linkstress.threads import blas_alone, cores, even_blocks, in_parallel
@@ -84,7 +86,12 @@ class SectionStresses:
     pin_holes: tuple[PinHoleEstimate, ...]
     shape: SectionShape
     body_load: NDArray[np.float64]
-    """(P, 2): (g - a_O)_y [m/s^2] and alpha [rad/s^2], for sigma's body-load term."""
+    """(P, 4): the load coefficients of the body load (g - a_O [m/s^2], alpha [rad/s^2], omega^2
+    [rad^2/s^2]), for sigma's body-load term."""
+    cuts: MemberCuts
+    """The member's sections: where each station is (``cuts.points``), and its flags."""
+    curved: CurvedFibres | None = None
+    """The stations that take curved-beam normal stress (Winkler-Bach), if any."""
 
     @property
     def sigma(self) -> NDArray[np.float64]:
@@ -92,8 +99,12 @@ class SectionStresses:
         take it, the body-load term."""
         shape, forces = self.shape, self.forces
         u = self.fibre_y - self.sections.neutral_axis
-        beta = shape.body_load(self.body_load[:, :1], self.body_load[:, 1:], slice(None)) * shape.inverse_square_half()
-        return fibre_sigma(forces.normal * shape.inv_area, forces.moment * shape.inv_inertia, u, beta, shape.half)
+        beta = (self.body_load @ shape.body_gain) * shape.inverse_square_half()
+        sigma = fibre_sigma(forces.normal * shape.inv_area, forces.moment * shape.inv_inertia, u, beta, shape.half)
+        if self.curved is not None:
+            at = self.curved.at
+            sigma[:, at] = self.curved.sigma(forces.normal[:, at], forces.moment[:, at], self.fibre_y[:, at])
+        return sigma
 
     @property
     def tau(self) -> NDArray[np.float64]:
@@ -111,9 +122,10 @@ class SectionStresses:
 
     @property
     def max_at(self) -> NDArray[np.float64]:
+        """(P, 2) [m, load frame]: where each position's largest von Mises is."""
         k = self.von_mises.argmax(axis=1)
         rows = np.arange(len(k))
-        return np.column_stack([self.x[k], self.fibre_y[rows, k]])
+        return self.cuts.origin[k] + self.fibre_y[rows, k][:, None] * self.cuts.normal[k]
 
     @property
     def max_away_from_holes(self) -> NDArray[np.float64] | None:
@@ -134,16 +146,14 @@ def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: in
     return lo + (hi - lo) * (np.arange(count) + 0.5) / count
 
 
-NEAR_HOLE_SLACK = 1e-9
-"""A station exactly one depth from a pin (the midpoint of a bar as long as two depths) is not near it."""
-
-
 def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: SectionTable) -> NDArray[np.bool_]:
-    """Stations closer (along x) to a hole's centre than the local section depth (St-Venant: a pin's
-    load spreads into a beam-like stress state about one depth from where it is applied)."""
-    centres = link.frame(*frame_joints).to_local(link.holes[0])[:, 0]
+    """Stations of member frame ``frame_joints`` (vertical cuts of ``sections``) whose cut lies closer
+    to a hole's centre than the section depth (``linkstress.members``: St-Venant)."""
+    centres = link.frame(*frame_joints).to_local(link.holes[0])
     depth = sections.top - sections.bottom
-    return (np.abs(sections.x[:, None] - centres) < (depth * (1 - NEAR_HOLE_SLACK))[:, None]).any(axis=1)
+    below = np.clip(centres[None, :, 1], sections.bottom[:, None], sections.top[:, None]) - centres[None, :, 1]
+    distance = np.hypot(sections.x[:, None] - centres[None, :, 0], below)
+    return (distance < (depth * (1 - 1e-9))[:, None]).any(axis=1)
 
 
 def section_stresses(
@@ -151,31 +161,35 @@ def section_stresses(
     loads: LinkLoadCase,
     stations: NDArray[np.float64],
     body_load_near_holes: bool = False,
+    member: Member | None = None,
 ) -> SectionStresses:
-    """Stresses at ``stations`` [m] (member frame of ``loads.frame_joints``) for every position,
-    evaluated together; with ``body_load_near_holes``, the body-load term on the single-chord
-    sections near holes too.
+    """Stresses at ``stations`` [m] along ``member`` (default: the member along ``loads.frame_joints``,
+    whose stations are the member frame's x on a straight member) for every position, evaluated
+    together; with ``body_load_near_holes``, the body-load term on the single-chord sections near
+    holes too.
 
     Candidates for the largest von Mises of a section (``fibre_candidates``): its outer fibres (free
     edges, tau = 0), the ends of chords at holes, and each chord's interior maximum where shear
     matters. Every stress is linear in the load coefficients (``load_coefficients``), so N, V, M
-    and the outer fibres' sigma are each one product of those with a basis made once per link.
+    and the outer fibres' sigma are each one product of those with a basis made once per member.
     A long sweep takes ``links_section_stresses``: it holds only per-position reductions.
     """
-    return _Sweep.of(link, loads, stations, body_load_near_holes).stresses(slice(None))
+    member = member or frame_member(link, loads.frame_joints)
+    holes = pin_hole_estimates(link, loads, member_depths((member,)))
+    return _Sweep.of(link, loads, member.cuts(stations), body_load_near_holes, holes).stresses(slice(None))
 
 
 @dataclass(frozen=True)
-class StressSummary:
-    """One link's section stresses over P positions, reduced per position (member frame): what a
-    sweep keeps, 40 bytes per position instead of (P, S) arrays of each quantity.
+class MemberSummary:
+    """One member's section stresses over P positions, reduced per position: what a sweep keeps, 40
+    bytes per position instead of (P, S) arrays of each quantity.
 
-    ``max_von_mises`` (P,) [Pa] and ``max_at`` (P, 2) [m]: the largest von Mises over all stations
-    and where (station x, fibre y); ``max_away_from_holes`` (P,) [Pa] likewise over the stations
-    not near a hole (None where every station is near one); ``mismatch`` (P,): the equilibrium
-    check of ``InternalForces``; ``pin_holes``: the Kt x nominal estimates (``pin_holes.py``).
-    ``at(positions)`` recomputes the full station arrays of a block of positions; on the blocks of
-    ``blocks`` (those the sweep was evaluated in) they are exactly those the reductions came from.
+    ``max_von_mises`` (P,) [Pa] and ``max_at`` (P, 2) [m, load frame]: the largest von Mises over all
+    stations and where; ``max_away_from_holes`` (P,) [Pa] likewise over the stations that are not
+    nominal (near a hole or a junction; None where every station is); ``mismatch`` (P,): the
+    equilibrium check of ``InternalForces``. ``at(positions)`` recomputes the full station arrays of
+    a block of positions; on the blocks of ``blocks`` (those the sweep was evaluated in) they are
+    exactly those the reductions came from.
     """
 
     sweep: "_Sweep"
@@ -184,7 +198,15 @@ class StressSummary:
     max_at: NDArray[np.float64]
     max_away_from_holes: NDArray[np.float64] | None
     mismatch: NDArray[np.float64]
-    pin_holes: tuple[PinHoleEstimate, ...]
+
+    @property
+    def joints(self) -> tuple[int, int]:
+        return self.sweep.cuts.joints
+
+    @property
+    def theory(self) -> str:
+        """"curved" where some station takes curved-beam (Winkler-Bach) normal stress, else "straight"."""
+        return "curved" if self.sweep.curved is not None else "straight"
 
     @property
     def x(self) -> NDArray[np.float64]:
@@ -199,24 +221,96 @@ class StressSummary:
         return self.sweep.stresses(positions)
 
 
+@dataclass(frozen=True)
+class StressSummary:
+    """One link's section stresses over P positions: each member's (``members``, the first along the
+    link's frame joints when that pair is a member) and, over them, the largest von Mises per position
+    ``max_von_mises`` (P,) [Pa] and where ``max_at`` (P, 2) [m, load frame], ``max_away_from_holes``
+    (P,) [Pa] (None where every station of every member is nominal), the worst equilibrium check
+    ``mismatch`` (P,); ``pin_holes``: the Kt x nominal estimates (``pin_holes.py``). ``x``,
+    ``near_hole`` and ``at`` are the first member's."""
+
+    members: tuple[MemberSummary, ...]
+    pin_holes: tuple[PinHoleEstimate, ...]
+
+    @property
+    def blocks(self) -> tuple[slice, ...]:
+        return self.members[0].blocks
+
+    @property
+    def max_von_mises(self) -> NDArray[np.float64]:
+        return np.max([m.max_von_mises for m in self.members], axis=0)
+
+    @property
+    def max_at(self) -> NDArray[np.float64]:
+        k = np.argmax([m.max_von_mises for m in self.members], axis=0)
+        places = np.stack([m.max_at for m in self.members])
+        return places[k, np.arange(len(k))]
+
+    @property
+    def max_away_from_holes(self) -> NDArray[np.float64] | None:
+        away = [m.max_away_from_holes for m in self.members if m.max_away_from_holes is not None]
+        return np.max(away, axis=0) if away else None
+
+    @property
+    def mismatch(self) -> NDArray[np.float64]:
+        return np.max([m.mismatch for m in self.members], axis=0)
+
+    @property
+    def x(self) -> NDArray[np.float64]:
+        return self.members[0].x
+
+    @property
+    def near_hole(self) -> NDArray[np.bool_]:
+        return self.members[0].near_hole
+
+    def at(self, positions: slice) -> SectionStresses:
+        """The first member's full arrays at the consecutive ``positions`` (``MemberSummary.at``)."""
+        return self.members[0].at(positions)
+
+
 def links_section_stresses(
-    jobs: Sequence[tuple[LinkProfile, LinkLoadCase, NDArray[np.float64]]],
+    jobs: Sequence[tuple[LinkProfile, LinkLoadCase, tuple[Member, ...], int]],
     body_load_near_holes: bool = False,
 ) -> list[StressSummary]:
-    """Each job's ``section_stresses(link, loads, stations, body_load_near_holes)`` reduced per
-    position as it is made: blocks of positions are evaluated and reduced one at a time, so that a
-    sweep never holds its (P, S) arrays. The blocks of every link share the cores (BLAS on one
-    thread, ``linkstress.threads``), so that no core waits at the end of one link's blocks."""
-    sweeps = [_Sweep.of(*job, body_load_near_holes) for job in jobs]
-    threaded = cores() > 1 and sum(sweep.pairs for sweep in sweeps) >= THREADED_PAIRS
-    summaries = [(sweep, _Reductions.of(sweep), tuple(sweep.blocks(threaded))) for sweep in sweeps]
-    blocks = [(sweep, reductions, block) for sweep, reductions, blocks in summaries for block in blocks]
+    """Each job's (link, loads, members, stations per member) section stresses along every member,
+    reduced per position as they are made: blocks of positions are evaluated and reduced one at a
+    time, so that a sweep never holds its (P, S) arrays. The blocks of every member share the cores
+    (BLAS on one thread, ``linkstress.threads``), so that no core waits at the end of one member's
+    blocks."""
+    sweeps = []
+    for link, loads, members, count in jobs:
+        holes = pin_hole_estimates(link, loads, member_depths(members))
+        sweeps.append([
+            _Sweep.of(link, loads, member.cuts(member.stations(count)), body_load_near_holes, holes) for member in members
+        ])
+    every = [sweep for link_sweeps in sweeps for sweep in link_sweeps]
+    threaded = cores() > 1 and sum(sweep.pairs for sweep in every) >= THREADED_PAIRS
+    summaries = {id(sweep): (_Reductions.of(sweep), tuple(sweep.blocks(threaded))) for sweep in every}
+    blocks = [(sweep, summaries[id(sweep)][0], block) for sweep in every for block in summaries[id(sweep)][1]]
     if not threaded:
         in_parallel(_reduce, blocks, threads=False)
     else:
         with blas_alone():
             in_parallel(_reduce, blocks)
-    return [reductions.summary(sweep, blocks) for sweep, reductions, blocks in summaries]
+    return [
+        StressSummary(
+            tuple(summaries[id(sweep)][0].summary(sweep, summaries[id(sweep)][1]) for sweep in link_sweeps),
+            link_sweeps[0].pin_holes,
+        )
+        for link_sweeps in sweeps
+    ]
+
+
+def member_depths(members: Sequence[Member]) -> dict[int, float]:
+    """Per joint, the section depth [m] through it across the member it sits on (the smallest where
+    members meet at it): the depth a pin-hole estimate reports."""
+    depths: dict[int, float] = {}
+    for member in members:
+        table = member.cuts([0.0, member.length]).table
+        for end, depth in zip(member.joints, table.top - table.bottom):
+            depths[end] = min(depths.get(end, np.inf), float(depth))
+    return depths
 
 
 def _reduce(item: tuple["_Sweep", "_Reductions", slice]) -> None:
@@ -226,7 +320,7 @@ def _reduce(item: tuple["_Sweep", "_Reductions", slice]) -> None:
 
 @dataclass(frozen=True)
 class _Reductions:
-    """A link's per-position reductions, filled block by block (each block writes only its rows)."""
+    """A member's per-position reductions, filled block by block (each block writes only its rows)."""
 
     max_von_mises: NDArray[np.float64]
     max_at: NDArray[np.float64]
@@ -245,44 +339,50 @@ class _Reductions:
         k = fibres.von_mises.argmax(axis=1)
         rows = np.arange(len(k))
         self.max_von_mises[p] = fibres.von_mises[rows, k]
-        self.max_at[p, 0] = sweep.table.x[k]
-        self.max_at[p, 1] = fibres.u[rows, k]
+        self.max_at[p] = sweep.cuts.origin[k] + fibres.u[rows, k][:, None] * sweep.cuts.normal[k]
         if self.max_away_from_holes is not None:
             self.max_away_from_holes[p] = fibres.von_mises[:, ~sweep.near_hole].max(axis=1)
         self.mismatch[p] = forces.mismatch
 
-    def summary(self, sweep: "_Sweep", blocks: tuple[slice, ...]) -> StressSummary:
-        return StressSummary(
-            sweep, blocks, self.max_von_mises, self.max_at, self.max_away_from_holes, self.mismatch, sweep.pin_holes,
-        )
+    def summary(self, sweep: "_Sweep", blocks: tuple[slice, ...]) -> MemberSummary:
+        return MemberSummary(sweep, blocks, self.max_von_mises, self.max_at, self.max_away_from_holes, self.mismatch)
 
 
 @dataclass(frozen=True)
 class _Sweep:
-    """One link's section stresses over the sweep: what every block of positions is evaluated from."""
+    """One member's section stresses over the sweep: what every block of positions is evaluated from."""
 
     link: LinkProfile
     loads: LinkLoadCase
-    table: SectionTable
+    cuts: MemberCuts
     near_hole: NDArray[np.bool_]
     basis: ForceBasis
     shape: SectionShape
     fibre_bases: tuple[NDArray[np.float64], ...]
     coefficients: NDArray[np.float64]
     pin_holes: tuple[PinHoleEstimate, ...]
+    curved: CurvedFibres | None
 
     @classmethod
     def of(
-        cls, link: LinkProfile, loads: LinkLoadCase, stations: NDArray[np.float64], body_load_near_holes: bool = False,
+        cls, link: LinkProfile, loads: LinkLoadCase, cuts: MemberCuts, body_load_near_holes: bool = False,
+        pin_holes: tuple[PinHoleEstimate, ...] = (),
     ) -> "_Sweep":
-        table = link.sections(stations, *loads.frame_joints)
-        basis = force_basis(link, loads, table)
-        near_hole = near_holes(link, loads.frame_joints, table)
-        shape = SectionShape.of(table, link.density, np.ones_like(near_hole) if body_load_near_holes else ~near_hole)
+        near_hole = cuts.nominal
+        table = cuts.table
+        curved = theory_of(cuts.curvature, table.top - table.bottom) == "curved"
+        # the body-load term refines the straight beam; a curved section takes Winkler-Bach without it
+        body_term = (np.ones_like(near_hole) if body_load_near_holes else ~near_hole) & ~curved
+        shape = SectionShape.of(table, body_gains(cuts.origin, cuts.normal, link.density), body_term)
+        basis = member_force_basis(link, loads, cuts)
         return cls(
-            link, loads, table, near_hole, basis, shape, shape.fibre_basis(basis), load_coefficients(loads),
-            pin_hole_estimates(link, loads),
+            link, loads, cuts, near_hole, basis, shape, shape.fibre_basis(basis), load_coefficients(loads), pin_holes,
+            CurvedFibres.of(table, cuts.curvature, curved),
         )
+
+    @property
+    def table(self) -> SectionTable:
+        return self.cuts.table
 
     @property
     def pairs(self) -> int:
@@ -292,7 +392,7 @@ class _Sweep:
     def blocks(self, threaded: bool = False) -> list[slice]:
         """Near-equal blocks of positions: of at most ``POSITION_BLOCK`` on one thread; on threads,
         of at most ``THREADED_BLOCK`` and at least one per core, so that each core takes a block
-        of every link."""
+        of every member."""
         count = len(self.coefficients)
         pieces = -(-count // (THREADED_BLOCK if threaded else POSITION_BLOCK))
         if threaded:
@@ -310,23 +410,24 @@ class _Sweep:
         fibres = Fibres(np.empty_like(normal), np.empty_like(normal))
         size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, fibres)
         # a crank turning steadily about a fixed pivot, without gravity, has no body load
-        loaded = c[:, [FREE_Y, ALPHA]].any()
+        loaded = ((c[:, BODY] != 0).any(axis=0) & shape.body_columns).any()
         at_single, at_split, chord = shape.interior_candidates(
             size_n, size_m, fibres.von_mises, np.abs(c @ body) if loaded else None, normal, shear, moment
         )
         shape.single_interiors(forces, c, at_single, fibres)
         shape.hole_end_fibres(forces, fibres, slice(None))
         shape.split_interiors(forces, at_split, chord, fibres)
+        if self.curved is not None:
+            self.curved.fibres(forces, fibres, self.table)
         fibres.u += self.table.neutral_axis  # now the fibre's y
         return forces, fibres
 
     def stresses(self, p: slice) -> SectionStresses:
         """``SectionStresses`` of the consecutive positions ``p``, evaluated as one block."""
         forces, fibres = self.evaluate(p)
-        holes = tuple(h.at(p) for h in self.pin_holes)
         return SectionStresses(
-            self.table, forces, fibres.von_mises, fibres.u, self.near_hole, holes, self.shape,
-            self.coefficients[p][:, [FREE_Y, ALPHA]],
+            self.table, forces, fibres.von_mises, fibres.u, self.near_hole, tuple(h.at(p) for h in self.pin_holes), self.shape,
+            self.coefficients[p][:, BODY], self.cuts, self.curved,
         )
 
 

@@ -18,14 +18,17 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.errors import InputError
+from linkstress.errors import GeometryError, InputError
 from linkstress.materials import Material
+from linkstress.members import check_members
 from linkstress.profile import LinkProfile
 from linkstress.scene.keys import Table
 from linkstress.scene.model import MassData
 
 MATERIAL_KEYS = ("density", "youngs_modulus", "poisson_ratio", "yield_strength")
-LINK_KEYS = ("sketch", "layer", "units", "joints", "thickness", "material", "mass", "inertia", "center_of_mass")
+LINK_KEYS = (
+    "sketch", "layer", "units", "joints", "thickness", "material", "mass", "inertia", "center_of_mass", "members",
+)
 MASS_KEYS = ("mass", "inertia", "center_of_mass")
 
 
@@ -43,6 +46,7 @@ class LinkSource:
     center_of_mass: NDArray[np.float64] | None
     sketch: Path | None
     layer: str | None
+    members: tuple[tuple[int, int], ...] | None = None
 
 
 def read_materials(table: Table | None) -> dict[str, Material]:
@@ -99,7 +103,7 @@ def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches
     if entry.has("sketch") == entry.has("joints"):
         raise entry.error(None, "give either sketch = \"file.dxf\" or joints = [[x, y], ...] (metres), not both or neither")
     if entry.has("joints"):
-        for key in ("layer", "units"):
+        for key in ("layer", "units", "members"):
             if entry.has(key):
                 raise entry.error(key, "only for a sketch link; bare joints are in metres")
         joints = entry.points("joints", "m")
@@ -112,8 +116,25 @@ def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches
     path = folder / entry.string("sketch")
     profile = _load_profile(entry, name, path, layer, sketch_units, thickness, material, sketches)
     return LinkSource(
-        name, np.asarray(profile.joints, float), thickness, material, profile, mass, inertia, center, path, layer
+        name, np.asarray(profile.joints, float), thickness, material, profile, mass, inertia, center, path, layer,
+        _read_members(entry, profile),
     )
+
+
+def _read_members(entry: Table, profile: LinkProfile) -> tuple[tuple[int, int], ...] | None:
+    """``members = [[i, j], ...]``: the link's arms as joint pairs that join every joint (a tree)."""
+    if not entry.has("members"):
+        return None
+    value = entry.require("members", "a list of joint pairs")
+    pairs = value if isinstance(value, list) else None
+    if not pairs or not all(
+        isinstance(p, list) and len(p) == 2 and all(isinstance(k, int) and not isinstance(k, bool) for k in p) for p in pairs
+    ):
+        raise entry.error("members", "must be a list of joint pairs [[i, j], ...] (joint indices, integers)")
+    try:
+        return check_members(profile, pairs)
+    except GeometryError as error:
+        raise entry.error("members", str(error)) from None
 
 
 def _load_profile(entry: Table, name, path: Path, layer, units, thickness, material, sketches) -> LinkProfile:

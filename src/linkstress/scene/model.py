@@ -36,7 +36,8 @@ class SceneLink:
 
     joints (n, 2) [m] as drawn (a ground's are where the ground frame puts them); ``frame_joints`` its
     member frame; ``profile`` when it comes from a sketch; ``explicit_mass`` when the scene gives
-    mass, inertia and centre of mass (these take precedence over the profile's).
+    mass, inertia and centre of mass (these take precedence over the profile's); ``members`` as the
+    scene names them.
     """
 
     name: str
@@ -48,6 +49,8 @@ class SceneLink:
     explicit_mass: MassData | None = None
     sketch: Path | None = None
     layer: str | None = None
+    members: tuple[tuple[int, int], ...] | None = None
+    """The link's arms as joint pairs (``linkstress.members``); None: the tree that joins its joints."""
 
     def to_member(self, points: NDArray[np.float64]) -> NDArray[np.float64]:
         """Drawn points (..., 2) [m] into the member frame."""

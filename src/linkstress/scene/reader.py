@@ -89,7 +89,7 @@ def _scene(top: Table, path: Path) -> Scene:
     links = {
         name: SceneLink(
             name, s.joints, machine.link_frames[name], s.thickness, s.material, s.profile, mass_data(s),
-            s.sketch, s.layer,
+            s.sketch, s.layer, s.members,
         )
         for name, s in sources.items()
     }
