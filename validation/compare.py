@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -37,6 +37,7 @@ from shapely.geometry import Polygon
 from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
+from linkstress.members import Member
 from linkstress.profile import LinkProfile
 from linkstress.validation.convergence import (
     CONVERGED_CHANGE,
@@ -46,7 +47,7 @@ from linkstress.validation.convergence import (
     convergence_study,
 )
 from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import CutResultants, LinkFEAResult, SectionResultants, solve_link
+from linkstress.validation.link_fea import CutResultants, LinkFEAResult, solve_link
 from linkstress.validation.mesh import MeshSettings
 from linkstress.validation.recovery import von_mises
 
@@ -128,12 +129,14 @@ class HolePeak:
 class LinkComparison:
     """One link compared over the positions ``positions`` (indices into the sweep).
 
-    ``beam`` holds the beam stresses at ``stations`` for those positions; ``fea`` the finest FEA;
-    ``fea_von_mises`` (Pc, S) the FEA von Mises at the beam's critical fibre of each station;
-    ``away`` (S,) the stations used for the nominal comparison; ``study`` the mesh refinement study
-    (None with a single mesh level); ``station_note`` why the stations are not the usual ones ("" when
-    they are); ``members`` each member compared along its own axis (none: the link is compared along
-    the frame's x only). With members, the link's errors are the worst over them.
+    ``beam`` holds the beam stresses at ``stations`` (along the member of the frame joints: the
+    frame's x on a straight one) for those positions; ``fea`` the finest FEA; ``fea_resultants`` its
+    resultants over the beam's cut segments there; ``fea_von_mises`` (Pc, S) the FEA von Mises at the
+    beam's critical fibre of each station; ``away`` (S,) the stations used for the nominal
+    comparison; ``study`` the mesh refinement study (None with a single mesh level); ``station_note``
+    why the stations are not the usual ones ("" when they are); ``members`` each member of the link
+    compared along its own axis (none: along the frame's member only). With members, the link's
+    errors are the worst over them.
     """
 
     name: str
@@ -142,7 +145,7 @@ class LinkComparison:
     away: NDArray[np.bool_]
     beam: SectionStresses
     fea: LinkFEAResult
-    fea_resultants: SectionResultants
+    fea_resultants: CutResultants
     fea_von_mises: NDArray[np.float64]
     beam_seconds: float
     fea_seconds: float
@@ -395,45 +398,48 @@ def choose_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int
     return ComparisonStations(x, note)
 
 
-def member_stations(
-    cuts_at: Callable[[NDArray[np.float64]], object],
-    length: float,
-    holes: tuple[NDArray[np.float64], NDArray[np.float64]],
-    other_axes: Sequence[NDArray[np.float64]] = (),
-    count: int = COMPARISON_STATIONS,
-) -> ComparisonStations:
-    """Stations s [m, arc length from the member's first joint] along a member whose axis is
-    ``length`` [m] long between its joints, ``cuts_at(s)`` giving its ``MemberCuts``: ``count`` cell
-    centres and the midpoint, those whose cut segment keeps HOLE_CLEARANCE radii from every hole
-    (``holes`` = centres (H, 2) [m, load frame], equivalent radii (H,) [m]) and whose axis point is at
-    least its section depth from every other member's axis (``other_axes``: polylines (K, 2) [m]),
-    where the arms of a bell crank meet. On a member too short for that, the midpoint when its cut
-    misses the holes (CUT_CLEARANCE), with a note; raises FEAError when not even that does."""
+def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> ComparisonStations:
+    """Stations s [m, arc length from the member's joint i] to compare a member of a link at:
+    ``count`` cell centres between its joints and the midpoint, those whose cut segment keeps
+    HOLE_CLEARANCE radii from every hole and whose axis point is at least its section depth from
+    every other member's axis (where the arms of a bell crank meet). On a member too short for that,
+    the midpoint when its cut misses the holes (CUT_CLEARANCE), with a note; raises FEAError naming
+    the link and the member when not even that does."""
+    length = member.length
     candidates = np.unique(np.round(np.append(length * (np.arange(count) + 0.5) / count, length / 2), 12))
-    cuts = cuts_at(candidates)
-    centres, radii = holes
-    clearance = _segment_distance(np.asarray(centres, float).reshape(-1, 2), cuts.ends) / radii  # (S, H) [radii]
+    cuts = member.cuts(candidates)
+    centres, radii = hole_circles(member.link, member.frame_joints)
+    clearance = _segment_distance(centres, cuts.ends) / radii  # (S, H) [hole radii]
     depth = cuts.table.top - cuts.table.bottom
     gap = np.full(len(candidates), np.inf)
-    for axis in other_axes:
+    for axis in member.others:
         pieces = np.stack([axis[:-1], axis[1:]], axis=1)
         gap = np.minimum(gap, _segment_distance(cuts.origin, pieces).min(axis=0))
     keep = (clearance > HOLE_CLEARANCE).all(axis=1) & (gap >= depth)
     if keep.any():
         return ComparisonStations(candidates[keep])
     middle = int(np.argmin(np.abs(candidates - length / 2)))
+    name = f"link {member.link.name!r}, member {list(member.joints)}"
     if not (clearance[middle] > CUT_CLEARANCE).all():
         raise FEAError(
-            f"the member's midpoint cut at s = {candidates[middle]:.6g} m passes {clearance[middle].min():.3g} hole "
+            f"{name}: the midpoint cut at s = {candidates[middle]:.6g} m passes {clearance[middle].min():.3g} hole "
             "radii from a hole's centre and no other station keeps clear of the holes and the other members: "
             "there is nowhere to compare section resultants"
         )
     note = (
         f"the member is short for its holes and junctions: no station is {HOLE_CLEARANCE:g} hole radii from every "
         f"hole and a section depth from the other members, so it is compared at its midpoint s = "
-        f"{candidates[middle]:.4g} m, {clearance[middle].min():.3g} radii from the nearest hole"
+        f"{candidates[middle]:.4g} m, {clearance[middle].min(initial=np.inf):.3g} radii from the nearest hole"
     )
     return ComparisonStations(candidates[middle:middle + 1], note)
+
+
+def member_beam(link: LinkProfile, loads: LinkLoadCase, member: Member, body_load_near_holes: bool = False) -> MemberBeam:
+    """The beam along ``member`` at its comparison stations (``member_stations``) for every position of ``loads``."""
+    chosen = member_stations(member)
+    beam = section_stresses(link, loads, chosen.x, body_load_near_holes, member=member)
+    forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
+    return MemberBeam(member.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y, chosen.note)
 
 
 def hole_circles(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -465,14 +471,13 @@ def default_mesh(
     frame_joints: tuple[int, int],
     stations: NDArray[np.float64],
     size: float | None = None,
-    members: Sequence[MemberBeam] = (),
+    members: Sequence[Member] = (),
 ) -> MeshSettings:
     """Mesh settings sized from the link: about ELEMENTS_PER_DEPTH elements across its slenderest
-    compared section (at ``stations`` and the ``members``' cuts), ELEMENTS_PER_HOLE_DIAMETER along
-    a pin hole's diameter."""
-    table = link.sections(stations, *frame_joints)
-    depths = [table.top - table.bottom, *(m.cuts.table.top - m.cuts.table.bottom for m in members)]
-    depth = float(np.concatenate(depths).min())
+    compared section (at ``stations`` and at the ``members``' comparison stations),
+    ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
+    tables = [link.sections(stations, *frame_joints), *(m.cuts(member_stations(m).x).table for m in members)]
+    depth = float(min((t.top - t.bottom).min() for t in tables))
     size = size or depth / ELEMENTS_PER_DEPTH
     diameters = [2 * math.sqrt(Polygon(r).area / math.pi) for r in link.outline.interiors]
     hole = min(diameters) / ELEMENTS_PER_HOLE_DIAMETER if diameters else size / 4
@@ -489,44 +494,43 @@ def compare_link(
     stations: NDArray[np.float64] | None = None,
     body_load_near_holes: bool = False,
     station_note: str = "",
-    members: Sequence[MemberBeam] = (),
+    members: Sequence[Member] = (),
 ) -> LinkComparison:
     """Compare link ``name`` at sweep ``positions``; ``levels`` >= 3 runs a refinement study and
     compares with its finest mesh, 1 compares with ``mesh`` alone; the beam's sections take the
     body-load term near holes too with ``body_load_near_holes``; ``station_note`` says why the
-    ``stations`` are not the usual ones (``choose_stations``). ``members``: the beam along each
-    member of the link at those positions, compared over its cut segments (meshed with ``mesh``'s
-    sizes) and at its critical fibres."""
+    ``stations`` are not the usual ones (``choose_stations``). ``members`` (``link_members``): each is
+    compared along its own axis too, over its cut segments (``member_stations``, meshed as cuts) and
+    at its beam's critical fibres; the link's errors are then the worst over them."""
     frame_joints = loads.frame_joints
     if stations is None:
         chosen = choose_stations(link, frame_joints)
         stations, station_note = chosen.x, chosen.note
     stations = np.asarray(stations, float)
-    mesh = mesh or default_mesh(link, frame_joints, stations, members=members)
-    segments = np.concatenate([np.zeros((0, 2, 2)), *(m.cuts.ends for m in members)])
-    mesh = replace(mesh, cuts=segments.tolist())
     selected = loads.at(positions)
     start = time.perf_counter()
     beam = section_stresses(link, selected, stations, body_load_near_holes)
+    forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
+    # The stations are on the frame's member (its sections normal to its axis, vertical when straight).
+    along = MemberBeam(beam.cuts.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y)
+    beams = [member_beam(link, selected, m, body_load_near_holes) for m in members]
     beam_seconds = time.perf_counter() - start
+    mesh = mesh or default_mesh(link, frame_joints, stations, members=members)
+    segments = np.concatenate([b.cuts.ends for b in (along, *beams)])
+    mesh = replace(mesh, stations=(), cuts=segments.tolist())
     start = time.perf_counter()
     away = ~beam.near_hole
-    points = np.column_stack([np.broadcast_to(stations, beam.fibre_y.shape).ravel(), beam.fibre_y.ravel()])
     study = None
     if levels >= 3:
-        member_points = [m.fibres[:, m.away].reshape(-1, 2) for m in members]
-        nominal = np.unique(np.concatenate([points[np.tile(away, len(positions))], *member_points]), axis=0)
-        axes = [np.concatenate([np.zeros((0, 2)), *parts]) for parts in zip(*(m.axes for m in members))] or None
-        study = convergence_study(link, selected, mesh, nominal, levels=levels, cut_axes=axes)
+        nominal = np.concatenate([along.fibres[:, away].reshape(-1, 2), *(b.fibres[:, b.away].reshape(-1, 2) for b in beams)])
+        axes = [np.concatenate(parts) for parts in zip(*(b.axes for b in (along, *beams)))]
+        study = convergence_study(link, selected, mesh, np.unique(nominal, axis=0), levels=levels, cut_axes=axes)
         fea = study.finest
     else:
         fea = solve_link(link, selected, mesh)
     fea_seconds = time.perf_counter() - start
-    sampled = von_mises(fea.stress_at(points))  # (Pc, Pc * S): each position's fibres at every position
-    count = len(stations)
-    rows = np.arange(len(positions))
-    fea_vm = sampled.reshape(len(positions), len(positions), count)[rows, rows]
+    frame = compare_member(fea, along)
     return LinkComparison(
-        name, np.asarray(positions), stations, away, beam, fea, fea.section_resultants(stations), fea_vm,
-        beam_seconds, fea_seconds, study, station_note, tuple(compare_member(fea, m) for m in members),
+        name, np.asarray(positions), stations, away, beam, fea, frame.fea_resultants, frame.fea_von_mises,
+        beam_seconds, fea_seconds, study, station_note, tuple(compare_member(fea, b) for b in beams),
     )

@@ -389,7 +389,13 @@ def convergence_words(record: dict) -> str:
 
 
 def curvature_note(c: LinkComparison) -> str:
-    """Why straight-beam sections fall short on a curved link, or "" for a straight one."""
+    """How a curved link is sectioned (normal to its centreline, with curved-beam normal stress), or
+    why straight-beam sections fall short on it; "" for a straight one."""
+    if c.beam.curved is not None:
+        return (
+            "the link is curved: its sections are cut normal to its centreline and take the curved-beam "
+            "(Winkler-Bach) normal stress, which the FEA checks over the same cuts"
+        )
     if not is_curved(c.beam.sections, c.beam.near_hole):
         return ""
     wander, depth = neutral_axis_wander(c.beam.sections, c.beam.near_hole)
