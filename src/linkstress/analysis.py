@@ -14,7 +14,6 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.curvature import Curvature, link_curvature
 from linkstress.dynamics.machine_forces import MachineForces, machine_forces
 from linkstress.dynamics.section_stress import StressSummary, links_section_stresses
 from linkstress.errors import SceneError
@@ -91,10 +90,9 @@ def plan_for(scene: Scene) -> Plan:
 @dataclass(frozen=True)
 class AnalysisResult:
     """Everything computed for a scene over its P positions; ``feasible`` (P,) where every stage
-    that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage; ``curvature`` of
-    every link with section stresses, decided once from its geometry (None: all near-hole region).
-    ``stresses`` keep per-position reductions; ``stresses[name].at(positions)`` recomputes the arrays
-    along a link."""
+    that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage.
+    ``stresses`` keep per-position reductions, per member; ``stresses[name].members[k].at(positions)``
+    recomputes the arrays along a member."""
 
     scene: Scene
     plan: Plan
@@ -102,12 +100,12 @@ class AnalysisResult:
     forces: MachineForces | None
     stresses: dict[str, StressSummary]
     seconds: dict[str, float] = field(default_factory=dict)
-    curvature: dict[str, Curvature | None] = field(default_factory=dict)
 
     def curved(self, name: str) -> bool:
-        """Whether link ``name`` is curved, so that its straight-beam section values fall short."""
-        curvature = self.curvature.get(name)
-        return curvature is not None and curvature.curved
+        """Whether link ``name`` has a curved member: one sectioned normal to its curved centreline
+        (``linkstress.members``)."""
+        stress = self.stresses.get(name)
+        return stress is not None and any(m.member.curved for m in stress.members)
 
     @property
     def feasible(self) -> NDArray[np.bool_]:
@@ -117,9 +115,11 @@ class AnalysisResult:
     def reasons(self) -> tuple[str, ...]:
         return self.kinematics.reasons if self.forces is None else self.forces.reasons
 
-    def max_location(self, name: str) -> NDArray[np.float64]:
-        """Where each position's largest section von Mises of link ``name`` is, ground frame (P, 2) [m]."""
-        local = self.stresses[name].max_at
+    def max_location(self, name: str, member: int | None = None) -> NDArray[np.float64]:
+        """Where each position's largest section von Mises of link ``name`` (of its ``member``-th
+        member, if given) is, ground frame (P, 2) [m]."""
+        stress = self.stresses[name]
+        local = stress.max_at if member is None else stress.members[member].max_at
         motion = self.kinematics.links[name]
         c, s = np.cos(motion.angle), np.sin(motion.angle)
         return motion.origin + np.column_stack([c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1]])
@@ -138,7 +138,6 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
     seconds["kinematics"] = time.perf_counter() - start
     forces = None
     stresses: dict[str, StressSummary] = {}
-    curvature: dict[str, Curvature | None] = {}
     if plan.forces:
         start = time.perf_counter()
         forces = machine_forces(scene, kinematics)
@@ -150,6 +149,5 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
             members = link_members(profile, loads.frame_joints, scene.links[name].members)
             jobs.append((profile, loads, members, plan.stations))
         stresses = dict(zip(plan.stresses, links_section_stresses(jobs, plan.body_load_near_holes)))
-        curvature = {name: link_curvature(scene.links[name].profile, forces.link_loads[name].frame_joints) for name in plan.stresses}
         seconds["stresses"] = time.perf_counter() - start
-    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds, curvature)
+    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds)

@@ -56,7 +56,7 @@ CENTRELINE_POINTS = 121
 CENTRELINE_PASSES = 4
 """Moves of the centreline points onto the midpoints of their normal cuts: each pass takes the
 midline of straight cuts on a 96 degree arc about ten times closer to the true centreline."""
-CURVATURE_REACH = 0.5
+CURVATURE_REACH = 1.0
 """Half the span, in section depths, of the three centreline points whose circle gives the axis's
 curvature at a station (exact on a circular arc; averages the outline's flattening elsewhere)."""
 SPLIT_REACH = 1e-9
@@ -92,7 +92,8 @@ def member_tree(link: LinkProfile, root: tuple[int, int] = (0, 1)) -> tuple[tupl
         closer = weight[k] < best
         parent[closer], best[closer] = k, weight[k][closer]
         best[joined] = np.inf
-    return tuple(edges)
+    # the member of the root pair first: it is the one along the load frame
+    return tuple(sorted(edges, key=lambda edge: edge != (start, root[1] % n)))
 
 
 def check_members(link: LinkProfile, members: ArrayLike) -> tuple[tuple[int, int], ...]:

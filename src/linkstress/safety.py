@@ -8,11 +8,8 @@ tables at that position count: a position where every hole's geometry is outside
 pin-hole factor. A position where the stress is zero, or without a pin-hole factor, has no finite
 factor: the reports leave it empty (JSON null), never print infinity.
 
-A curved link (``linkstress.curvature``) gets no section factor: its straight-beam von Mises falls
-10-20 % short of the FEA, and a factor from it would be unconservative. The reports say why
-(``CURVED_NOTE``) and point to ``linkstress validate``. The pin-hole estimate's factor stays: Kt x
-the net-section stress of the pin force is the lug's own value at the hole, not a section across
-the curved bar.
+Every member of a link counts, a curved one with its curved-beam (Winkler-Bach) stresses on the cuts
+square to its centreline (``linkstress.members``), so a curved link has its section factor too.
 """
 
 from __future__ import annotations
@@ -26,30 +23,24 @@ from linkstress.analysis import AnalysisResult
 from linkstress.dynamics.section_stress import SectionStresses, StressSummary
 
 
-CURVED_NOTE = "not given: curved link (straight-beam value), see validate"
-"""Said in place of the section factor of a curved link."""
-
-
 @dataclass(frozen=True)
 class SafetyFactors:
     """One link's factors over P positions: ``sections`` (P,), yield strength over the largest
-    section von Mises, None where withheld (``withheld`` says why); ``pin_holes`` (P,) over the
+    section von Mises of any member; ``pin_holes`` (P,) over the
     largest pin-hole estimate inside the Kt tables, None where the link has none at any position (no
     pin hole, or every hole outside the tables at every position); ``pin_hole_inside`` (P,) where
     some hole's estimate is inside the tables (elsewhere ``pin_holes`` is inf: no factor); inf where
     the stress is zero."""
 
     yield_strength: float
-    sections: NDArray[np.float64] | None
+    sections: NDArray[np.float64]
     pin_holes: NDArray[np.float64] | None
-    withheld: str | None = None
     pin_hole_inside: NDArray[np.bool_] | None = None
 
-    def lowest(self, positions) -> tuple[float | None, float | None]:
-        """The lowest factors over ``positions`` (a mask or indices): against the sections (None
-        where withheld), and against the pin holes (None where no estimate is inside the tables
+    def lowest(self, positions) -> tuple[float, float | None]:
+        """The lowest factors over ``positions`` (a mask or indices): against the sections, and against the pin holes (None where no estimate is inside the tables
         there); inf where no stress there."""
-        sections = None if self.sections is None else float(self.sections[positions].min())
+        sections = float(self.sections[positions].min())
         pin_holes = None
         if self.pin_holes is not None:
             inside = self.pin_holes[positions][self.pin_hole_inside[positions]]
@@ -64,12 +55,11 @@ def yield_factor(yield_strength: float, stress: NDArray[np.float64]) -> NDArray[
         return np.where(stress > 0, yield_strength / stress, np.inf)
 
 
-def safety_factors(stress: SectionStresses | StressSummary, yield_strength: float, curved: bool = False) -> SafetyFactors:
+def safety_factors(stress: SectionStresses | StressSummary, yield_strength: float) -> SafetyFactors:
     """The factors of a link whose stresses are ``stress`` and whose material yields at
-    ``yield_strength`` [Pa]; a ``curved`` link's section factor is withheld."""
+    ``yield_strength`` [Pa]."""
     pin_holes, inside = pin_hole_factor(stress.pin_holes, yield_strength)
-    sections = None if curved else yield_factor(yield_strength, stress.max_von_mises)
-    return SafetyFactors(yield_strength, sections, pin_holes, CURVED_NOTE if curved else None, inside)
+    return SafetyFactors(yield_strength, yield_factor(yield_strength, stress.max_von_mises), pin_holes, inside)
 
 
 def pin_hole_factor(holes, yield_strength: float) -> tuple[NDArray[np.float64] | None, NDArray[np.bool_] | None]:
@@ -90,7 +80,7 @@ def link_safety_factors(result: AnalysisResult) -> dict[str, SafetyFactors]:
     for name, stress in result.stresses.items():
         material = result.scene.links[name].material
         if material is not None and material.yield_strength is not None:
-            factors[name] = safety_factors(stress, material.yield_strength, result.curved(name))
+            factors[name] = safety_factors(stress, material.yield_strength)
     return factors
 
 

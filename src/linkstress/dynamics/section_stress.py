@@ -176,7 +176,7 @@ def section_stresses(
     """
     member = member or frame_member(link, loads.frame_joints)
     holes = pin_hole_estimates(link, loads, member_depths((member,)))
-    return _Sweep.of(link, loads, member.cuts(stations), body_load_near_holes, holes).stresses(slice(None))
+    return _Sweep.of(link, loads, member, stations, body_load_near_holes, holes).stresses(slice(None))
 
 
 @dataclass(frozen=True)
@@ -202,6 +202,10 @@ class MemberSummary:
     @property
     def joints(self) -> tuple[int, int]:
         return self.sweep.cuts.joints
+
+    @property
+    def member(self) -> Member:
+        return self.sweep.member
 
     @property
     def theory(self) -> str:
@@ -282,7 +286,7 @@ def links_section_stresses(
     for link, loads, members, count in jobs:
         holes = pin_hole_estimates(link, loads, member_depths(members))
         sweeps.append([
-            _Sweep.of(link, loads, member.cuts(member.stations(count)), body_load_near_holes, holes) for member in members
+            _Sweep.of(link, loads, member, member.stations(count), body_load_near_holes, holes) for member in members
         ])
     every = [sweep for link_sweeps in sweeps for sweep in link_sweeps]
     threaded = cores() > 1 and sum(sweep.pairs for sweep in every) >= THREADED_PAIRS
@@ -354,6 +358,7 @@ class _Sweep:
 
     link: LinkProfile
     loads: LinkLoadCase
+    member: Member
     cuts: MemberCuts
     near_hole: NDArray[np.bool_]
     basis: ForceBasis
@@ -365,9 +370,10 @@ class _Sweep:
 
     @classmethod
     def of(
-        cls, link: LinkProfile, loads: LinkLoadCase, cuts: MemberCuts, body_load_near_holes: bool = False,
-        pin_holes: tuple[PinHoleEstimate, ...] = (),
+        cls, link: LinkProfile, loads: LinkLoadCase, member: Member, stations: NDArray[np.float64],
+        body_load_near_holes: bool = False, pin_holes: tuple[PinHoleEstimate, ...] = (),
     ) -> "_Sweep":
+        cuts = member.cuts(stations)
         near_hole = cuts.nominal
         table = cuts.table
         curved = theory_of(cuts.curvature, table.top - table.bottom) == "curved"
@@ -376,8 +382,8 @@ class _Sweep:
         shape = SectionShape.of(table, body_gains(cuts.origin, cuts.normal, link.density), body_term)
         basis = member_force_basis(link, loads, cuts)
         return cls(
-            link, loads, cuts, near_hole, basis, shape, shape.fibre_basis(basis), load_coefficients(loads), pin_holes,
-            CurvedFibres.of(table, cuts.curvature, curved),
+            link, loads, member, cuts, near_hole, basis, shape, shape.fibre_basis(basis), load_coefficients(loads),
+            pin_holes, CurvedFibres.of(table, cuts.curvature, curved),
         )
 
     @property

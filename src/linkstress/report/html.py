@@ -208,8 +208,6 @@ def _stress_table(result: AnalysisResult) -> str:
             "yes" if result.curved(name) else "no",
         ))
         lines = figure_lines(figures)
-        if name in factors and factors[name].withheld is not None:
-            lines.append(f"yield safety factor {factors[name].withheld}")
         where += [f"{name}: {line}" for line in lines]
     if not rows:
         return ""
@@ -264,7 +262,7 @@ def _safety_table(result: AnalysisResult) -> str:
         section, pin = figures.section_factor, figures.pin_hole_factor
         rows.append((
             name, factors.yield_strength,
-            factors.withheld if section is None else _finite(section.value),
+            _finite(section.value),
             "-" if section is None else section.input_angle_deg,
             "-" if pin is None else _finite(pin.value),
             "-" if pin is None else pin.input_angle_deg,
@@ -278,8 +276,8 @@ def _safety_table(result: AnalysisResult) -> str:
         "<h3>Safety factors against yield</h3>"
         + table_html(headers, rows)
         + '<p class="note">The material\'s yield_strength over the largest section von Mises (beam theory, nominal '
-        "near pin holes) and over the largest pin-hole estimate Kt x nominal, each at the input angle given; a "
-        "curved link's straight-beam value gives no factor (linkstress validate gives the FEA peak's).</p>"
+        "near pin holes and junctions, curved-beam on curved members) and over the largest pin-hole estimate Kt x "
+        "nominal, each at the input angle given.</p>"
     )
 
 

@@ -48,7 +48,7 @@ class SweepFigure:
 class LinkFigures:
     """The figures of one link over the feasible positions: ``max_von_mises``, ``away_from_holes``
     (None where every station is near a hole), ``pin_hole`` (None without an estimate) and, with a
-    yield strength, ``section_factor`` (None where withheld) and ``pin_hole_factor``."""
+    yield strength, ``section_factor`` and ``pin_hole_factor``."""
 
     max_von_mises: SweepFigure
     away_from_holes: SweepFigure | None

@@ -4,17 +4,19 @@ Per position: ``input_angle_deg``, ``feasible``, ``reason``, ``warnings`` (only 
 this position passed a loop's toggle or change point: one message each, see
 ``kinematics.crossings``), ``transmission_angle_deg`` per loop (feasible positions); per link ``angle_deg``,
 ``omega_rad_s``, ``alpha_rad_s2``, ``acc_G_m_s2`` (where the centre of mass is known),
-``curved`` (the link's neutral axis bends off a straight line, ``linkstress.curvature``: its
-straight-beam values fall short),
-``max_von_mises_pa`` and ``max_at_m`` (ground frame) with ``max_von_mises_away_from_holes_pa`` (when
+``curved`` (some member of the link is curved: sectioned square to its centreline,
+``linkstress.members``), ``max_von_mises_pa`` and ``max_at_m`` (ground frame, the largest over the
+link's members) with ``max_von_mises_away_from_holes_pa`` (when
 some station is at least a section depth from every pin hole), ``equilibrium_mismatch`` and
 ``pin_holes`` (per pin hole: Kt, the net-section stress of its pin force and the Kt x nominal
 estimate, labelled as such, with the width, end distance and end shape the force sees and whether
 that is outside the Kt tables) where stresses were computed, ``yield_safety_factor`` (yield strength
-over ``max_von_mises_pa``; null on a curved link, with ``yield_safety_factor_note`` saying why) and
+over ``max_von_mises_pa``) and
 ``pin_hole_yield_safety_factor_estimate`` (over the largest pin-hole
 estimate) where the material gives ``yield_strength`` (null where the stress is zero), and with
-``stations`` the arrays along the link; per mechanism ``forces_n`` (Norton names) and
+``stations`` the arrays along the link's first member; ``members`` (per member of the link: its
+``joints``, the ``beam_theory`` its sections took, "straight" or "curved" (Winkler-Bach), and its
+own ``max_von_mises_pa`` and ``max_at_m``); per mechanism ``forces_n`` (Norton names) and
 ``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 The records are made a block of positions at a time (``stream_position_records``), for
@@ -94,12 +96,9 @@ def stream_position_records(result: AnalysisResult, stations: bool = False) -> I
             values["pin_holes"] = [_pin_hole_lists(h) for h in stress.pin_holes]
         if stations:
             values["stations"] = partial(_block_station_lists, stress)
+        values["members"] = partial(_member_rows, result, name)
     for name, factors in link_safety_factors(result).items():
-        if factors.sections is None:
-            link_values[name]["yield_safety_factor"] = None
-            link_values[name]["yield_safety_factor_note"] = factors.withheld
-        else:
-            link_values[name]["yield_safety_factor"] = partial(_finite_rows, factors.sections)
+        link_values[name]["yield_safety_factor"] = partial(_finite_rows, factors.sections)
         if factors.pin_holes is not None:
             link_values[name]["pin_hole_yield_safety_factor_estimate"] = partial(_finite_rows, factors.pin_holes)
     mechanism_values = _mechanism_lists(result)
@@ -141,6 +140,21 @@ def record_blocks(result: AnalysisResult) -> list[slice]:
 
 def _block_station_lists(stress: StressSummary, block: slice) -> dict[str, object]:
     return _station_lists(stress.at(block))
+
+
+def _member_rows(result: AnalysisResult, name: str, block: slice) -> list[list[dict]]:
+    """Per position of ``block``, the list of the link's members: joints, beam theory, largest von
+    Mises and where (ground frame)."""
+    members = result.stresses[name].members
+    places = [result.max_location(name, k)[block].tolist() for k in range(len(members))]
+    values = [m.max_von_mises[block].tolist() for m in members]
+    return [
+        [
+            {"joints": list(m.joints), "beam_theory": m.theory, "max_von_mises_pa": values[k][p], "max_at_m": places[k][p]}
+            for k, m in enumerate(members)
+        ]
+        for p in range(len(values[0]))
+    ]
 
 
 def _finite_rows(values: NDArray[np.float64], block: slice) -> list[float | None]:

@@ -119,18 +119,20 @@ def transmission_warnings(result: AnalysisResult) -> list[str]:
 
 
 def curved_warnings(result: AnalysisResult) -> list[str]:
-    """A warning per curved link: how curved, why its section values fall short, what to do."""
+    """A note per curved member: how curved, and the theory its sections took."""
     lines = []
-    for name, curvature in result.curvature.items():
-        if curvature is None or not curvature.curved:
-            continue
-        material = result.scene.links[name].material
-        factor = "" if material is None or material.yield_strength is None else ", so no yield safety factor is given from them"
-        lines.append(
-            f"warning: link {name} is curved (its neutral axis wanders {curvature.depths:.2g} section depths, "
-            f"{curvature.wander:.3g} m, off a straight line): its straight-beam section values are unconservative "
-            f"on a curved bar by about 10-20 %{factor}; run linkstress validate {result.scene.path.name} for the FEA value"
-        )
+    for name, stress in result.stresses.items():
+        for m in stress.members:
+            if not m.member.curved:
+                continue
+            theory = (
+                "curved-beam (Winkler-Bach) normal stress where its radius is under ten section depths"
+                if m.theory == "curved" else "straight-beam stresses (its radius is over ten section depths)"
+            )
+            lines.append(
+                f"note: link {name}, member {list(m.joints)} is curved (its centreline strays {m.member.wander:.2g} "
+                f"section depths off a straight line): sectioned square to its centreline, {theory}"
+            )
     return lines
 
 
@@ -206,8 +208,6 @@ def stress_table(result: AnalysisResult) -> str:
             row += _factor_cells(factors.get(name), ok)
         rows.append(tuple(row))
         where += [f"  {name}: {line}" for line in figure_lines(figures)]
-        if name in factors and factors[name].withheld is not None:
-            where.append(f"  {name}: yield safety factor {factors[name].withheld}")
     headers = ["link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
                "pin hole estimate [Pa]", "equilibrium check"]
     if factors:
@@ -253,7 +253,7 @@ def _factor_cells(factors, ok) -> list[str]:
         return ["-", "-"]
     sections, pin_holes = factors.lowest(ok)
     return [
-        factors.withheld if sections is None else _factor_text(sections),
+        _factor_text(sections),
         "-" if pin_holes is None else _factor_text(pin_holes),
     ]
 
