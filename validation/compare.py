@@ -1,23 +1,28 @@
 """Beam sections against plane-stress FEA of the same link under the same loads.
 
-Three comparisons per link and position (docs/design.md, "FEA cross-check"):
+Three comparisons per link and position (docs/design.md, "FEA cross-check"), along each member of
+the link (the arms between its joints, ``linkstress.members``), each sectioned on its own axis:
 
-- section resultants: N, V, M integrated over FEA cuts at the comparison stations against the
-  beam's free-body values; error = largest difference over the stations, relative to the largest
-  section force (N, V) of the link at that position, or for M to the larger of the largest moment
-  and that force times a sixth of the depth (which stresses the outer fibre alike);
-- nominal von Mises: at stations at least one section depth from every pin hole's centre, the FEA
-  von Mises at the beam's critical fibre against the beam's; error = largest difference over those
-  stations relative to the largest beam value among them;
+- section resultants: N, V, M integrated over FEA cuts, the beam's section segments normal to the
+  member's axis at the comparison stations, against the beam's free-body values; error = largest
+  difference over the stations, relative to the largest section force (N, V) of the member at that
+  position, or for M to the larger of the largest moment and that force times a sixth of the depth
+  (which stresses the outer fibre alike);
+- nominal von Mises: at stations at least one section depth from every pin hole's centre (and, on
+  a member, from every other member's axis), the FEA von Mises at the beam's critical fibre against
+  the beam's; error = largest difference over those stations relative to the largest beam value
+  among them;
 - peak von Mises: the FEA's largest anywhere against the beam's largest (which is nominal near
   holes); their difference is the stress concentration beam theory does not see;
 - pin holes: each hole's Kt x nominal estimate against the FEA's largest within HOLE_NEIGHBOURHOOD
   hole radii of that hole's centre, at the same position.
 
-The comparison stations avoid cutting pin holes (a cut through a hole splits the bearing pressure
-between its two sides, which a beam cannot), and always include the midpoints between joints. On a
-link too short for its holes (no station HOLE_CLEARANCE radii from every hole) the resultants are
-compared at the midpoints between joints whose cuts miss the holes, and the stations say so.
+A link's errors are the worst over its members. The comparison stations lie between a member's
+joints, avoid cutting pin holes (a cut through a hole splits the bearing pressure between its two
+sides, which a beam cannot) and keep a section depth from the other members' axes (where arms meet,
+neither arm is a beam), and always include the midpoint. On a member too short for its holes (no
+station HOLE_CLEARANCE radii from every hole) the resultants are compared at its midpoint if its
+cut misses the holes, and the stations say so.
 
 With a refinement study, ``LinkComparison.convergence`` says how much each compared quantity
 (resultants, nominal, peak) changed between the two finest meshes, against its own limit.
@@ -31,13 +36,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
 from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
-from linkstress.members import Member
+from linkstress.members import Member, frame_member
 from linkstress.profile import LinkProfile
 from linkstress.validation.convergence import (
     CONVERGED_CHANGE,
@@ -224,7 +229,8 @@ class LinkComparison:
 
     @property
     def beam_max(self) -> NDArray[np.float64]:
-        return self.beam.max_von_mises
+        """(Pc,) [Pa]: the beam's largest von Mises at the compared stations, over every member."""
+        return np.max([self.beam.max_von_mises, *(m.beam_max for m in self.members)], axis=0)
 
     @property
     def fea_peak(self) -> NDArray[np.float64]:
@@ -359,43 +365,21 @@ def _hole_peak(fea: LinkFEAResult, hole: PinHoleEstimate) -> HolePeak:
 
 
 def comparison_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> NDArray[np.float64]:
-    """Stations [m, member frame]: ``count`` cell centres between the link's outermost joints and the
-    midpoint between each pair of consecutive joints, all keeping clear of pin holes. (Past the
-    outermost joints a link carries only its own inertia: small resultants among large local
-    stresses around a loaded pin, a comparison that says nothing about the beam.) On a link too
-    short for that, the midpoints whose cuts miss the holes (``choose_stations``)."""
+    """Stations s [m] along the link's member between its frame joints (``choose_stations``)."""
     return choose_stations(link, frame_joints, count).x
 
 
-def choose_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> ComparisonStations:
-    """``comparison_stations`` with a note when the link is too short for stations HOLE_CLEARANCE
-    radii from every hole: then the midpoints between consecutive joints whose cuts miss every hole
-    (CUT_CLEARANCE). Raises FEAError naming the link when no midpoint cut misses the holes."""
-    frame = link.frame(*frame_joints)
-    joints_x = np.sort(frame.to_local(link.joints)[:, 0])
-    lo, hi = joints_x[0], joints_x[-1]
-    midpoints = (joints_x[:-1] + joints_x[1:]) / 2
-    candidates = np.concatenate([lo + (hi - lo) * (np.arange(count) + 0.5) / count, midpoints])
-    centres, radii = _holes_along(link, frame_joints)
-    clearance = np.abs(candidates[:, None] - centres) / radii  # (candidates, holes) [hole radii]
-    keep = (clearance > HOLE_CLEARANCE).all(axis=1)
-    if keep.any():
-        return ComparisonStations(np.unique(np.round(candidates[keep], 12)))
-    cut = (clearance[count:] > CUT_CLEARANCE).all(axis=1)
-    if not cut.any():
-        raise FEAError(
-            f"link {link.name!r}: no cut between its joints misses the pin holes (joints at x = "
-            f"{np.round(joints_x, 6).tolist()} m, holes {np.round(2 * radii, 6).tolist()} m across): "
-            "there is nowhere to compare section resultants"
-        )
-    x = np.unique(np.round(midpoints[cut], 12))
-    note = (
-        f"the link is short for its holes: no station between the joints is more than {HOLE_CLEARANCE:g} hole "
-        f"radii from every hole, so the resultants are compared at the midpoint(s) between joints x = "
-        f"{', '.join(f'{v:.4g}' for v in x)} m (member frame), {clearance[count:][cut].min():.3g} radii from the "
-        "nearest hole, where the pins' local stresses are steep"
-    )
-    return ComparisonStations(x, note)
+def choose_stations(
+    link: LinkProfile,
+    frame_joints: tuple[int, int],
+    count: int = COMPARISON_STATIONS,
+    members: ArrayLike | None = None,
+) -> ComparisonStations:
+    """``member_stations`` of the link's member between its frame joints (``frame_member``, of the
+    scene's ``members`` pairs if given): clear of pin holes and of the other members, between the
+    joints (past a joint a link carries only its own inertia: small resultants among large local
+    stresses around a loaded pin, a comparison that says nothing about the beam)."""
+    return member_stations(frame_member(link, frame_joints, members), count)
 
 
 def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> ComparisonStations:
@@ -460,12 +444,6 @@ def _segment_distance(points: NDArray[np.float64], segments: NDArray[np.float64]
     return np.hypot(*np.moveaxis(start + u[..., None] * along - points[None], -1, 0))
 
 
-def _holes_along(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Centres x (H,) [m, member frame] and equivalent radii (H,) [m] of the link's holes."""
-    centres, radii = hole_circles(link, frame_joints)
-    return centres[:, 0], radii
-
-
 def default_mesh(
     link: LinkProfile,
     frame_joints: tuple[int, int],
@@ -476,7 +454,8 @@ def default_mesh(
     """Mesh settings sized from the link: about ELEMENTS_PER_DEPTH elements across its slenderest
     compared section (at ``stations`` and at the ``members``' comparison stations),
     ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
-    tables = [link.sections(stations, *frame_joints), *(m.cuts(member_stations(m).x).table for m in members)]
+    frame = frame_member(link, frame_joints)
+    tables = [frame.cuts(stations).table, *(m.cuts(member_stations(m).x).table for m in members)]
     depth = float(min((t.top - t.bottom).min() for t in tables))
     size = size or depth / ELEMENTS_PER_DEPTH
     diameters = [2 * math.sqrt(Polygon(r).area / math.pi) for r in link.outline.interiors]
@@ -509,7 +488,8 @@ def compare_link(
     stations = np.asarray(stations, float)
     selected = loads.at(positions)
     start = time.perf_counter()
-    beam = section_stresses(link, selected, stations, body_load_near_holes)
+    on_frame = [m for m in members if m.joints == tuple(frame_joints)]
+    beam = section_stresses(link, selected, stations, body_load_near_holes, member=on_frame[0] if on_frame else None)
     forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
     # The stations are on the frame's member (its sections normal to its axis, vertical when straight).
     along = MemberBeam(beam.cuts.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y)

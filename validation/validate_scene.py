@@ -129,7 +129,7 @@ def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
     if not len(chosen):
         return name, None, "no feasible position to compare", 0.0
     try:
-        stations = choose_stations(link, loads.frame_joints)
+        stations = choose_stations(link, loads.frame_joints, members=member_pairs)
         members = link_members(link, loads.frame_joints, member_pairs)
         mesh = replace(default_mesh(link, loads.frame_joints, stations.x, size, members), order=order)
         if order == 1 and size is None:
