@@ -28,7 +28,6 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 from shapely.geometry import LinearRing, LineString, Point, Polygon
-from shapely.geometry.polygon import orient
 from skfem import MeshTri1, MeshTri2
 
 from linkstress.validation.errors import FEAError
@@ -62,10 +61,10 @@ class MeshSettings:
     size: float
     hole_size: float | None = None
     stations: tuple[float, ...] = ()
-    cuts: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = ()
     station_size: float | None = None
     grading: float = 0.3
     order: int = 2
+    cuts: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stations", tuple(float(s) for s in np.atleast_1d(self.stations)))
@@ -153,8 +152,6 @@ def mesh_region(
     """
     start = time.perf_counter()
     check_meshable(region, settings, name)
-    # gmsh's fragment leaves the cuts out of the surface of a clockwise outline
-    region = orient(region, 1.0)
     stations = np.asarray(settings.stations, float)
     minx, _, maxx, _ = region.bounds
     margin = 1e-6 * (maxx - minx)
@@ -285,6 +282,7 @@ def _build_geometry(region, lines, settings, points) -> dict[str, list[int]]:
                 (cut_pieces[k] if inside else dangling).append(tag)
         occ.remove([(1, t) for t in dangling], recursive=True)
     occ.synchronize()
+    _embed_loose([t for piece in cut_pieces for t in piece])
     cut_tags = {t for piece in cut_pieces for t in piece}
     boundary = [t for _, t in gmsh.model.getEntities(1) if t not in cut_tags]
     nearest = [_nearest_ring(_curve_midpoint(t), rings) for t in boundary]
@@ -299,6 +297,20 @@ def _build_geometry(region, lines, settings, points) -> dict[str, list[int]]:
     hole_curves = [t for key, tags in groups.items() if key.startswith("hole") for t in tags]
     _size_fields(settings, hole_curves, sorted(cut_tags), points)
     return groups
+
+
+def _embed_loose(curves: list[int]) -> None:
+    """Embed in the surface that holds it each of ``curves`` that the fragment split off at the
+    outline but left out of the surface's boundary: OCC does so on some outlines (an L whose ring
+    runs clockwise, with holes), and the mesh would ignore the cut."""
+    surfaces = [t for _, t in gmsh.model.getEntities(2)]
+    bound = {t for s in surfaces for _, t in gmsh.model.getBoundary([(2, s)], combined=False, oriented=False)}
+    for curve in curves:
+        if curve in bound:
+            continue
+        x, y = _curve_midpoint(curve)
+        holder = [s for s in surfaces if gmsh.model.isInside(2, s, [x, y, 0.0])]
+        gmsh.model.mesh.embed(1, [curve], 2, holder[0])
 
 
 def _ring_curves(ring: LinearRing, short: float) -> list[int]:
