@@ -244,3 +244,17 @@ def test_a_ring_segment_pulled_at_its_pins_takes_winkler_bachs_stress_at_its_cro
     assert abs(closed[ri]) > abs(closed[ro]) and CURVED_BEAM_LIMIT < h / radius
     straight = p / area + p * arm * (h / 2) * 12 / (0.01 * h**3)
     assert abs(closed[ri]) > 1.1 * straight
+
+
+def test_each_pin_hole_of_a_bell_crank_reports_the_depth_of_its_arm():
+    # Through O4 a cut square to either arm runs along the other (185 mm): the depth there is the
+    # arms' 35 mm; at B and C, the cut across the arm through the pin.
+    from linkstress.dynamics.pin_holes import pin_hole_estimates
+    from linkstress.dynamics.section_stress import member_depths
+
+    crank = bell_crank()
+    members = link_members(crank, (0, 1))
+    loads = static_loads(3, {2: (0.0, -1000.0), 1: (1000.0, 0.0), 0: (-1000.0, 1000.0)})
+    holes = pin_hole_estimates(crank, loads, member_depths(members))
+    assert [h.joint for h in holes] == [0, 1, 2]
+    assert [h.depth for h in holes] == pytest.approx([WIDTH] * 3, rel=1e-6)

@@ -9,6 +9,7 @@ import pytest
 
 from linkstress.cli import main
 from linkstress.errors import SceneError
+from linkstress.members import link_members
 from linkstress.scene import load_scene
 
 BASE = """
@@ -263,3 +264,32 @@ def test_a_force_10_mm_outside_its_link_exits_2_with_the_distance_and_writes_not
 def test_a_force_on_its_link_is_read(tmp_path, at_m, where, upright):
     scene = load_scene(crank_force_scene(tmp_path, at_m, upright))
     assert scene.loads.forces[0].link == "crank", where
+
+
+@pytest.mark.parametrize("members, message", [
+    ("[[0, 1], [1, 0]]", "links.crank.members: link 'crank': members [(0, 1), (1, 0)] close a loop at member [1, 0]; give a tree"),
+    ("[[0, 2]]", "links.crank.members: link 'crank': member [0, 2] must join two different joints among 0..1"),
+    ("[0, 1]", "links.crank.members: must be a list of joint pairs [[i, j], ...] (joint indices, integers)"),
+    ('[["a", 1]]', "links.crank.members: must be a list of joint pairs [[i, j], ...] (joint indices, integers)"),
+])
+def test_wrong_members_of_a_sketch_link_exit_2_naming_the_key(tmp_path, capsys, members, message):
+    path = crank_force_scene(tmp_path, "[0.01, 0.0]")
+    path.write_text(path.read_text().replace('layer = "crank"', f'layer = "crank"\nmembers = {members}', 1))
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(path), "--json", str(out)]) == 2
+    error = capsys.readouterr().err
+    assert message in error and error.count("\n") == 1 and not out.exists()
+
+
+def test_members_of_a_bare_joints_link_are_refused(tmp_path):
+    with pytest.raises(SceneError, match="links.coupler.members: only for a sketch link"):
+        load(tmp_path, BASE.replace("[links.coupler]\n", "[links.coupler]\nmembers = [[0, 1]]\n"))
+
+
+def test_members_named_in_a_scene_are_the_ones_analysed(tmp_path):
+    path = crank_force_scene(tmp_path, "[0.01, 0.0]")
+    path.write_text(path.read_text().replace('layer = "crank"', 'layer = "crank"\nmembers = [[1, 0]]', 1))
+    crank = load_scene(path).links["crank"]
+    assert crank.members == ((1, 0),)
+    (member,) = link_members(crank.profile, crank.frame_joints, crank.members)
+    assert member.joints == (1, 0)

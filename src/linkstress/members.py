@@ -41,7 +41,8 @@ from shapely.ops import split
 from linkstress.boundary import oriented_rings, segment_moments
 from linkstress.errors import GeometryError
 from linkstress.profile import LinkProfile
-from linkstress.sections import SectionTable, _table_from_chords
+from linkstress.region_moments import region_moments
+from linkstress.sections import SectionTable, _table_from_chords, edge_crossings
 
 OUTSIDE_PENALTY = 100.0
 """Weight per metre of a joint-to-joint line that leaves the material, against 1 per metre inside:
@@ -416,14 +417,17 @@ class Member:
 
 def _member_cuts(member: Member, s, origin, tangent, curvature) -> MemberCuts:
     edges, link = member.edges, member.link
-    lines = cut_lines(edges, origin, tangent)
+    if member.curved:
+        lines = cut_lines(edges, origin, tangent)
+        left = half_plane_moments(edges, origin, tangent)
+    else:
+        lines, left = _straight_cuts(member, s, tangent)
     try:
         bottom, top, intervals = through_axis(lines, len(s))
     except GeometryError as error:
         raise GeometryError(f"link {link.name!r}, member {list(member.joints)}: {error}") from None
     station, a, b = section_chords(lines, bottom, top)
     table = _table_from_chords(s, link.thickness, station, a, b)
-    left = half_plane_moments(edges, origin, tangent)
     normal = np.column_stack([-tangent[:, 1], tangent[:, 0]])
     right_pieces = {}
     for k in np.flatnonzero(intervals > 1):
@@ -440,6 +444,36 @@ def _member_cuts(member: Member, s, origin, tangent, curvature) -> MemberCuts:
     return MemberCuts(
         member.joints, origin, tangent, curvature, table, near_hole, junction, left, edges.moments, right_pieces,
     )
+
+
+def vertical_lines(link: LinkProfile, pair: tuple[int, int], x: NDArray[np.float64]) -> CutLines:
+    """``cut_lines`` of the cuts square to the line through joints ``pair`` at distances ``x`` [m] from
+    its first joint (v measured from that line), by the sorted sweep of vertical cuts in that member
+    frame (``linkstress.sections``): the cost grows with the crossings, not edges x stations. A cut
+    at the outline's far end takes the section just behind it."""
+    boundary = link.boundary(*pair)
+    x = np.clip(x, boundary.x_min, boundary.x_max)
+    order = np.argsort(x, kind="stable")
+    at_end = x[order] == boundary.x_max
+    outer = len(link._rings[0])
+    found = []
+    for rows, left_limit in ((order[~at_end], False), (order[at_end], True)):
+        if len(rows):
+            cut = edge_crossings(boundary.starts, boundary.ends, x[rows], left_limit=left_limit, sort=False)
+            found.append((rows[cut.station], cut.y, cut.edge < outer))
+    station, v, on_outer = (np.concatenate(parts) for parts in zip(*found))
+    sort = np.lexsort((v, station))
+    return CutLines(station[sort], v[sort], on_outer[sort])
+
+
+def _straight_cuts(member: Member, s: NDArray[np.float64], tangent: NDArray[np.float64]) -> tuple[CutLines, NDArray[np.float64]]:
+    """``cut_lines`` and ``half_plane_moments`` of a straight member's stations, by sorted sweeps of
+    vertical cuts in its member frame (``vertical_lines``, ``linkstress.region_moments``)."""
+    boundary = member.link.boundary(*member.joints)
+    moments = region_moments(boundary, np.clip(s, boundary.x_min, boundary.x_max))
+    local = np.array([moments.area, moments.first_x, moments.first_y, moments.polar])
+    joint = np.broadcast_to(member.path[0], (len(s), 2))
+    return vertical_lines(member.link, member.joints, s), _to_load_frame(local, joint, tangent)
 
 
 NEAR_SLACK = 1e-9
@@ -508,7 +542,7 @@ def frame_member(link: LinkProfile, frame_joints: tuple[int, int], members: Arra
 def _member(link, pair, frame_joints, edges: Edges, joints, degree) -> Member:
     i, j = pair
     a, b = joints[i], joints[j]
-    path, depth, wander = centreline(edges, a, b)
+    path, depth, wander = centreline(edges, a, b, vertical_lines(link, pair, _first_midline(a, b)))
     curved = wander > CURVED_WANDER
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
     length = float(arc[-1])
@@ -530,11 +564,19 @@ def _reach(edges: Edges, point, direction) -> float:
     return float(top[0])
 
 
-def centreline(edges: Edges, a: NDArray[np.float64], b: NDArray[np.float64]) -> tuple[NDArray[np.float64], float, float]:
+def _first_midline(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Distances [m] from ``a`` toward ``b`` of the centreline's points between them."""
+    return float(np.hypot(*(b - a))) * np.arange(1, CENTRELINE_POINTS + 1) / (CENTRELINE_POINTS + 1)
+
+
+def centreline(
+    edges: Edges, a: NDArray[np.float64], b: NDArray[np.float64], square: CutLines,
+) -> tuple[NDArray[np.float64], float, float]:
     """The material centreline (K, 2) [m] from joint point ``a`` to ``b``, its smallest section depth
     [m] clear of the joints, and how far it strays from a straight line, in those depths.
 
-    Cuts square to the line a-b give a first midline. Its points whose cut is more than
+    Cuts square to the line a-b at ``_first_midline`` (``square``, v measured from that line) give a
+    first midline. Its points whose cut is more than
     ``REGULAR_WIDTH`` times the usual (median) width cut along a lug or another arm and are left out;
     the rest, more than their width from each joint (a lug's rounded end says nothing of the bar's
     axis), measure the spread about their least-squares line. A straight member keeps the line a-b;
@@ -543,9 +585,8 @@ def centreline(edges: Edges, a: NDArray[np.float64], b: NDArray[np.float64]) -> 
     length = float(np.hypot(*span))
     along = span / length
     count = CENTRELINE_POINTS
-    points = a + np.outer(length * np.arange(1, count + 1) / (count + 1), along)
-    tangent = np.broadcast_to(along, points.shape).copy()
-    bottom, top, _ = through_axis(cut_lines(edges, points, tangent), count)
+    points = a + np.outer(_first_midline(a, b), along)
+    bottom, top, _ = through_axis(square, count)
     width = top - bottom
     points = points + ((bottom + top) / 2)[:, None] * np.array([-along[1], along[0]])
     far = (np.hypot(*(points - a).T) > width) & (np.hypot(*(points - b).T) > width)

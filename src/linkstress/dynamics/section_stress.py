@@ -307,13 +307,17 @@ def links_section_stresses(
 
 
 def member_depths(members: Sequence[Member]) -> dict[int, float]:
-    """Per joint, the section depth [m] through it across the member it sits on (the smallest where
-    members meet at it): the depth a pin-hole estimate reports."""
+    """Per joint, the section depth [m] of the member it sits on, the depth a pin-hole estimate
+    reports: through a joint that ends the tree, the cut across its member there; at a joint where
+    members meet, whose cuts run along the other arms, the smallest depth of those members between
+    their joints."""
+    ends = [end for member in members for end in member.joints]
     depths: dict[int, float] = {}
     for member in members:
         table = member.cuts([0.0, member.length]).table
         for end, depth in zip(member.joints, table.top - table.bottom):
-            depths[end] = min(depths.get(end, np.inf), float(depth))
+            depth = float(depth) if ends.count(end) == 1 else member.depth
+            depths[end] = min(depths.get(end, np.inf), depth)
     return depths
 
 

@@ -55,6 +55,8 @@ class LinkFigures:
     pin_hole: SweepFigure | None
     section_factor: SweepFigure | None = None
     pin_hole_factor: SweepFigure | None = None
+    members: tuple[SweepFigure, ...] = ()
+    """Each member's largest von Mises, for a link of more than one member."""
 
 
 def to_ground(result: AnalysisResult, name: str, k: int, local: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -80,8 +82,9 @@ def link_figures(result: AnalysisResult, name: str, factors: SafetyFactors | Non
     peak = SweepFigure("max von Mises", float(stress.max_von_mises[k]), k, float(angles[k]), result.max_location(name)[k])
     away = _away_from_holes(result, name, ok)
     pin_hole = _pin_hole(result, name, ok)
+    members = _members(result, name, ok)
     if factors is None:
-        return LinkFigures(peak, away, pin_hole)
+        return LinkFigures(peak, away, pin_hole, members=members)
     section_factor = None
     if factors.sections is not None:
         section_factor = SweepFigure("yield safety factor", float(factors.sections[k]), k, peak.input_angle_deg, peak.at)
@@ -92,7 +95,22 @@ def link_figures(result: AnalysisResult, name: str, factors: SafetyFactors | Non
             "yield safety factor at pin holes (estimate)", float(factors.pin_holes[j]), j, pin_hole.input_angle_deg,
             pin_hole.at, pin_hole.joint,
         )
-    return LinkFigures(peak, away, pin_hole, section_factor, pin_factor)
+    return LinkFigures(peak, away, pin_hole, section_factor, pin_factor, members)
+
+
+def _members(result: AnalysisResult, name: str, ok: NDArray[np.bool_]) -> tuple[SweepFigure, ...]:
+    """Each member's largest von Mises over the sweep, where a link has more than one member."""
+    members = result.stresses[name].members
+    if len(members) < 2:
+        return ()
+    angles = result.scene.motion.angle_deg
+    figures = []
+    for index, member in enumerate(members):
+        k = worst_position(member.max_von_mises, ok)
+        what = f"member {list(member.joints)} ({member.theory} beam) max von Mises"
+        at = result.max_location(name, index)[k]
+        figures.append(SweepFigure(what, float(member.max_von_mises[k]), k, float(angles[k]), at))
+    return tuple(figures)
 
 
 def _away_from_holes(result: AnalysisResult, name: str, ok: NDArray[np.bool_]) -> SweepFigure | None:
@@ -101,10 +119,13 @@ def _away_from_holes(result: AnalysisResult, name: str, ok: NDArray[np.bool_]) -
     if values is None:
         return None
     k = worst_position(values, ok)
-    away = np.flatnonzero(~stress.near_hole)
-    arrays = stress.at(slice(k, k + 1))  # that one position's arrays along the link
+    member = max(
+        (m for m in stress.members if m.max_away_from_holes is not None), key=lambda m: m.max_away_from_holes[k],
+    )
+    away = np.flatnonzero(~member.near_hole)
+    arrays = member.at(slice(k, k + 1))  # that one position's arrays along the member
     s = int(away[np.argmax(arrays.von_mises[0, away])])
-    at = to_ground(result, name, k, np.array([arrays.x[s], arrays.fibre_y[0, s]]))
+    at = to_ground(result, name, k, arrays.cuts.points(arrays.fibre_y[0])[s])
     return SweepFigure("max von Mises away from holes", float(values[k]), k, float(result.scene.motion.angle_deg[k]), at)
 
 

@@ -213,7 +213,8 @@ def stress_table(result: AnalysisResult) -> str:
     if factors:
         headers += ["yield safety factor", "at pin holes (estimate)"]
     lines = [
-        "section stresses (beam theory; within one section depth of a pin hole the value is nominal)",
+        "section stresses (beam theory along every member of a link; within one section depth of a pin hole "
+        "or of another member's axis the value is nominal)",
         format_table(tuple(headers), rows),
     ]
     if where:
@@ -236,6 +237,7 @@ def figure_lines(figures: LinkFigures) -> list[str]:
     listed = [
         (figures.max_von_mises, " Pa", 6), (figures.away_from_holes, " Pa", 6), (figures.pin_hole, " Pa", 6),
         (figures.section_factor, "", 3), (figures.pin_hole_factor, "", 3),
+        *((member, " Pa", 6) for member in figures.members),
     ]
     return [figure.describe(unit, digits) for figure, unit, digits in listed if figure is not None]
 
