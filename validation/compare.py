@@ -410,10 +410,12 @@ def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> Compari
             "radii from a hole's centre and no other station keeps clear of the holes and the other members: "
             "there is nowhere to compare section resultants"
         )
+    others = " and a section depth from the other members" if member.others else ""
     note = (
-        f"the member is short for its holes and junctions: no station is {HOLE_CLEARANCE:g} hole radii from every "
-        f"hole and a section depth from the other members, so it is compared at its midpoint s = "
-        f"{candidates[middle]:.4g} m, {clearance[middle].min(initial=np.inf):.3g} radii from the nearest hole"
+        f"the {'member' if member.others else 'link'} is short for its holes: no station between the joints is more "
+        f"than {HOLE_CLEARANCE:g} hole radii from every hole{others}, so the resultants are compared at the "
+        f"midpoint(s) between joints s = {candidates[middle]:.4g} m, {clearance[middle].min(initial=np.inf):.3g} "
+        "radii from the nearest hole, where the pins' local stresses are steep"
     )
     return ComparisonStations(candidates[middle:middle + 1], note)
 
