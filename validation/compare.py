@@ -42,7 +42,7 @@ from shapely.geometry import Polygon
 from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
-from linkstress.members import Member, frame_member
+from linkstress.members import Member, MemberCuts, frame_member
 from linkstress.profile import LinkProfile
 from linkstress.validation.convergence import (
     CONVERGED_CHANGE,
@@ -77,8 +77,9 @@ rim and one radius of material around it), where the Kt x nominal estimate place
 
 @dataclass(frozen=True)
 class ComparisonStations:
-    """Stations ``x`` (S,) [m, member frame] to compare at, and ``note``: "" for the usual ones,
-    else what was chosen on a link too short for them, and why."""
+    """Stations ``x`` (S,) [m: arc length along a member from its joint i, the member frame's x on
+    a straight member of the frame joints] to compare at, and ``note``: "" for the usual ones, else
+    what was chosen on a member too short for them, and why."""
 
     x: NDArray[np.float64]
     note: str = ""
@@ -252,15 +253,14 @@ class MemberBeam:
     """The beam's values along one member of a link (the arm between its ``joints``) at S compared
     stations and Pc compared positions; load frame, SI units.
 
-    ``cuts``: the member's ``MemberCuts`` there (``members.py``: ``origin``, ``tangent``, ``normal``
-    (S, 2), ``table`` with chords in v along ``normal``, ``ends`` (S, 2, 2) the cut segments,
-    ``near_hole`` and ``junction`` (S,)); ``forces`` (3, Pc, S): N [N], V [N], M [N m];
+    ``cuts``: the member's sections there (their segments ``cuts.ends`` are the FEA's cuts);
+    ``forces`` (3, Pc, S): N [N], V [N], M [N m];
     ``von_mises`` (Pc, S) [Pa] at the critical fibre ``fibre_v`` (Pc, S) [m, along ``normal`` from
     ``origin``]; ``note``: why the stations are not the usual ones ("" when they are).
     """
 
     joints: tuple[int, int]
-    cuts: object
+    cuts: MemberCuts
     forces: NDArray[np.float64]
     von_mises: NDArray[np.float64]
     fibre_v: NDArray[np.float64]
