@@ -307,7 +307,7 @@ def link_lines(result: ValidationResult, name: str, c: LinkComparison) -> list[s
         lines.append(c.station_note)
     if len(c.members) > 1:
         lines += [member_words(m) for m in c.members]
-    lines += [f"member joints {m.joints[0]}-{m.joints[1]}: {m.beam.note}" for m in c.members if m.beam.note]
+        lines += [f"member joints {m.joints[0]}-{m.joints[1]}: {m.beam.note}" for m in c.members if m.beam.note]
     lines += [pin_hole_words(h, angles) for h in c.hole_peaks]
     bend = curvature_note(c)
     if bend:
@@ -332,7 +332,7 @@ def peak_words(c: LinkComparison, angles: NDArray[np.float64]) -> str:
 
 def nominal_note(c: LinkComparison) -> str | None:
     """Why no nominal comparison is possible on this link, or None when it is made."""
-    if c.away.any():
+    if c.nominal_error is not None:
         return None
     depth = c.beam.sections.top - c.beam.sections.bottom
     centres = c.fea.link.frame(*c.fea.frame_joints).to_local(c.fea.link.holes[0])[:, 0]
@@ -350,12 +350,17 @@ def nominal_words(c: LinkComparison, angles: NDArray[np.float64]) -> str:
     if c.nominal_error is None:
         return nominal_note(c)
     k = int(np.argmax(c.nominal_error))
-    diff = c.fea_von_mises[k, c.away] - c.beam.von_mises[k, c.away]
-    s = int(np.argmax(np.abs(diff)))
-    return (
-        f"nominal stresses within {100 * c.nominal_error[k]:.3g} % (worst at input angle {angles[k]:.4g} deg, "
-        f"x = {c.stations[c.away][s]:.4g} m, member frame)"
-    )
+    if not c.members:
+        diff = c.fea_von_mises[k, c.away] - c.beam.von_mises[k, c.away]
+        s = int(np.argmax(np.abs(diff)))
+        where = f"x = {c.stations[c.away][s]:.4g} m, member frame"
+    else:
+        m = max((m for m in c.members if m.nominal_error is not None), key=lambda m: m.nominal_error[k])
+        away = m.beam.away
+        s = int(np.argmax(np.abs(m.fea_von_mises[k, away] - m.beam.von_mises[k, away])))
+        x, y = m.beam.cuts.origin[away][s]
+        where = f"s = {m.beam.cuts.s[away][s]:.4g} m along member joints {m.joints[0]}-{m.joints[1]}, ({x:.4g}, {y:.4g}) m member frame"
+    return f"nominal stresses within {100 * c.nominal_error[k]:.3g} % (worst at input angle {angles[k]:.4g} deg, {where})"
 
 
 def pin_hole_words(h: HolePeak, angles: NDArray[np.float64]) -> str:
