@@ -136,6 +136,7 @@ def test_cut_resultants_of_uniform_tension_are_exact_far_from_the_origin(order):
         traction[0, 0] = sign * sigma
         loads += vector_loads(model, weights, traction)
     u, _ = factorise(model, minimal_support(model)[0]).solve(loads)
-    n, v, m = cut_integrator(model, plane.cuts).resultants(u, np.array([0]), np.array([0.0]))
+    centre = np.array([[x0 + length / 2, 0.0]])
+    n, v, m = cut_integrator(model, plane.cuts).resultants(u, np.array([0]), np.array([[1.0, 0.0]]), centre)
     assert n[0, 0] == pytest.approx(3000.0, rel=1e-9)
     assert abs(v[0, 0]) < 1e-8 * 3000.0 and abs(m[0, 0]) < 1e-8 * 3000.0 * depth

@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon, box
+from shapely.geometry.polygon import orient
 
 from linkstress.builders import stadium, straight_bar
 from linkstress.curves import circle_points
@@ -177,3 +178,17 @@ def test_bad_sizes_are_errors():
         MeshSettings(0.05, hole_size=-1.0)
     with pytest.raises(FEAError, match="size must be a finite number > 0"):
         MeshSettings(float("nan"))
+
+
+def test_a_clockwise_outline_meshes_its_cuts_as_a_counter_clockwise_one_does():
+    # An L with pin holes whose outline runs clockwise (as shapely's union returns it): gmsh's
+    # fragment used to leave the cut out of the surface, and reading the mesh failed.
+    shell = box(-0.03, -0.02, 0.3, 0.02).union(box(0.26, -0.02, 0.3, 0.3)).exterior
+    region = Polygon(shell, [circle_points(c, 0.006, 1e-7)[::-1] for c in ((0.0, 0.0), (0.28, 0.27))])
+    assert not region.exterior.is_ccw
+    sizes = MeshSettings(0.01, stations=(0.15,), cuts=(((0.13, -0.02), (0.17, 0.02)),))
+    meshes = [mesh_region(r, sizes) for r in (region, orient(region, 1.0))]
+    for plane in meshes:
+        for cut in plane.cuts:
+            assert (plane.mesh.f2t[1, cut] >= 0).all()  # interior facets: elements on both sides
+    assert len(meshes[0].cuts[0]) == len(meshes[1].cuts[0]) > 0

@@ -1,23 +1,28 @@
 """Beam sections against plane-stress FEA of the same link under the same loads.
 
-Three comparisons per link and position (docs/design.md, "FEA cross-check"):
+Three comparisons per link and position (docs/design.md, "FEA cross-check"), along each member of
+the link (the arms between its joints, ``linkstress.members``), each sectioned on its own axis:
 
-- section resultants: N, V, M integrated over FEA cuts at the comparison stations against the
-  beam's free-body values; error = largest difference over the stations, relative to the largest
-  section force (N, V) of the link at that position, or for M to the larger of the largest moment
-  and that force times a sixth of the depth (which stresses the outer fibre alike);
-- nominal von Mises: at stations at least one section depth from every pin hole's centre, the FEA
-  von Mises at the beam's critical fibre against the beam's; error = largest difference over those
-  stations relative to the largest beam value among them;
+- section resultants: N, V, M integrated over FEA cuts, the beam's section segments normal to the
+  member's axis at the comparison stations, against the beam's free-body values; error = largest
+  difference over the stations, relative to the largest section force (N, V) of the member at that
+  position, or for M to the larger of the largest moment and that force times a sixth of the depth
+  (which stresses the outer fibre alike);
+- nominal von Mises: at stations at least one section depth from every pin hole's centre (and, on
+  a member, from every other member's axis), the FEA von Mises at the beam's critical fibre against
+  the beam's; error = largest difference over those stations relative to the largest beam value
+  among them;
 - peak von Mises: the FEA's largest anywhere against the beam's largest (which is nominal near
   holes); their difference is the stress concentration beam theory does not see;
 - pin holes: each hole's Kt x nominal estimate against the FEA's largest within HOLE_NEIGHBOURHOOD
   hole radii of that hole's centre, at the same position.
 
-The comparison stations avoid cutting pin holes (a cut through a hole splits the bearing pressure
-between its two sides, which a beam cannot), and always include the midpoints between joints. On a
-link too short for its holes (no station HOLE_CLEARANCE radii from every hole) the resultants are
-compared at the midpoints between joints whose cuts miss the holes, and the stations say so.
+A link's errors are the worst over its members. The comparison stations lie between a member's
+joints, avoid cutting pin holes (a cut through a hole splits the bearing pressure between its two
+sides, which a beam cannot) and keep a section depth from the other members' axes (where arms meet,
+neither arm is a beam), and always include the midpoint. On a member too short for its holes (no
+station HOLE_CLEARANCE radii from every hole) the resultants are compared at its midpoint if its
+cut misses the holes, and the stations say so.
 
 With a refinement study, ``LinkComparison.convergence`` says how much each compared quantity
 (resultants, nominal, peak) changed between the two finest meshes, against its own limit.
@@ -27,15 +32,17 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
 from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
+from linkstress.members import Member, MemberCuts, frame_member
 from linkstress.profile import LinkProfile
 from linkstress.validation.convergence import (
     CONVERGED_CHANGE,
@@ -45,7 +52,7 @@ from linkstress.validation.convergence import (
     convergence_study,
 )
 from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import LinkFEAResult, SectionResultants, solve_link
+from linkstress.validation.link_fea import CutResultants, LinkFEAResult, solve_link
 from linkstress.validation.mesh import MeshSettings
 from linkstress.validation.recovery import von_mises
 
@@ -70,8 +77,9 @@ rim and one radius of material around it), where the Kt x nominal estimate place
 
 @dataclass(frozen=True)
 class ComparisonStations:
-    """Stations ``x`` (S,) [m, member frame] to compare at, and ``note``: "" for the usual ones,
-    else what was chosen on a link too short for them, and why."""
+    """Stations ``x`` (S,) [m: arc length along a member from its joint i, the member frame's x on
+    a straight member of the frame joints] to compare at, and ``note``: "" for the usual ones, else
+    what was chosen on a member too short for them, and why."""
 
     x: NDArray[np.float64]
     note: str = ""
@@ -127,11 +135,14 @@ class HolePeak:
 class LinkComparison:
     """One link compared over the positions ``positions`` (indices into the sweep).
 
-    ``beam`` holds the beam stresses at ``stations`` for those positions; ``fea`` the finest FEA;
-    ``fea_von_mises`` (Pc, S) the FEA von Mises at the beam's critical fibre of each station;
-    ``away`` (S,) the stations used for the nominal comparison; ``study`` the mesh refinement study
-    (None with a single mesh level); ``station_note`` why the stations are not the usual ones ("" when
-    they are).
+    ``beam`` holds the beam stresses at ``stations`` (along the member of the frame joints: the
+    frame's x on a straight one) for those positions; ``fea`` the finest FEA; ``fea_resultants`` its
+    resultants over the beam's cut segments there; ``fea_von_mises`` (Pc, S) the FEA von Mises at the
+    beam's critical fibre of each station; ``away`` (S,) the stations used for the nominal
+    comparison; ``study`` the mesh refinement study (None with a single mesh level); ``station_note``
+    why the stations are not the usual ones ("" when they are); ``members`` each member of the link
+    compared along its own axis (none: along the frame's member only). With members, the link's
+    errors are the worst over them.
     """
 
     name: str
@@ -140,12 +151,13 @@ class LinkComparison:
     away: NDArray[np.bool_]
     beam: SectionStresses
     fea: LinkFEAResult
-    fea_resultants: SectionResultants
+    fea_resultants: CutResultants
     fea_von_mises: NDArray[np.float64]
     beam_seconds: float
     fea_seconds: float
     study: ConvergenceStudy | None
     station_note: str = ""
+    members: tuple[MemberComparison, ...] = ()
 
     @property
     def convergence(self) -> dict[str, Convergence | None] | None:
@@ -156,11 +168,25 @@ class LinkComparison:
         if self.study is None:
             return None
         s = self.study
-        depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
-        resultants = Convergence(resultant_error(s.resultants[-1], s.resultants[-2], depth), RESULTANT_CONVERGED_CHANGE)
-        nominal = Convergence(s.change, CONVERGED_CHANGE) if self.away.any() else None
+        resultants = Convergence(self._resultant_change(), RESULTANT_CONVERGED_CHANGE)
+        compared = any(m.beam.away.any() for m in self.members) if self.members else self.away.any()
+        nominal = Convergence(s.change, CONVERGED_CHANGE) if compared else None
         peak = Convergence(s.peak_change, PEAK_CONVERGED_CHANGE, s.peak_changes[-2])
         return {"resultants": resultants, "nominal": nominal, "peak": peak}
+
+    def _resultant_change(self) -> NDArray[np.float64]:
+        """(Pc,) [-]: the resultants' change between the two finest meshes, measured as
+        ``resultant_error`` is: over the stations, or the worst over the members' cuts."""
+        finer, coarser = self.study.resultants[-1], self.study.resultants[-2]
+        if not self.members:
+            depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
+            return resultant_error(finer, coarser, depth)
+        counts = [len(m.beam.cuts.ends) for m in self.members]
+        stops = len(self.stations) + np.cumsum(counts)
+        return np.max([
+            resultant_error(finer[..., stop - count:stop], coarser[..., stop - count:stop], m.beam.depth)
+            for m, count, stop in zip(self.members, counts, stops)
+        ], axis=0)
 
     @property
     def converged(self) -> bool | None:
@@ -179,7 +205,10 @@ class LinkComparison:
 
     @property
     def resultant_error(self) -> NDArray[np.float64]:
-        """(Pc,) [-]: largest N, V, M difference over the stations, relative to the link's largest."""
+        """(Pc,) [-]: largest N, V, M difference over the stations, relative to the link's largest;
+        with members, the worst over them (each relative to its own largest)."""
+        if self.members:
+            return np.max([m.resultant_error for m in self.members], axis=0)
         b, f = self.beam.forces, self.fea_resultants
         depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
         return resultant_error(
@@ -188,7 +217,11 @@ class LinkComparison:
 
     @property
     def nominal_error(self) -> NDArray[np.float64] | None:
-        """(Pc,) [-] over the stations away from holes; None when every station is near one."""
+        """(Pc,) [-] over the stations away from holes; None when every station is near one; with
+        members, the worst over those that have a nominal station."""
+        if self.members:
+            errors = [e for e in (m.nominal_error for m in self.members) if e is not None]
+            return np.max(errors, axis=0) if errors else None
         if not self.away.any():
             return None
         beam = self.beam.von_mises[:, self.away]
@@ -197,7 +230,8 @@ class LinkComparison:
 
     @property
     def beam_max(self) -> NDArray[np.float64]:
-        return self.beam.max_von_mises
+        """(Pc,) [Pa]: the beam's largest von Mises at the compared stations, over every member."""
+        return np.max([self.beam.max_von_mises, *(m.beam_max for m in self.members)], axis=0)
 
     @property
     def fea_peak(self) -> NDArray[np.float64]:
@@ -212,6 +246,92 @@ class LinkComparison:
     def discretisation_error(self) -> NDArray[np.float64] | None:
         """(Pc,) [-]: Richardson estimate of the finest mesh's error at the nominal points."""
         return None if self.study is None else self.study.relative_error
+
+
+@dataclass(frozen=True)
+class MemberBeam:
+    """The beam's values along one member of a link (the arm between its ``joints``) at S compared
+    stations and Pc compared positions; load frame, SI units.
+
+    ``cuts``: the member's sections there (their segments ``cuts.ends`` are the FEA's cuts);
+    ``forces`` (3, Pc, S): N [N], V [N], M [N m];
+    ``von_mises`` (Pc, S) [Pa] at the critical fibre ``fibre_v`` (Pc, S) [m, along ``normal`` from
+    ``origin``]; ``note``: why the stations are not the usual ones ("" when they are).
+    """
+
+    joints: tuple[int, int]
+    cuts: MemberCuts
+    forces: NDArray[np.float64]
+    von_mises: NDArray[np.float64]
+    fibre_v: NDArray[np.float64]
+    note: str = ""
+
+    @property
+    def away(self) -> NDArray[np.bool_]:
+        """(S,): the nominal stations, a section depth from pins and junctions."""
+        return ~(np.asarray(self.cuts.near_hole, bool) | np.asarray(self.cuts.junction, bool))
+
+    @property
+    def depth(self) -> float:
+        """The member's largest section depth [m] (outer fibre to outer fibre) at the stations."""
+        table = self.cuts.table
+        return float((table.top - table.bottom).max())
+
+    @property
+    def axes(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The tangents (S, 2) and the section centroids (S, 2) [m]: the axes across which, and the
+        points about which, the cut resultants are taken."""
+        cuts = self.cuts
+        return np.asarray(cuts.tangent, float), cuts.origin + cuts.table.neutral_axis[:, None] * cuts.normal
+
+    @property
+    def fibres(self) -> NDArray[np.float64]:
+        """Points (Pc, S, 2) [m] of the critical fibres."""
+        return self.cuts.origin[None] + self.fibre_v[..., None] * self.cuts.normal[None]
+
+
+@dataclass(frozen=True)
+class MemberComparison:
+    """One member's ``beam`` values against the FEA: ``fea_resultants`` over the same cut segments
+    about each section's centroid, ``fea_von_mises`` (Pc, S) [Pa] at the beam's critical fibres."""
+
+    beam: MemberBeam
+    fea_resultants: CutResultants
+    fea_von_mises: NDArray[np.float64]
+
+    @property
+    def joints(self) -> tuple[int, int]:
+        return self.beam.joints
+
+    @property
+    def resultant_error(self) -> NDArray[np.float64]:
+        """(Pc,) [-]: largest N, V, M difference over the stations, relative to the member's largest."""
+        f = self.fea_resultants
+        return resultant_error(np.stack([f.normal, f.shear, f.moment]), self.beam.forces, self.beam.depth)
+
+    @property
+    def nominal_error(self) -> NDArray[np.float64] | None:
+        """(Pc,) [-] over the stations away from pins and junctions; None when there is none."""
+        away = self.beam.away
+        if not away.any():
+            return None
+        beam, fea = self.beam.von_mises[:, away], self.fea_von_mises[:, away]
+        return relative(np.abs(fea - beam).max(axis=1), beam.max(axis=1))
+
+    @property
+    def beam_max(self) -> NDArray[np.float64]:
+        """(Pc,) [Pa]: the beam's largest von Mises over the member's compared stations."""
+        return self.beam.von_mises.max(axis=1)
+
+
+def compare_member(fea: LinkFEAResult, beam: MemberBeam) -> MemberComparison:
+    """One member's ``beam`` values against ``fea`` (solved at the same Pc positions, with the
+    member's cut segments ``beam.cuts.ends`` meshed)."""
+    resultants = fea.cut_resultants(beam.cuts.ends, *beam.axes)
+    n_pos, count = beam.fibre_v.shape
+    sampled = von_mises(fea.stress_at(beam.fibres.reshape(-1, 2)))  # every position's fibres at every position
+    rows = np.arange(n_pos)
+    return MemberComparison(beam, resultants, sampled.reshape(n_pos, n_pos, count)[rows, rows])
 
 
 def relative(difference: NDArray[np.float64], scale: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -245,59 +365,100 @@ def _hole_peak(fea: LinkFEAResult, hole: PinHoleEstimate) -> HolePeak:
 
 
 def comparison_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> NDArray[np.float64]:
-    """Stations [m, member frame]: ``count`` cell centres between the link's outermost joints and the
-    midpoint between each pair of consecutive joints, all keeping clear of pin holes. (Past the
-    outermost joints a link carries only its own inertia: small resultants among large local
-    stresses around a loaded pin, a comparison that says nothing about the beam.) On a link too
-    short for that, the midpoints whose cuts miss the holes (``choose_stations``)."""
+    """Stations s [m] along the link's member between its frame joints (``choose_stations``)."""
     return choose_stations(link, frame_joints, count).x
 
 
-def choose_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> ComparisonStations:
-    """``comparison_stations`` with a note when the link is too short for stations HOLE_CLEARANCE
-    radii from every hole: then the midpoints between consecutive joints whose cuts miss every hole
-    (CUT_CLEARANCE). Raises FEAError naming the link when no midpoint cut misses the holes."""
-    frame = link.frame(*frame_joints)
-    joints_x = np.sort(frame.to_local(link.joints)[:, 0])
-    lo, hi = joints_x[0], joints_x[-1]
-    midpoints = (joints_x[:-1] + joints_x[1:]) / 2
-    candidates = np.concatenate([lo + (hi - lo) * (np.arange(count) + 0.5) / count, midpoints])
-    centres, radii = _holes_along(link, frame_joints)
-    clearance = np.abs(candidates[:, None] - centres) / radii  # (candidates, holes) [hole radii]
-    keep = (clearance > HOLE_CLEARANCE).all(axis=1)
+def choose_stations(
+    link: LinkProfile,
+    frame_joints: tuple[int, int],
+    count: int = COMPARISON_STATIONS,
+    members: ArrayLike | None = None,
+) -> ComparisonStations:
+    """``member_stations`` of the link's member between its frame joints (``frame_member``, of the
+    scene's ``members`` pairs if given): clear of pin holes and of the other members, between the
+    joints (past a joint a link carries only its own inertia: small resultants among large local
+    stresses around a loaded pin, a comparison that says nothing about the beam)."""
+    return member_stations(frame_member(link, frame_joints, members), count)
+
+
+def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> ComparisonStations:
+    """Stations s [m, arc length from the member's joint i] to compare a member of a link at:
+    ``count`` cell centres between its joints and the midpoint, those whose cut segment keeps
+    HOLE_CLEARANCE radii from every hole and whose axis point is at least its section depth from
+    every other member's axis (where the arms of a bell crank meet). On a member too short for that,
+    the midpoint when its cut misses the holes (CUT_CLEARANCE), with a note; raises FEAError naming
+    the link and the member when not even that does."""
+    length = member.length
+    candidates = np.unique(np.round(np.append(length * (np.arange(count) + 0.5) / count, length / 2), 12))
+    cuts = member.cuts(candidates)
+    centres, radii = hole_circles(member.link, member.frame_joints)
+    clearance = _segment_distance(centres, cuts.ends) / radii  # (S, H) [hole radii]
+    depth = cuts.table.top - cuts.table.bottom
+    gap = np.full(len(candidates), np.inf)
+    for axis in member.others:
+        pieces = np.stack([axis[:-1], axis[1:]], axis=1)
+        gap = np.minimum(gap, _segment_distance(cuts.origin, pieces).min(axis=0))
+    keep = (clearance > HOLE_CLEARANCE).all(axis=1) & (gap >= depth)
     if keep.any():
-        return ComparisonStations(np.unique(np.round(candidates[keep], 12)))
-    cut = (clearance[count:] > CUT_CLEARANCE).all(axis=1)
-    if not cut.any():
+        return ComparisonStations(candidates[keep])
+    middle = int(np.argmin(np.abs(candidates - length / 2)))
+    name = f"link {member.link.name!r}, member {list(member.joints)}"
+    if not (clearance[middle] > CUT_CLEARANCE).all():
         raise FEAError(
-            f"link {link.name!r}: no cut between its joints misses the pin holes (joints at x = "
-            f"{np.round(joints_x, 6).tolist()} m, holes {np.round(2 * radii, 6).tolist()} m across): "
+            f"{name}: the midpoint cut at s = {candidates[middle]:.6g} m passes {clearance[middle].min():.3g} hole "
+            "radii from a hole's centre and no other station keeps clear of the holes and the other members: "
             "there is nowhere to compare section resultants"
         )
-    x = np.unique(np.round(midpoints[cut], 12))
+    others = " and a section depth from the other members" if member.others else ""
     note = (
-        f"the link is short for its holes: no station between the joints is more than {HOLE_CLEARANCE:g} hole "
-        f"radii from every hole, so the resultants are compared at the midpoint(s) between joints x = "
-        f"{', '.join(f'{v:.4g}' for v in x)} m (member frame), {clearance[count:][cut].min():.3g} radii from the "
-        "nearest hole, where the pins' local stresses are steep"
+        f"the {'member' if member.others else 'link'} is short for its holes: no station between the joints is more "
+        f"than {HOLE_CLEARANCE:g} hole radii from every hole{others}, so the resultants are compared at the "
+        f"midpoint(s) between joints s = {candidates[middle]:.4g} m, {clearance[middle].min(initial=np.inf):.3g} "
+        "radii from the nearest hole, where the pins' local stresses are steep"
     )
-    return ComparisonStations(x, note)
+    return ComparisonStations(candidates[middle:middle + 1], note)
 
 
-def _holes_along(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Centres x (H,) [m, member frame] and equivalent radii (H,) [m] of the link's holes."""
+def member_beam(link: LinkProfile, loads: LinkLoadCase, member: Member, body_load_near_holes: bool = False) -> MemberBeam:
+    """The beam along ``member`` at its comparison stations (``member_stations``) for every position of ``loads``."""
+    chosen = member_stations(member)
+    beam = section_stresses(link, loads, chosen.x, body_load_near_holes, member=member)
+    forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
+    return MemberBeam(member.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y, chosen.note)
+
+
+def hole_circles(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Centres (H, 2) [m, member frame of ``frame_joints``] and equivalent radii (H,) [m] of the link's holes."""
     frame = link.frame(*frame_joints)
     holes = [Polygon(ring) for ring in link.outline.interiors]
-    centres = np.array([frame.to_local(h.centroid.coords[0])[0] for h in holes]).reshape(-1)
+    centres = np.array([frame.to_local(h.centroid.coords[0]) for h in holes]).reshape(-1, 2)
     radii = np.array([math.sqrt(h.area / math.pi) for h in holes]).reshape(-1)
     return centres, radii
 
 
-def default_mesh(link: LinkProfile, frame_joints: tuple[int, int], stations: NDArray[np.float64], size: float | None = None) -> MeshSettings:
+def _segment_distance(points: NDArray[np.float64], segments: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Distances (S, H) [m] from each of ``points`` (H, 2) to each segment (S, 2, 2)."""
+    start = segments[:, None, 0]
+    along = segments[:, None, 1] - start
+    length2 = np.maximum((along * along).sum(axis=-1), np.finfo(float).tiny)
+    u = np.clip(((points[None] - start) * along).sum(axis=-1) / length2, 0.0, 1.0)
+    return np.hypot(*np.moveaxis(start + u[..., None] * along - points[None], -1, 0))
+
+
+def default_mesh(
+    link: LinkProfile,
+    frame_joints: tuple[int, int],
+    stations: NDArray[np.float64],
+    size: float | None = None,
+    members: Sequence[Member] = (),
+) -> MeshSettings:
     """Mesh settings sized from the link: about ELEMENTS_PER_DEPTH elements across its slenderest
-    compared section, ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
-    table = link.sections(stations, *frame_joints)
-    depth = float((table.top - table.bottom).min())
+    compared section (at ``stations`` and at the ``members``' comparison stations),
+    ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
+    frame = frame_member(link, frame_joints)
+    tables = [frame.cuts(stations).table, *(m.cuts(member_stations(m).x).table for m in members)]
+    depth = float(min((t.top - t.bottom).min() for t in tables))
     size = size or depth / ELEMENTS_PER_DEPTH
     diameters = [2 * math.sqrt(Polygon(r).area / math.pi) for r in link.outline.interiors]
     hole = min(diameters) / ELEMENTS_PER_HOLE_DIAMETER if diameters else size / 4
@@ -314,37 +475,44 @@ def compare_link(
     stations: NDArray[np.float64] | None = None,
     body_load_near_holes: bool = False,
     station_note: str = "",
+    members: Sequence[Member] = (),
 ) -> LinkComparison:
     """Compare link ``name`` at sweep ``positions``; ``levels`` >= 3 runs a refinement study and
     compares with its finest mesh, 1 compares with ``mesh`` alone; the beam's sections take the
     body-load term near holes too with ``body_load_near_holes``; ``station_note`` says why the
-    ``stations`` are not the usual ones (``choose_stations``)."""
+    ``stations`` are not the usual ones (``choose_stations``). ``members`` (``link_members``): each is
+    compared along its own axis too, over its cut segments (``member_stations``, meshed as cuts) and
+    at its beam's critical fibres; the link's errors are then the worst over them."""
     frame_joints = loads.frame_joints
     if stations is None:
         chosen = choose_stations(link, frame_joints)
         stations, station_note = chosen.x, chosen.note
     stations = np.asarray(stations, float)
-    mesh = mesh or default_mesh(link, frame_joints, stations)
     selected = loads.at(positions)
     start = time.perf_counter()
-    beam = section_stresses(link, selected, stations, body_load_near_holes)
+    on_frame = [m for m in members if m.joints == tuple(frame_joints)]
+    beam = section_stresses(link, selected, stations, body_load_near_holes, member=on_frame[0] if on_frame else None)
+    forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
+    # The stations are on the frame's member (its sections normal to its axis, vertical when straight).
+    along = MemberBeam(beam.cuts.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y)
+    beams = [member_beam(link, selected, m, body_load_near_holes) for m in members]
     beam_seconds = time.perf_counter() - start
+    mesh = mesh or default_mesh(link, frame_joints, stations, members=members)
+    segments = np.concatenate([b.cuts.ends for b in (along, *beams)])
+    mesh = replace(mesh, stations=(), cuts=segments.tolist())
     start = time.perf_counter()
     away = ~beam.near_hole
-    points = np.column_stack([np.broadcast_to(stations, beam.fibre_y.shape).ravel(), beam.fibre_y.ravel()])
     study = None
     if levels >= 3:
-        nominal = np.unique(points[np.tile(away, len(positions))], axis=0)
-        study = convergence_study(link, selected, mesh, nominal, levels=levels)
+        nominal = np.concatenate([along.fibres[:, away].reshape(-1, 2), *(b.fibres[:, b.away].reshape(-1, 2) for b in beams)])
+        axes = [np.concatenate(parts) for parts in zip(*(b.axes for b in (along, *beams)))]
+        study = convergence_study(link, selected, mesh, np.unique(nominal, axis=0), levels=levels, cut_axes=axes)
         fea = study.finest
     else:
         fea = solve_link(link, selected, mesh)
     fea_seconds = time.perf_counter() - start
-    sampled = von_mises(fea.stress_at(points))  # (Pc, Pc * S): each position's fibres at every position
-    count = len(stations)
-    rows = np.arange(len(positions))
-    fea_vm = sampled.reshape(len(positions), len(positions), count)[rows, rows]
+    frame = compare_member(fea, along)
     return LinkComparison(
-        name, np.asarray(positions), stations, away, beam, fea, fea.section_resultants(stations), fea_vm,
-        beam_seconds, fea_seconds, study, station_note,
+        name, np.asarray(positions), stations, away, beam, fea, frame.fea_resultants, frame.fea_von_mises,
+        beam_seconds, fea_seconds, study, station_note, tuple(compare_member(fea, b) for b in beams),
     )

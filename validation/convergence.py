@@ -130,8 +130,8 @@ class ConvergenceStudy:
     values between the two finest levels over the largest finest value, per position (0 without
     nominal points); ``richardson`` from the three finest levels; ``finest``: the finest level's
     full result. ``peaks`` (levels, P) [Pa]: the largest von Mises anywhere in the link;
-    ``resultants`` (levels, 3, P, S): N [N], V [N], M [N m] at the meshed cuts ``settings[0].stations``
-    (S may be 0), member frame.
+    ``resultants`` (levels, 3, P, S + C): N [N], V [N], M [N m] at the meshed cuts, the stations
+    ``settings[0].stations`` then the segments ``settings[0].cuts`` (either may be none), member frame.
     """
 
     settings: tuple[MeshSettings, ...]
@@ -186,10 +186,15 @@ def convergence_study(
     levels: int = 3,
     ratio: float = REFINEMENT_RATIO,
     tolerance: float = CONVERGED_CHANGE,
+    cut_axes: tuple[ArrayLike, ArrayLike] | None = None,
 ) -> ConvergenceStudy:
     """Solve ``link`` on ``levels`` meshes from ``settings``, each ``ratio`` finer, and follow the
     von Mises stresses at the nominal ``points`` (Q, 2) [m, member frame of the load case; Q may be
-    0], the peak von Mises and the resultants at the cuts ``settings.stations``."""
+    0], the peak von Mises and the resultants at the cuts ``settings.stations`` and
+    ``settings.cuts``, those taken across ``cut_axes`` = (tangents (C, 2), reference points (C, 2)
+    [m]) (``LinkFEAResult.cut_resultants``; needed when there are cut segments)."""
+    if settings.cuts and cut_axes is None:
+        raise FEAError("a convergence study over cut segments needs their tangents and reference points")
     if levels < 3:
         raise FEAError(f"a convergence study needs at least three mesh levels, got {levels}")
     if not ratio > 1:
@@ -207,7 +212,7 @@ def convergence_study(
         seconds.append(result.mesh_seconds + result.solve_seconds)
         values.append(von_mises(result.stress_at(points)) if len(points) else np.zeros((result.n_positions, 0)))
         peaks.append(result.von_mises_peak)
-        resultants.append(_resultants(result, settings.stations))
+        resultants.append(_resultants(result, settings.stations, cut_axes))
     values_arr = np.array(values)
     change = _relative(np.abs(values_arr[-1] - values_arr[-2]), values_arr[-1])
     return ConvergenceStudy(
@@ -225,12 +230,19 @@ def convergence_study(
     )
 
 
-def _resultants(result: LinkFEAResult, stations: tuple[float, ...]) -> NDArray[np.float64]:
-    """(3, P, S): N [N], V [N], M [N m] at the meshed cuts ``stations`` [m] (S may be 0)."""
-    if not stations:
-        return np.zeros((3, result.n_positions, 0))
-    cut = result.section_resultants(stations)
-    return np.stack([cut.normal, cut.shear, cut.moment])
+def _resultants(
+    result: LinkFEAResult, stations: tuple[float, ...], cut_axes: tuple[ArrayLike, ArrayLike] | None
+) -> NDArray[np.float64]:
+    """(3, P, S + C): N [N], V [N], M [N m] at the meshed cuts ``stations`` [m], then at the
+    meshed segments across ``cut_axes`` (tangents, reference points); either may be none."""
+    parts = [np.zeros((3, result.n_positions, 0))]
+    if stations:
+        cut = result.section_resultants(stations)
+        parts.append(np.stack([cut.normal, cut.shear, cut.moment]))
+    if len(result.plane.segments):
+        cut = result.cut_resultants(result.plane.segments, *cut_axes)
+        parts.append(np.stack([cut.normal, cut.shear, cut.moment]))
+    return np.concatenate(parts, axis=-1)
 
 
 def _relative(difference: NDArray[np.float64], finest: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -57,6 +57,25 @@ class SectionResultants:
 
 
 @dataclass(frozen=True)
+class CutResultants:
+    """N [N], V [N], M [N m], each (P, S), over the cut ``segments`` (S, 2, 2) [m], member frame.
+
+    The resultants of the traction on the cut face whose outward normal is ``tangent`` t (S, 2)
+    (the member axis across which the cut is taken; n = t rotated +90 degrees runs along the cut):
+    N = int t.sigma.t dA, V = int n.sigma.t dA, M = int (r - r_ref).n (t.sigma.t) dA about
+    ``reference`` r_ref (S, 2) [m] (the beam section's centroid). A station x is the cut with t =
+    +x, and gives ``SectionResultants``' values.
+    """
+
+    segments: NDArray[np.float64]
+    tangent: NDArray[np.float64]
+    reference: NDArray[np.float64]
+    normal: NDArray[np.float64]
+    shear: NDArray[np.float64]
+    moment: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
 class LinkFEAResult:
     """The FEA of one link over P positions; member frame of ``frame_joints``, SI units.
 
@@ -125,8 +144,34 @@ class LinkFEAResult:
         x = np.atleast_1d(np.asarray(stations, float))
         index = self._cut_indices(x)
         y_na = self.link.sections(x, *self.frame_joints).neutral_axis
-        n, v, m = self._cuts.resultants(self.displacement, index, y_na)
+        tangent = np.broadcast_to([1.0, 0.0], (len(x), 2))
+        n, v, m = self._cuts.resultants(self.displacement, index, tangent, np.column_stack([x, y_na]))
         return SectionResultants(x, y_na, n, v, m)
+
+    def cut_resultants(self, segments: ArrayLike, tangent: ArrayLike, reference: ArrayLike) -> CutResultants:
+        """N, V, M (P, S) over the cut ``segments`` (S, 2, 2) [m, member frame], each one of the
+        meshed ``MeshSettings.cuts`` (either end first), taken across ``tangent`` (S, 2) (normal to
+        its segment; normalised here) about ``reference`` (S, 2) [m]; see ``CutResultants``."""
+        ends = np.asarray(segments, float).reshape(-1, 2, 2)
+        t = np.asarray(tangent, float).reshape(-1, 2)
+        r_ref = np.asarray(reference, float).reshape(-1, 2)
+        if not len(t) == len(r_ref) == len(ends):
+            raise FEAError(
+                f"link {self.link.name!r}: {len(ends)} cut segments need as many tangents and reference points, "
+                f"got {len(t)} and {len(r_ref)}"
+            )
+        index = self._segment_indices(ends)
+        t = t / np.hypot(*t.T)[:, None]
+        along = ends[:, 1] - ends[:, 0]
+        slant = np.abs((t * along).sum(axis=1)) / np.hypot(*along.T)
+        if (slant > 1e-6).any():
+            k = int(np.argmax(slant))
+            raise FEAError(
+                f"link {self.link.name!r}: the tangent {t[k].tolist()} of cut {ends[k].tolist()} m is not normal to it "
+                f"(cosine {slant[k]:.3g}); a cut is taken normal to the member axis"
+            )
+        n, v, m = self._cuts.resultants(self.displacement, len(self.plane.stations) + index, t, r_ref)
+        return CutResultants(ends, t, r_ref, n, v, m)
 
     def write_vtu(self, folder: str | Path) -> list[Path]:
         """One VTU per position (displacement, stresses, von Mises) and a PVD listing them; the paths."""
@@ -151,6 +196,22 @@ class LinkFEAResult:
                 f"put it in MeshSettings.stations (meshed: {meshed.tolist()})"
             )
         return index
+
+    def _segment_indices(self, ends: NDArray[np.float64]) -> NDArray[np.intp]:
+        """Index into ``plane.segments`` of each cut segment (S, 2, 2) [m], matched either end first."""
+        meshed = self.plane.segments
+        scale = 1e-12 * max(1.0, float(np.abs(meshed).max(initial=0.0)))
+        gap = np.minimum(
+            np.abs(ends[:, None] - meshed[None]).max(axis=(2, 3)),
+            np.abs(ends[:, None, ::-1] - meshed[None]).max(axis=(2, 3)),
+        )  # (S, C): largest coordinate difference, as given or reversed
+        if len(meshed) == 0 or (gap.min(axis=1, initial=np.inf) > scale).any():
+            k = 0 if len(meshed) == 0 else int(np.argmax(gap.min(axis=1) > scale))
+            raise FEAError(
+                f"link {self.link.name!r}: the cut {ends[k].tolist()} m was not meshed; put it in MeshSettings.cuts "
+                f"(meshed: {meshed.tolist()})"
+            )
+        return gap.argmin(axis=1)
 
 
 def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> LinkFEAResult:

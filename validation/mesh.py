@@ -3,11 +3,13 @@ exact curves, the default) or linear (P1, straight edges between vertices on the
 
 The region is a shapely Polygon with holes (a link's outline in its member frame). Its rings are
 read back into circles, arcs, splines and lines first (:mod:`linkstress.validation.ring_curves`),
-so that the drawing's flattening does not refine the mesh. Each station x becomes a cut line
-fragmented into the plate, so that element edges run along it and section resultants can be
-integrated over the cut exactly. The element size is ``hole_size`` at the holes, ``station_size``
-along the cuts and at the refinement points, growing linearly (by ``grading`` per unit distance)
-to ``size`` elsewhere. The same region and settings always give the same mesh.
+so that the drawing's flattening does not refine the mesh. Each cut becomes a line fragmented into
+the plate, so that element edges run along it and section resultants can be integrated over the
+cut exactly: a station x is the vertical line x = const across the whole region, a cut segment
+runs between its two ends on the outline (a member's section at any angle, stopping short of
+material the infinite line would cross), and the pieces of either inside material are the cut.
+The element size is ``hole_size`` at the holes, ``station_size`` along the cuts and at the
+refinement points, growing linearly (by ``grading`` per unit distance) to ``size`` elsewhere. The same region and settings always give the same mesh.
 
 gmsh physical groups: "material" (2D), "outline", "hole k" and "cut k" (1D); the mesh carries the
 facets of each group.
@@ -23,8 +25,9 @@ from dataclasses import dataclass, replace
 
 import gmsh
 import numpy as np
+import shapely
 from numpy.typing import NDArray
-from shapely.geometry import LinearRing, Point, Polygon
+from shapely.geometry import LinearRing, LineString, Point, Polygon
 from skfem import MeshTri1, MeshTri2
 
 from linkstress.validation.errors import FEAError
@@ -35,11 +38,20 @@ TRIANGLE3, TRIANGLE6 = 2, 9
 LINE2, LINE3 = 1, 8
 ORDERS = (1, 2)
 """Element orders: 1 linear triangles (3 nodes), 2 quadratic isoparametric triangles (6 nodes)."""
+CUT_END_TOLERANCE = 1e-3
+"""How far inside material (a fraction of the segment's length) a cut segment's end may be and
+still count as on the outline: the drawing's flattened outline and the exact curves gmsh meshes
+differ by the flattening tolerance."""
+CUT_MARGIN = 0.02
+"""Each cut segment is extended past its ends by this fraction of its length (less where other
+material is that close) so that it crosses the outline's exact curves and fragmenting is robust."""
 
 
 @dataclass(frozen=True)
 class MeshSettings:
-    """Element sizes [m] and the comparison stations x [m] (member frame) to mesh as cuts.
+    """Element sizes [m] and the cuts to mesh (member frame): comparison ``stations`` x [m], each
+    the vertical line x = const across the region, and ``cuts``, segments ((x0, y0), (x1, y1)) [m]
+    from outline to outline (ends on the outline or just outside it; holes they cross stay holes).
 
     ``hole_size`` defaults to size / 4 and ``station_size`` to size / 2; ``grading`` [-] is how fast
     the size grows with the distance from a hole, cut or refinement point. ``order``: 2 quadratic
@@ -52,6 +64,7 @@ class MeshSettings:
     station_size: float | None = None
     grading: float = 0.3
     order: int = 2
+    cuts: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stations", tuple(float(s) for s in np.atleast_1d(self.stations)))
@@ -67,6 +80,13 @@ class MeshSettings:
             raise FEAError(f"mesh settings: order must be 1 (linear) or 2 (quadratic triangles), got {self.order!r}")
         if not np.isfinite(self.stations).all():
             raise FEAError(f"mesh settings: stations must be finite, got {self.stations!r}")
+        try:
+            segments = np.asarray(self.cuts, float).reshape(-1, 2, 2)
+        except (TypeError, ValueError):
+            raise FEAError(f"mesh settings: cuts must be segments ((x0, y0), (x1, y1)) [m], got {self.cuts!r}") from None
+        if not np.isfinite(segments).all() or (np.hypot(*(segments[:, 1] - segments[:, 0]).T) == 0).any():
+            raise FEAError(f"mesh settings: cuts must be finite segments of non-zero length, got {self.cuts!r}")
+        object.__setattr__(self, "cuts", tuple(tuple(map(tuple, c)) for c in segments.tolist()))
 
     @property
     def finest(self) -> float:
@@ -88,7 +108,8 @@ class PlaneMesh:
     boundary parts and cuts.
 
     ``holes[k]``: boundary facets of the region's k-th hole (shapely interior order); ``outline``:
-    facets of the outer boundary; ``cuts[s]``: interior facets on the cut x = ``stations[s]``.
+    facets of the outer boundary; ``cuts``: interior facets of each cut, the stations' first
+    (``cuts[s]`` on x = ``stations[s]``), then the segments' (``cuts[S + k]`` on ``segments[k]``).
     """
 
     mesh: MeshTri1 | MeshTri2
@@ -98,6 +119,16 @@ class PlaneMesh:
     stations: NDArray[np.float64]
     settings: MeshSettings
     seconds: float
+
+    @property
+    def segments(self) -> NDArray[np.float64]:
+        """The cut segments (C, 2, 2) [m] as asked (``settings.cuts``): ends (x, y) of each."""
+        return np.asarray(self.settings.cuts, float).reshape(-1, 2, 2)
+
+    @property
+    def segment_cuts(self) -> tuple[NDArray[np.intp], ...]:
+        """Interior facets of each cut segment (C,), in ``segments`` order."""
+        return self.cuts[len(self.stations):]
 
     @property
     def n_elements(self) -> int:
@@ -117,7 +148,7 @@ def mesh_region(
     """Mesh ``region`` [m] with triangles of ``settings.order``; refine to ``station_size`` at ``points`` (Q, 2) too.
 
     Raises FEAError naming ``name`` when a part is too thin for the sizes, a station does not cut
-    the region's interior, or gmsh fails.
+    the region's interior, a cut segment misses the material or ends inside it, or gmsh fails.
     """
     start = time.perf_counter()
     check_meshable(region, settings, name)
@@ -132,9 +163,12 @@ def mesh_region(
         )
     if len(np.unique(stations)) != len(stations):
         raise FEAError(f"{name}: the mesh stations repeat a value: {settings.stations!r}")
+    segments = np.asarray(settings.cuts, float).reshape(-1, 2, 2)
+    _check_segments(region, segments, name)
+    lines = np.concatenate([_station_lines(region, stations), _extended(region, segments)])
     with _gmsh_model(name):
         try:
-            groups = _build_geometry(region, stations, settings, np.asarray(points, float).reshape(-1, 2))
+            groups = _build_geometry(region, lines, settings, np.asarray(points, float).reshape(-1, 2))
             gmsh.model.mesh.generate(2)
             if settings.order == 2:
                 gmsh.model.mesh.setOrder(2)
@@ -150,11 +184,60 @@ def mesh_region(
         mesh=mesh,
         outline=facets["outline"],
         holes=tuple(facets[f"hole {k}"] for k in range(len(region.interiors))),
-        cuts=tuple(facets[f"cut {k}"] for k in range(len(stations))),
+        cuts=tuple(facets[f"cut {k}"] for k in range(len(lines))),
         stations=stations,
         settings=settings,
         seconds=time.perf_counter() - start,
     )
+
+
+def _station_lines(region: Polygon, stations: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The vertical lines (S, 2, 2) [m] x = ``stations``, from below the region to above it."""
+    _, miny, _, maxy = region.bounds
+    pad = 0.01 * (maxy - miny)
+    x = np.repeat(stations[:, None], 2, axis=1)
+    y = np.broadcast_to([miny - pad, maxy + pad], x.shape)
+    return np.stack([x, y], axis=-1)
+
+
+def _check_segments(region: Polygon, segments: NDArray[np.float64], name: str) -> None:
+    """FEAError naming the cut when a segment (C, 2, 2) misses the material of ``region`` or ends
+    more than CUT_END_TOLERANCE of its length inside it."""
+    lines = shapely.linestrings(segments)
+    length = shapely.length(lines)
+    crossed = shapely.length(shapely.intersection(region, lines))
+    ends = segments.reshape(-1, 2)
+    depth = np.where(shapely.contains_xy(region, ends[:, 0], ends[:, 1]),
+                     shapely.distance(region.boundary, shapely.points(ends)), 0.0).reshape(-1, 2)
+    tolerance = CUT_END_TOLERANCE * length
+    for k in np.flatnonzero((crossed <= tolerance) | (depth > tolerance[:, None]).any(axis=1)):
+        (x0, y0), (x1, y1) = segments[k]
+        label = f"{name}: cut {k} from ({x0:.6g}, {y0:.6g}) to ({x1:.6g}, {y1:.6g}) m"
+        if crossed[k] <= tolerance[k]:
+            raise FEAError(f"{label} misses the material; a cut must cross the region from outline to outline")
+        x, y = segments[k, int(np.argmax(depth[k]))]
+        raise FEAError(
+            f"{label} ends inside the material at ({x:.6g}, {y:.6g}) m, {depth[k].max():.3g} m from the "
+            "outline; a cut's ends must lie on the outline (or just outside it)"
+        )
+
+
+def _extended(region: Polygon, segments: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The segments (C, 2, 2) extended past each end by CUT_MARGIN of their length, or by half the
+    gap to other material where that is nearer (the other arm of an L), so that no extension
+    reaches material the cut does not cross."""
+    extended = segments.copy()
+    for k, segment in enumerate(segments):
+        along = segment[1] - segment[0]
+        length = float(np.hypot(*along))
+        tolerance = CUT_END_TOLERANCE * length
+        for end, sign in ((0, -1.0), (1, 1.0)):
+            tip = segment[end]
+            reach = sign * CUT_MARGIN * along
+            hit = shapely.get_parts(region.intersection(LineString([tip, tip + reach])))
+            gaps = [g for g in shapely.distance(hit, Point(tip)) if g > tolerance]
+            extended[k, end] = tip + reach * min(1.0, 0.5 * min(gaps, default=np.inf) / (CUT_MARGIN * length))
+    return extended
 
 
 @contextmanager
@@ -181,18 +264,15 @@ def _gmsh_model(name: str) -> Iterator[None]:
             gmsh.finalize()
 
 
-def _build_geometry(region, stations, settings, points) -> dict[str, list[int]]:
-    """The plate, its cuts and size fields in gmsh; returns the curve tags of each 1D group."""
+def _build_geometry(region, lines, settings, points) -> dict[str, list[int]]:
+    """The plate, its cut ``lines`` (K, 2, 2) and size fields in gmsh; returns the curve tags of
+    each 1D group. The pieces of a line inside the material are its cut."""
     occ = gmsh.model.occ
     rings = [region.exterior, *region.interiors]
     loops = [occ.addCurveLoop(_ring_curves(ring, settings.finest)) for ring in rings]
     surface = occ.addPlaneSurface(loops)
-    _, miny, _, maxy = region.bounds
-    pad = 0.01 * (maxy - miny)
-    cut_lines = [
-        occ.addLine(occ.addPoint(s, miny - pad, 0), occ.addPoint(s, maxy + pad, 0)) for s in stations
-    ]
-    cut_pieces: list[list[int]] = [[] for _ in stations]
+    cut_lines = [occ.addLine(occ.addPoint(*a, 0.0), occ.addPoint(*b, 0.0)) for a, b in lines]
+    cut_pieces: list[list[int]] = [[] for _ in lines]
     if cut_lines:
         _, pieces = occ.fragment([(2, surface)], [(1, c) for c in cut_lines])
         dangling = []
@@ -202,6 +282,7 @@ def _build_geometry(region, stations, settings, points) -> dict[str, list[int]]:
                 (cut_pieces[k] if inside else dangling).append(tag)
         occ.remove([(1, t) for t in dangling], recursive=True)
     occ.synchronize()
+    _embed_loose([t for piece in cut_pieces for t in piece])
     cut_tags = {t for piece in cut_pieces for t in piece}
     boundary = [t for _, t in gmsh.model.getEntities(1) if t not in cut_tags]
     nearest = [_nearest_ring(_curve_midpoint(t), rings) for t in boundary]
@@ -216,6 +297,20 @@ def _build_geometry(region, stations, settings, points) -> dict[str, list[int]]:
     hole_curves = [t for key, tags in groups.items() if key.startswith("hole") for t in tags]
     _size_fields(settings, hole_curves, sorted(cut_tags), points)
     return groups
+
+
+def _embed_loose(curves: list[int]) -> None:
+    """Embed in the surface that holds it each of ``curves`` that the fragment split off at the
+    outline but left out of the surface's boundary: OCC does so on some outlines (an L whose ring
+    runs clockwise, with holes), and the mesh would ignore the cut."""
+    surfaces = [t for _, t in gmsh.model.getEntities(2)]
+    bound = {t for s in surfaces for _, t in gmsh.model.getBoundary([(2, s)], combined=False, oriented=False)}
+    for curve in curves:
+        if curve in bound:
+            continue
+        x, y = _curve_midpoint(curve)
+        holder = [s for s in surfaces if gmsh.model.isInside(2, s, [x, y, 0.0])]
+        gmsh.model.mesh.embed(1, [curve], 2, holder[0])
 
 
 def _ring_curves(ring: LinearRing, short: float) -> list[int]:

@@ -6,8 +6,8 @@ space of the mesh's order (the "nodal averaged" stress of commercial codes, done
 M s = int phi sigma_h dA, M the scalar mass matrix), one solve per component for all load cases at
 once. Peak von Mises is taken over its nodes.
 
-Section resultants are integrated over a cut meshed as element edges (see ``MeshSettings.stations``)
-from the raw element stresses, averaging the two sides of each edge; linear stresses on straight
+Section resultants are integrated over a cut meshed as element edges (``MeshSettings.stations`` and
+``MeshSettings.cuts``), at any angle, from the raw element stresses, averaging the two sides of each edge; linear stresses on straight
 edges make a three-point Gauss rule per edge exact, moments included (isoparametric edges: to the
 quadrature order). The edge's points come from the mesh's topology, not from inverting the map.
 """
@@ -161,27 +161,45 @@ def strain_operators(
 class CutIntegrator:
     """Integrates the stress over cuts meshed as element edges.
 
-    ``weights`` (cuts, Nq) [m^2]: dA = t ds of each quadrature point on its cut; ``y`` (Nq,) [m];
-    ``stress``: operators (Nq, dofs) to sigma_xx, sigma_yy, tau_xy, both sides of each edge averaged.
+    ``weights`` (cuts, Nq) [m^2]: dA = t ds of each quadrature point on its cut; ``xy`` (2, Nq) [m]
+    the points; ``stress``: operators (Nq, dofs) to sigma_xx, sigma_yy, tau_xy, both sides of each
+    edge averaged.
     """
 
     weights: sp.csr_matrix
-    y: NDArray[np.float64]
+    xy: NDArray[np.float64]
     stress: tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]
 
     def resultants(
-        self, displacement: NDArray[np.float64], cuts: NDArray[np.intp], y_ref: NDArray[np.float64]
+        self,
+        displacement: NDArray[np.float64],
+        cuts: NDArray[np.intp],
+        tangent: NDArray[np.float64],
+        reference: NDArray[np.float64],
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-        """N = int sigma_xx dA [N], V = int tau_xy dA [N], M = int (y - y_ref) sigma_xx dA [N m], each (P, S).
+        """N = int t.sigma.t dA [N], V = int n.sigma.t dA [N], M = int (r - r_ref).n (t.sigma.t) dA
+        [N m], each (P, S): the resultants of the traction on the cut face of outward normal t.
 
-        ``cuts`` (S,) picks the cuts, ``y_ref`` (S,) [m] their moment reference heights.
+        ``cuts`` (S,) picks the cuts; ``tangent`` (S, 2) is each cut's unit normal t (the member
+        axis across which it is taken), n = t rotated +90 degrees runs along the cut; ``reference``
+        (S, 2) [m] the moment reference points r_ref on the cuts. With t = +x (a station x): N = int
+        sigma_xx dA, V = int tau_xy dA, M = int (y - y_ref) sigma_xx dA.
         """
         weights = self.weights[np.asarray(cuts, dtype=np.intp)]
-        sxx = self.stress[0] @ displacement
-        n = (weights @ sxx).T
-        v = (weights @ (self.stress[2] @ displacement)).T
-        m = (weights @ (self.y[:, None] * sxx)).T - n * np.asarray(y_ref, float)[None, :]
-        return n, v, m
+        t = np.asarray(tangent, float).reshape(-1, 2)
+        n = np.column_stack([-t[:, 1], t[:, 0]])
+        stress = np.stack([s @ displacement for s in self.stress])  # (3, Nq, P)
+        # Integrals (3, S, P) of each stress component and of its first moments x, y over each cut;
+        # the rotated components are linear in them, so the rotation is per cut, not per point.
+        plain = np.stack([(weights @ s) for s in stress])
+        first = [np.stack([(weights @ (c[:, None] * s)) for s in stress]) for c in self.xy]
+        tt = np.stack([t[:, 0] ** 2, t[:, 1] ** 2, 2 * t[:, 0] * t[:, 1]])[:, :, None]  # t.sigma.t per component
+        nt = np.stack([-t[:, 0] * t[:, 1], t[:, 0] * t[:, 1], t[:, 0] ** 2 - t[:, 1] ** 2])[:, :, None]
+        normal = (tt * plain).sum(axis=0)
+        shear = (nt * plain).sum(axis=0)
+        arm = n[:, 0, None] * (tt * first[0]).sum(axis=0) + n[:, 1, None] * (tt * first[1]).sum(axis=0)
+        moment = arm - (np.asarray(reference, float).reshape(-1, 2) * n).sum(axis=1)[:, None] * normal
+        return normal.T, shear.T, moment.T
 
 
 def cut_integrator(model: PlaneStressModel, cuts: tuple[NDArray[np.intp], ...]) -> CutIntegrator:
@@ -191,7 +209,7 @@ def cut_integrator(model: PlaneStressModel, cuts: tuple[NDArray[np.intp], ...]) 
     owner = np.repeat(np.arange(len(cuts)), [len(c) for c in cuts])
     if len(facets) == 0:
         empty = sp.csr_matrix((0, model.n_dofs))
-        return CutIntegrator(sp.csr_matrix((len(cuts), 0)), np.zeros(0), (empty, empty, empty))
+        return CutIntegrator(sp.csr_matrix((len(cuts), 0)), np.zeros((2, 0)), (empty, empty, empty))
     s, w = np.polynomial.legendre.leggauss(CUT_POINTS)
     s, w = (s + 1) / 2, w / 2
     sides = [_cut_side(model, facets, side, s) for side in (0, 1)]
@@ -205,7 +223,7 @@ def cut_integrator(model: PlaneStressModel, cuts: tuple[NDArray[np.intp], ...]) 
         (model.thickness * (length * w).ravel(), (np.repeat(owner, len(s)), np.arange(len(facets) * len(s)))),
         shape=(len(cuts), len(facets) * len(s)),
     )
-    return CutIntegrator(weights, xy[1].ravel(), stress)
+    return CutIntegrator(weights, xy.reshape(2, -1), stress)
 
 
 def _cut_side(model: PlaneStressModel, facets: NDArray[np.intp], side: int, s: NDArray[np.float64]):

@@ -27,7 +27,7 @@ from linkstress.report.figures import stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
-from linkstress.validation.compare import HolePeak, LinkComparison
+from linkstress.validation.compare import HolePeak, LinkComparison, MemberComparison
 from linkstress.validation.convergence import CONVERGED_CHANGE, PEAK_CONVERGED_CHANGE, RESULTANT_CONVERGED_CHANGE
 from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT, ValidationResult
 
@@ -75,6 +75,7 @@ def link_record(result: ValidationResult, name: str) -> dict:
         "pin_holes": [pin_hole_record(h, angles) for h in c.hole_peaks],
         "fea_yield_safety_factor": factor,
         "fea_yield_safety_factor_reason": reason,
+        "members": [member_record(m) for m in c.members],
         "stations_m": c.stations.tolist(),
         "stations_note": c.station_note or None,
         "nominal_stations_m": c.stations[c.away].tolist(),
@@ -88,6 +89,27 @@ def link_record(result: ValidationResult, name: str) -> dict:
             "resultant_error_pct": (100 * c.resultant_error).tolist(),
         },
     }
+
+
+def member_record(m: MemberComparison) -> dict:
+    """The ``validate`` JSON entry of one member of a link (worst values over the compared positions)."""
+    return {
+        "joints": list(m.joints),
+        "beam_max_von_mises_pa": float(m.beam_max.max()),
+        "nominal_error_pct": None if m.nominal_error is None else float(100 * m.nominal_error.max()),
+        "resultant_error_pct": float(100 * m.resultant_error.max()),
+    }
+
+
+def member_words(m: MemberComparison) -> str:
+    """One member's comparison in a line: its joints, the beam's largest and the worst errors."""
+    record = member_record(m)
+    nominal = record["nominal_error_pct"]
+    return (
+        f"member joints {m.joints[0]}-{m.joints[1]}: beam maximum {record['beam_max_von_mises_pa'] / 1e6:.4g} MPa, "
+        f"resultants within {record['resultant_error_pct']:.3g} %, "
+        + ("no nominal station (every one near a pin or a junction)" if nominal is None else f"nominal within {nominal:.3g} %")
+    )
 
 
 @dataclass(frozen=True)
@@ -283,6 +305,9 @@ def link_lines(result: ValidationResult, name: str, c: LinkComparison) -> list[s
     ]
     if c.station_note:
         lines.append(c.station_note)
+    if len(c.members) > 1:
+        lines += [member_words(m) for m in c.members]
+        lines += [f"member joints {m.joints[0]}-{m.joints[1]}: {m.beam.note}" for m in c.members if m.beam.note]
     lines += [pin_hole_words(h, angles) for h in c.hole_peaks]
     bend = curvature_note(c)
     if bend:
@@ -307,7 +332,7 @@ def peak_words(c: LinkComparison, angles: NDArray[np.float64]) -> str:
 
 def nominal_note(c: LinkComparison) -> str | None:
     """Why no nominal comparison is possible on this link, or None when it is made."""
-    if c.away.any():
+    if c.nominal_error is not None:
         return None
     depth = c.beam.sections.top - c.beam.sections.bottom
     centres = c.fea.link.frame(*c.fea.frame_joints).to_local(c.fea.link.holes[0])[:, 0]
@@ -325,12 +350,17 @@ def nominal_words(c: LinkComparison, angles: NDArray[np.float64]) -> str:
     if c.nominal_error is None:
         return nominal_note(c)
     k = int(np.argmax(c.nominal_error))
-    diff = c.fea_von_mises[k, c.away] - c.beam.von_mises[k, c.away]
-    s = int(np.argmax(np.abs(diff)))
-    return (
-        f"nominal stresses within {100 * c.nominal_error[k]:.3g} % (worst at input angle {angles[k]:.4g} deg, "
-        f"x = {c.stations[c.away][s]:.4g} m, member frame)"
-    )
+    if not c.members:
+        diff = c.fea_von_mises[k, c.away] - c.beam.von_mises[k, c.away]
+        s = int(np.argmax(np.abs(diff)))
+        where = f"x = {c.stations[c.away][s]:.4g} m, member frame"
+    else:
+        m = max((m for m in c.members if m.nominal_error is not None), key=lambda m: m.nominal_error[k])
+        away = m.beam.away
+        s = int(np.argmax(np.abs(m.fea_von_mises[k, away] - m.beam.von_mises[k, away])))
+        x, y = m.beam.cuts.origin[away][s]
+        where = f"s = {m.beam.cuts.s[away][s]:.4g} m along member joints {m.joints[0]}-{m.joints[1]}, ({x:.4g}, {y:.4g}) m member frame"
+    return f"nominal stresses within {100 * c.nominal_error[k]:.3g} % (worst at input angle {angles[k]:.4g} deg, {where})"
 
 
 def pin_hole_words(h: HolePeak, angles: NDArray[np.float64]) -> str:
@@ -364,7 +394,13 @@ def convergence_words(record: dict) -> str:
 
 
 def curvature_note(c: LinkComparison) -> str:
-    """Why straight-beam sections fall short on a curved link, or "" for a straight one."""
+    """How a curved link is sectioned (normal to its centreline, with curved-beam normal stress), or
+    why straight-beam sections fall short on it; "" for a straight one."""
+    if c.beam.curved is not None:
+        return (
+            "the link is curved: its sections are cut normal to its centreline and take the curved-beam "
+            "(Winkler-Bach) normal stress, which the FEA checks over the same cuts"
+        )
     if not is_curved(c.beam.sections, c.beam.near_hole):
         return ""
     wander, depth = neutral_axis_wander(c.beam.sections, c.beam.near_hole)

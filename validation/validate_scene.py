@@ -1,5 +1,5 @@
 """Validate a scene: every link the plan names is solved by FEA under its kinetic loads and compared
-with the beam sections (``compare``). A link that cannot be meshed or solved gets an error entry
+with the beam sections (``compare``), along each of its members. A link that cannot be meshed or solved gets an error entry
 with the reason; the others still finish.
 
 A link fails the check when its FEA support reactions are not ~0 (the kinetics' loads are not in
@@ -22,6 +22,8 @@ from numpy.typing import NDArray
 from tqdm import tqdm
 
 from linkstress.analysis import AnalysisResult, Plan, run_analysis
+from linkstress.errors import GeometryError
+from linkstress.members import link_members
 from linkstress.scene import Scene
 from linkstress.validation.compare import LinkComparison, choose_stations, compare_link, default_mesh
 from linkstress.validation.errors import FEAError
@@ -106,7 +108,7 @@ def validate_scene(
     order = scene.analysis.element_order if scene.analysis is not None else 2
     tasks = [
         (name, scene.links[name].profile, analysis.forces.link_loads[name], chosen, levels, size, order,
-         plan.body_load_near_holes)
+         plan.body_load_near_holes, scene.links[name].members)
         for name in plan.validate
     ]
     if jobs > 1 and len(tasks) > 1:
@@ -122,20 +124,21 @@ def validate_scene(
 
 def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
     """One link's comparison, or the reason it could not run (top level: runs in a worker process)."""
-    name, link, loads, chosen, levels, size, order, body_load_near_holes = task
+    name, link, loads, chosen, levels, size, order, body_load_near_holes, member_pairs = task
     start = time.perf_counter()
     if not len(chosen):
         return name, None, "no feasible position to compare", 0.0
     try:
-        stations = choose_stations(link, loads.frame_joints)
-        mesh = replace(default_mesh(link, loads.frame_joints, stations.x, size), order=order)
+        stations = choose_stations(link, loads.frame_joints, members=member_pairs)
+        members = link_members(link, loads.frame_joints, member_pairs)
+        mesh = replace(default_mesh(link, loads.frame_joints, stations.x, size, members), order=order)
         if order == 1 and size is None:
             mesh = mesh.refined(LINEAR_REFINEMENT)
         comparison = compare_link(
-            name, link, loads, chosen, mesh, levels, stations.x, body_load_near_holes, stations.note,
+            name, link, loads, chosen, mesh, levels, stations.x, body_load_near_holes, stations.note, members,
         )
         return name, comparison, "", time.perf_counter() - start
-    except FEAError as error:
+    except (FEAError, GeometryError) as error:
         return name, None, str(error), time.perf_counter() - start
 
 
