@@ -177,6 +177,15 @@ def test_lightening_holes_and_a_taper_do_not_make_a_bar_curved():
     assert frame_member(tapered, (0, 1)).wander == pytest.approx(0.0, abs=1e-9)
 
 
+def test_a_notch_across_the_axis_does_not_make_a_bar_curved():
+    # 20 mm deep, a notch 4 mm wide and 12 mm deep from the top at mid-span: the cuts under it move
+    # their midpoints 6 mm down, and the line through the joints runs 2 mm above the material there
+    notched = plate([(-0.02, -0.01), (0.22, -0.01), (0.22, 0.01), (0.102, 0.01), (0.102, -0.002),
+                     (0.098, -0.002), (0.098, 0.01), (-0.02, 0.01)])
+    member = frame_member(notched, (0, 1))
+    assert not member.curved and member.wander < 0.01
+
+
 @pytest.mark.parametrize("width", [0.012, 0.03, 0.08])
 def test_stadium_links_are_not_curved(width):
     assert not frame_member(stadium(SPAN, width, 0.008, STRUCTURAL_STEEL, hole_diameter=width / 3), (0, 1)).curved

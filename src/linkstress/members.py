@@ -65,9 +65,6 @@ ARRIVAL_COS = math.cos(math.radians(45.0))
 last steps would run through the joint's lug)."""
 START_RAYS = 72
 """Directions tried for where a bar leaves its joint."""
-OUTSIDE_SHARE = 0.05
-"""A member whose joint-to-joint line runs outside the material for more than this share of its
-length is curved (a C or U), whatever its first midline says."""
 CURVATURE_REACH = 1.0
 """Half the span, in section depths, of the three centreline points whose circle gives the axis's
 curvature at a station (exact on a circular arc; averages the outline's flattening elsewhere)."""
@@ -650,13 +647,6 @@ def _bar_start(edges: Edges, a, b) -> tuple[NDArray[np.float64], float]:
     return rays[k], float(top[0] - bottom[0])
 
 
-def _outside_share(edges: Edges, a, b) -> float:
-    """The share [-] of the straight line from ``a`` to ``b`` that runs outside the outline (holes
-    filled)."""
-    line = LineString([a, b])
-    return float(line.difference(Polygon(edges.outline.exterior)).length / line.length)
-
-
 def _widths(edges: Edges, path: NDArray[np.float64]) -> NDArray[np.float64]:
     """(K - 2,) [m]: the widths of the cuts square to ``path`` at its inner points."""
     chord = path[2:] - path[:-2]
@@ -672,16 +662,20 @@ def _first_midline(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np
 def centreline(
     edges: Edges, a: NDArray[np.float64], b: NDArray[np.float64], square: CutLines,
 ) -> tuple[NDArray[np.float64], float, float]:
-    """The material centreline (K, 2) [m] from joint point ``a`` to ``b``, its smallest section depth
-    [m] clear of the joints, and how far it strays from a straight line, in those depths.
+    """The material centreline (K, 2) [m] from joint point ``a`` to ``b``, its usual section depth [m]
+    clear of the joints, and how far it strays from a straight line, in those depths.
 
     Cuts square to the line a-b at ``_first_midline`` (``square``, v measured from that line) give a
     first midline. Its points whose cut is more than
     ``REGULAR_WIDTH`` times the usual (median) width cut along a lug or another arm and are left out;
     the rest, more than their width from each joint (a lug's rounded end says nothing of the bar's
-    axis), measure the spread about their least-squares line. A straight member keeps the line a-b;
-    so is one whose joint-to-joint line stays in the material (``OUTSIDE_SHARE``). A curved one's
-    centreline is traced from a along the bar (``_march``; from b if that does not arrive)."""
+    axis), measure its bow: the spread of a least-squares cubic through them about their
+    least-squares line (refitted without the few points a notch or a hole moves off the first fit),
+    in their median width. A
+    member is curved when that bow exceeds ``CURVED_WANDER``, or when the line a-b leaves the material by more than half the
+    usual width (a U, a hook: their straight cuts run along the legs, and say little); else it keeps
+    the line a-b. A curved one's centreline is traced from a along the bar (``_march``; from b if
+    that does not arrive)."""
     span = b - a
     length = float(np.hypot(*span))
     along = span / length
@@ -694,14 +688,22 @@ def centreline(
     usual = np.median(width[far]) if far.any() else np.median(width)
     regular = width <= REGULAR_WIDTH * usual
     clear = regular & far
-    outside = _outside_share(edges, a, b)
+    # the line a-b itself leaves the material by more than half a usual width (a U, a hook, a banana)
+    astray = bool((np.maximum(np.maximum(bottom, -top), 0.0) > usual / 2).any())
     depth, wander = float(width.min()), 0.0
-    if clear.sum() >= 3:
+    if clear.sum() >= 4:
         local = (points[clear] - a) @ np.column_stack([along, [-along[1], along[0]]])
-        residual = local[:, 1] - np.polyval(np.polyfit(local[:, 0], local[:, 1], 1), local[:, 0])
-        depth = float(width[clear].min())
-        wander = float(np.ptp(residual)) / depth
-    if wander <= CURVED_WANDER and outside <= OUTSIDE_SHARE:
+        x, y = local.T
+        depth = float(np.median(width[clear]))
+        # the bow of a cubic through the midline; the few points a notch or a hole moves off it (more
+        # than CURVED_WANDER depths) are left out of a second fit
+        fit = np.polyval(np.polyfit(x, y, 3), x)
+        kept = np.abs(y - fit) <= CURVED_WANDER * depth
+        if kept.sum() >= max(4, 0.8 * len(x)):
+            x, y = x[kept], y[kept]
+        bow = np.polyval(np.polyfit(x, y, 3), x) - np.polyval(np.polyfit(x, y, 1), x)
+        wander = float(np.ptp(bow)) / depth
+    if wander <= CURVED_WANDER and not astray:
         return np.array([a, b]), depth, wander
     # from either joint, toward the first midline's points clear of the joints, else along the bar
     tries = [(a, b, None), (b, a, None)]
@@ -716,7 +718,7 @@ def centreline(
         return np.array([a, b]), depth, wander
     usual = float(np.median(_widths(edges, path)))
     # how far the traced centreline strays from the line a-b, in depths
-    wander = max(wander, float(np.abs((path - a) @ np.array([-along[1], along[0]])).max()) / usual)
+    wander = float(np.abs((path - a) @ np.array([-along[1], along[0]])).max()) / usual
     # a section depth from each joint: the points there cut through a lug
     inner = np.flatnonzero((np.hypot(*(path - a).T) > usual) & (np.hypot(*(path - b).T) > usual))
     inner = inner[(inner > 0) & (inner < len(path) - 1)]

@@ -131,7 +131,7 @@ def curved_warnings(result: AnalysisResult) -> list[str]:
             )
             lines.append(
                 f"note: link {name}, member {list(m.joints)} is curved (its centreline strays {m.member.wander:.2g} "
-                f"section depths off a straight line): sectioned square to its centreline, {theory}"
+                f"section depths from the line through its joints): sectioned square to its centreline, {theory}"
             )
     return lines
 
