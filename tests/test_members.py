@@ -17,7 +17,8 @@ from linkstress.dynamics.section_stress import section_stresses
 from linkstress.errors import GeometryError
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.members import CURVED_WANDER, check_members, frame_member, link_members, member_tree
+from linkstress.centreline import CURVED_WANDER
+from linkstress.members import check_members, frame_member, link_members, member_tree
 from linkstress.profile import LinkProfile
 from linkstress.region_moments import region_moments
 

@@ -42,6 +42,7 @@ from shapely.geometry import Polygon
 from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
+from linkstress.member_cuts import segment_distance
 from linkstress.members import Member, MemberCuts, frame_member
 from linkstress.profile import LinkProfile
 from linkstress.validation.convergence import (
@@ -393,12 +394,12 @@ def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> Compari
     candidates = np.unique(np.round(np.append(length * (np.arange(count) + 0.5) / count, length / 2), 12))
     cuts = member.cuts(candidates)
     centres, radii = hole_circles(member.link, member.frame_joints)
-    clearance = _segment_distance(centres, cuts.ends) / radii  # (S, H) [hole radii]
+    clearance = segment_distance(centres, cuts.ends).T / radii  # (S, H) [hole radii]
     depth = cuts.table.top - cuts.table.bottom
     gap = np.full(len(candidates), np.inf)
     for axis in member.others:
         pieces = np.stack([axis[:-1], axis[1:]], axis=1)
-        gap = np.minimum(gap, _segment_distance(cuts.origin, pieces).min(axis=0))
+        gap = np.minimum(gap, segment_distance(cuts.origin, pieces).min(axis=1))
     keep = (clearance > HOLE_CLEARANCE).all(axis=1) & (gap >= depth)
     if keep.any():
         return ComparisonStations(candidates[keep])
@@ -435,15 +436,6 @@ def hole_circles(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[NDAr
     centres = np.array([frame.to_local(h.centroid.coords[0]) for h in holes]).reshape(-1, 2)
     radii = np.array([math.sqrt(h.area / math.pi) for h in holes]).reshape(-1)
     return centres, radii
-
-
-def _segment_distance(points: NDArray[np.float64], segments: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Distances (S, H) [m] from each of ``points`` (H, 2) to each segment (S, 2, 2)."""
-    start = segments[:, None, 0]
-    along = segments[:, None, 1] - start
-    length2 = np.maximum((along * along).sum(axis=-1), np.finfo(float).tiny)
-    u = np.clip(((points[None] - start) * along).sum(axis=-1) / length2, 0.0, 1.0)
-    return np.hypot(*np.moveaxis(start + u[..., None] * along - points[None], -1, 0))
 
 
 def default_mesh(
