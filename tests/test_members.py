@@ -310,3 +310,10 @@ def test_a_u_shaped_link_is_traced_round_its_bend():
     cuts = member.cuts(member.stations(101))
     clear = ~cuts.nominal
     np.testing.assert_allclose((cuts.table.top - cuts.table.bottom)[clear], 0.02, rtol=5e-3)
+
+
+def test_two_joints_at_one_point_are_refused_naming_them():
+    bar = stadium(SPAN, 0.03, 0.008, STRUCTURAL_STEEL, hole_diameter=0.01)
+    doubled = LinkProfile(bar.outline, np.array([[0.0, 0.0], [SPAN, 0.0], [SPAN, 0.0]]), 0.008, STRUCTURAL_STEEL, name="bar")
+    with pytest.raises(GeometryError, match=r"link 'bar': joints 1 and 2 are at the same point \(0.2, 0\) m"):
+        link_members(doubled, (0, 1))

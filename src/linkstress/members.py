@@ -384,6 +384,11 @@ def frame_member(link: LinkProfile, frame_joints: tuple[int, int], members: Arra
 def _member(link, pair, frame_joints, edges: Edges, joints, degree) -> Member:
     i, j = pair
     a, b = joints[i], joints[j]
+    if not np.hypot(*(b - a)) > 1e-9 * np.ptp(joints, axis=0).max():
+        raise GeometryError(
+            f"link {link.name!r}: joints {i} and {j} are at the same point ({a[0]:.6g}, {a[1]:.6g}) m of the load "
+            "frame, so no arm joins them; merge them in the sketch, or name the link's members"
+        )
     path, depth, wander = centreline(edges, a, b, vertical_lines(link, pair, first_midline(a, b)))
     curved = len(path) > 2
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
