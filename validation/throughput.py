@@ -26,9 +26,10 @@ import numpy as np
 
 from linkstress.analysis import DEFAULT_STATIONS, plan_for, run_analysis
 from linkstress.dynamics.machine_forces import machine_forces
-from linkstress.dynamics.section_stress import default_stations, links_section_stresses
+from linkstress.dynamics.section_stress import links_section_stresses
 from linkstress.kinematics import solve_machine
 from linkstress.kinematics.motion import angle_motion
+from linkstress.members import link_members
 from linkstress.scene import load_scene
 from linkstress.validation.compare import comparison_stations, default_mesh
 from linkstress.validation.link_fea import solve_link
@@ -82,7 +83,8 @@ def sweep_rates(scene_path: Path, positions: int, repeat: int) -> list[StageRate
     profiles = {name: scene.links[name].profile for name in plan.stresses}
 
     jobs = [
-        (link, forces.link_loads[name], default_stations(link, forces.link_loads[name].frame_joints, DEFAULT_STATIONS))
+        (link, forces.link_loads[name], link_members(link, forces.link_loads[name].frame_joints, scene.links[name].members),
+         DEFAULT_STATIONS)
         for name, link in profiles.items()
     ]
 
@@ -95,7 +97,7 @@ def sweep_rates(scene_path: Path, positions: int, repeat: int) -> list[StageRate
     return [
         StageRate(case, "kinematics", positions, kinematics_s, f"{len(scene.moving_links)} moving links"),
         StageRate(case, "joint forces", positions, forces_s, "Newton-Euler, every joint and the driving torque"),
-        StageRate(case, "section stresses", positions, stresses_s, f"{links} links x {DEFAULT_STATIONS} stations"),
+        StageRate(case, "section stresses", positions, stresses_s, f"{links} links x {DEFAULT_STATIONS} stations per member"),
         StageRate(case, "whole analysis", positions, kinematics_s + forces_s + stresses_s, "the three stages"),
     ]
 
