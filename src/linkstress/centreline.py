@@ -24,7 +24,7 @@ REGULAR_WIDTH = 2.0
 """A first-midline cut wider than this many times the median runs along a lug or another arm."""
 
 
-CENTRELINE_POINTS = 121
+CENTRELINE_POINTS = 41
 """Points of a curved member's centreline between its joints."""
 
 
@@ -144,7 +144,7 @@ def _march(edges: Edges, a, b, start: tuple[NDArray[np.float64], float] | None =
     tangent = np.asarray(direction, float) / np.hypot(*direction)
     step = MARCH_STEP * width
     point, points = np.asarray(a, float), [np.asarray(a, float)]
-    for _ in range(int(edges.outline.exterior.length / 2 / step) + 1):
+    for _ in range(int(edges.perimeter / 2 / step) + 1):
         gap = b - point
         distance = np.hypot(*gap)
         # arrived: a step away, or within the lug (half a width) heading into it

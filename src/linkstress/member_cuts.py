@@ -15,6 +15,7 @@ cuts in their member frame instead, whose cost grows with the crossings (``verti
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -31,16 +32,22 @@ STATION_BLOCK = 2_000_000
 
 @dataclass(frozen=True)
 class Edges:
-    """A link's outline edges in the load frame: ``starts``, ``ends`` (E, 2) [m], ``outer`` (E,) for the
-    edges of the outer boundary (the rest bound holes); the outline itself and its holes' centres
-    (H, 2) [m]; ``moments`` (4,): A, int x dA, int y dA, int (x^2 + y^2) dA of the whole outline."""
+    """A link's outline edges in the load frame (the member frame of ``frame_joints``): ``starts``,
+    ``ends`` (E, 2) [m], ``outer`` (E,) for the edges of the outer boundary (the rest bound holes); its
+    holes' centres (H, 2) [m]; ``moments`` (4,): A, int x dA, int y dA, int (x^2 + y^2) dA of the
+    whole outline; ``outline`` the polygon itself (made when a cut needs splitting it)."""
 
     starts: NDArray[np.float64]
     ends: NDArray[np.float64]
     outer: NDArray[np.bool_]
-    outline: Polygon
     hole_centres: NDArray[np.float64]
     moments: NDArray[np.float64]
+    link: LinkProfile
+    frame_joints: tuple[int, int]
+
+    @cached_property
+    def outline(self) -> Polygon:
+        return self.link.local_outline(*self.frame_joints)
 
     @classmethod
     def of(cls, link: LinkProfile, frame_joints: tuple[int, int]) -> "Edges":
@@ -51,13 +58,18 @@ class Edges:
         outer = np.repeat(np.arange(len(rings)) == 0, [len(r) for r in rings])
         centres = frame.to_local(link.holes[0]).reshape(-1, 2)
         moments = segment_moments(starts, ends).sum(axis=1)
-        return cls(starts, ends, outer, link.local_outline(*frame_joints), centres, moments)
+        return cls(starts, ends, outer, centres, moments, link, tuple(frame_joints))
 
     @property
     def size(self) -> float:
         """The outline's bounding-box diagonal [m]."""
-        x0, y0, x1, y1 = self.outline.bounds
-        return float(np.hypot(x1 - x0, y1 - y0))
+        return float(np.hypot(*np.ptp(self.starts, axis=0)))
+
+    @property
+    def perimeter(self) -> float:
+        """The outer boundary's length [m]."""
+        step = self.ends[self.outer] - self.starts[self.outer]
+        return float(np.hypot(*step.T).sum())
 
 
 @dataclass(frozen=True)

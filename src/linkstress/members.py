@@ -30,6 +30,7 @@ nominal.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import shapely
@@ -79,6 +80,8 @@ def member_tree(link: LinkProfile, root: tuple[int, int] = (0, 1)) -> tuple[tupl
     n = len(joints)
     if n < 2:
         return ()
+    if n == 2:
+        return ((root[0] % n, root[1] % n),)
     first, second = np.triu_indices(n, 1)
     lines = shapely.linestrings(np.stack([joints[first], joints[second]], axis=1))
     inside = shapely.length(shapely.intersection(lines, Polygon(link.outline.exterior)))
@@ -278,6 +281,21 @@ class Member:
         d = self.path[1] - self.path[0] if end == 0 else self.path[-1] - self.path[-2]
         return d / np.hypot(*d)
 
+    @cached_property
+    def end_depths(self) -> tuple[float, float]:
+        """The section depths [m] through joints i and j (``depths``)."""
+        first, last = self.depths([0.0, self.length])
+        return float(first), float(last)
+
+    def depths(self, stations: ArrayLike) -> NDArray[np.float64]:
+        """The section depths [m] (outline to outline, across any hole) at ``stations`` (arc lengths
+        [m]), without the rest of their sections."""
+        s = np.clip(np.asarray(stations, float).ravel(), *self.extent)
+        origin, tangent, _ = self.axis_at(s)
+        lines = cut_lines(self.edges, origin, tangent) if self.curved else vertical_lines(self.link, self.joints, s)
+        bottom, top, _ = through_axis(lines, len(s))
+        return top - bottom
+
     def cuts(self, stations: ArrayLike) -> MemberCuts:
         """The sections at ``stations`` (arc lengths [m]), load frame."""
         s = np.asarray(stations, float).ravel()
@@ -356,8 +374,18 @@ def link_members(
     link: LinkProfile, frame_joints: tuple[int, int], members: ArrayLike | None = None,
 ) -> tuple[Member, ...]:
     """The members of ``link`` in the load frame of ``frame_joints``: the scene's ``members`` (checked
-    by ``check_members``), else ``member_tree``."""
+    by ``check_members``), else ``member_tree``. Made once per link, frame and ``members`` (the
+    profile is immutable; like its ``boundary``, they are kept with it)."""
     pairs = check_members(link, members) if members is not None else member_tree(link, frame_joints)
+    n = len(link.joints)
+    key = (frame_joints[0] % n, frame_joints[1] % n, pairs)
+    cache = link.__dict__.setdefault("_members", {})
+    if key not in cache:
+        cache[key] = _link_members(link, frame_joints, pairs)
+    return cache[key]
+
+
+def _link_members(link: LinkProfile, frame_joints: tuple[int, int], pairs) -> tuple[Member, ...]:
     edges = Edges.of(link, frame_joints)
     joints = link.frame(*frame_joints).to_local(link.joints)
     degree = np.bincount(np.array(pairs, dtype=int).ravel(), minlength=len(joints))

@@ -395,14 +395,16 @@ def pin_hole_estimates(
     if not outlines:
         return ()
     joints = link.frame(*loads.frame_joints).to_local(link.joints)
-    # The section through each pin's centre across the member axis spans the lug's depth there.
-    bottom, top = cut_extent(link.boundary(*loads.frame_joints), joints[list(outlines), 0])
+    if not depths:
+        # The section through each pin's centre across the member axis spans the lug's depth there.
+        bottom, top = cut_extent(link.boundary(*loads.frame_joints), joints[list(outlines), 0])
+        depths = {j: float(top[k] - bottom[k]) for k, j in enumerate(outlines)}
     areas = link.holes[1]
     borne = _borne_forces(link, loads)
     estimates = []
-    for k, (j, outline) in enumerate(outlines.items()):
+    for j, outline in outlines.items():
         diameter = 2 * float(np.sqrt(areas[link.joint_holes[j]] / np.pi))
-        depth = depths[j] if depths and j in depths else float(top[k] - bottom[k])
+        depth = depths[j]
         force = loads.pin_forces[:, j] + borne.get(link.joint_holes[j], 0.0)
         estimates.append(_estimate(j, diameter, depth, outline, force, loads.joint_couples[:, j], link.thickness))
     return tuple(estimates)
@@ -456,8 +458,10 @@ def _estimate(joint: int, diameter: float, depth: float, outline: HoleOutline, f
 def _borne_forces(link: LinkProfile, loads: LinkLoadCase) -> dict[int, NDArray[np.float64]]:
     """Per hole (its index in the outline), the sum (P, 2) [N, member frame] of the point forces
     given inside it."""
-    outline = link.local_outline(*loads.frame_joints)
     borne: dict[int, NDArray[np.float64]] = {}
+    if not loads.point_forces:
+        return borne
+    outline = link.local_outline(*loads.frame_joints)
     for point in loads.point_forces:
         hole = hole_at(outline, point.at)
         if hole is not None:

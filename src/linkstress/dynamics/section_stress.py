@@ -314,8 +314,7 @@ def member_depths(members: Sequence[Member]) -> dict[int, float]:
     ends = [end for member in members for end in member.joints]
     depths: dict[int, float] = {}
     for member in members:
-        table = member.cuts([0.0, member.length]).table
-        for end, depth in zip(member.joints, table.top - table.bottom):
+        for end, depth in zip(member.joints, member.end_depths):
             depth = float(depth) if ends.count(end) == 1 else member.depth
             depths[end] = min(depths.get(end, np.inf), depth)
     return depths
