@@ -83,6 +83,7 @@ def test_the_curved_couplers_are_sectioned_along_their_centreline_within_3_perce
 def test_both_arms_of_the_bell_crank_are_compared_each_within_2_percent(quick):
     bell = quick[1]["cases"]["bell_crank"]
     assert bell["links"] == ["bellcrank"] and bell["curved_links"] == []
+    assert bell["note"] == "strip sums not on bellcrank (2 members): the strips are vertical cuts along the frame axis"
     # joints 0 = C, 1 = O4 (the pivot, at the corner), 2 = B; the frame's member O4 -> B first
     assert bell["members"] == {"bellcrank": ["[1, 2]", "[1, 0]"]}
     beam = next(m for m in bell["methods"] if m["setting"] == "101 stations")

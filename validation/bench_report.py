@@ -140,6 +140,8 @@ def bench_text(result: BenchResult) -> str:
                   format_table(MEMBER_HEADERS, member_rows(case))]
         if case.curved:
             lines.append(f"curved: {', '.join(case.curved)} (a member sectioned square to its centreline, Winkler-Bach stresses)")
+        if case.note:
+            lines.append(case.note)
     lines += ["", *must_show_lines(result), "", "defaults:", *(f"  {line}" for line in defaults_lines(result))]
     lines += ["", "strip sums' mass properties against the exact (Green) values (worst link)", format_table(*strip_mass_table(result))]
     lines += ["", "throughput", format_table(*rates_table(result)), "", "FEA peak memory (fresh process)", format_table(*memory_table(result))]
@@ -206,7 +208,7 @@ def bench_json(result: BenchResult) -> dict:
         "mode": result.settings.name, "seconds": result.seconds, "machine": result.machine,
         "cases": {c.name: {
             "title": c.title, "links": list(c.links), "members": {n: list(v) for n, v in c.members.items()},
-            "positions": c.positions, "curved_links": list(c.curved),
+            "positions": c.positions, "curved_links": list(c.curved), "note": c.note,
             "kinetics_seconds": c.kinetics_seconds, "reference_dofs": c.reference_dofs,
             "reference_error_pct": {n: _none_pct(e) for n, e in c.reference_error.items()},
             "methods": [method(c, k, m) for k, m in enumerate(c.methods)],
@@ -285,7 +287,7 @@ def bench_html(result: BenchResult) -> str:
         sections += [
             f"<h2>{html.escape(case.title)}</h2>",
             f"<p>{html.escape(', '.join(case.links))} at {case.positions} position(s); reference error estimate "
-            f"{100 * reference_estimate(case):.2g} %.</p>",
+            f"{100 * reference_estimate(case):.2g} %.{' ' + html.escape(case.note) if case.note else ''}</p>",
             figure_tag(speed_error_figure(case), f"time against error, {case.name}"),
             table_html(CASE_HEADERS, case_rows(case)),
             "<p>Per member (a member whose every compared station is near a hole or a junction has no nominal error: -)</p>",

@@ -258,5 +258,6 @@ def _member_checks(bench_case: BenchCase, case: CaseStudy) -> list[Check]:
         bound = bench_case.bounds.get(link, NOMINAL_BOUND)
         for member, (nominal, _) in members.items():
             if nominal is not None:
-                checks.append(Check(f"{case.name}: beam nominal error of {link} member {member}", nominal < bound, nominal, bound))
+                name = f"{case.name}: beam nominal error of {link} member {member}"
+                checks.append(Check(name, nominal < bound, nominal, bound))
     return checks

@@ -15,9 +15,9 @@ in the full run; the joint-force solve they all share is timed apart):
 The quantity is the nominal von Mises stress along every member of each link (``linkstress.members``:
 sections square to the member's axis) at validate's comparison stations of that member
 (``member_stations``), at the beam's critical fibre of each, over the stations that are not nominal
-(a section depth from every hole and junction; all of a member's stations where every one is); a
-method with other stations is interpolated linearly along the member's arc length s, as a reader
-of its station table would. Error: per member, the largest difference over those points relative
+(a section depth from every hole and junction; a member whose every station is nominal, a crank
+short for its holes, has no nominal error); a method with other stations is interpolated linearly
+along the member's arc length s, as a reader of its station table would. Error: per member, the largest difference over those points relative
 to the largest reference value, per position, worst over positions; a link's is the worst over its
 members, a method's the worst over links. The reference is the Richardson extrapolation
 (``convergence.richardson``) of the three finest P2 meshes (the finest where the observed order is
@@ -84,9 +84,8 @@ class LinkSetup:
     """One compared link: its loads at the compared positions and its ``members`` (the scene's
     ``member_pairs``, else the tree of its joints), each member's sections ``cuts`` at validate's
     comparison stations of that member, which of them are ``away`` (S,) from holes and junctions (not
-    nominal),
-    the critical fibres' offsets ``fibre`` (P, S) [m, along each cut's normal] and the ``mesh``, with
-    every cut segment meshed. S counts every member's stations, member by member (``blocks``); load
+    nominal), the critical fibres' offsets ``fibre`` (P, S) [m, along each cut's normal] and the
+    ``mesh``, with every cut segment meshed. S counts every member's stations, member by member (``blocks``); load
     frame throughout."""
 
     name: str
@@ -133,10 +132,13 @@ class LinkSetup:
 
 
 def member_label(member: Member) -> str:
+    """A member named by its joints, "[i, j]"."""
     return str(list(member.joints))
 
 
-def setup_links(scene: Scene, analysis: AnalysisResult, chosen: NDArray[np.intp], names: tuple[str, ...] | None = None) -> list[LinkSetup]:
+def setup_links(
+    scene: Scene, analysis: AnalysisResult, chosen: NDArray[np.intp], names: tuple[str, ...] | None = None,
+) -> list[LinkSetup]:
     """validate's comparison along every member of the links ``names`` (default: every link the
     plan validates) at the sweep positions ``chosen``: each member's comparison stations, the beam's
     critical fibres there and validate's default mesh with the members' cut segments."""
@@ -202,8 +204,8 @@ class MethodResult:
 class CaseStudy:
     """Every method measured on one case; ``reference_error`` [-] per link: Richardson's estimate
     of the reference's own error (worst over its members; None where no station is away from the
-    holes); ``kinetics_seconds``: the shared
-    joint-force solve; ``curved``: the links with a curved member; ``members``: each link's members."""
+    holes); ``kinetics_seconds``: the shared joint-force solve; ``curved``: the links with a curved
+    member; ``members``: each link's members; ``note``: a method the case could not run, and why."""
 
     name: str
     title: str
@@ -216,6 +218,7 @@ class CaseStudy:
     curved: tuple[str, ...]
     failures: tuple[str, ...]
     members: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    note: str = ""
 
     def pareto(self) -> list[int]:
         """Indices of the methods no other method beats in both time and nominal error."""
@@ -329,23 +332,27 @@ def case_study(scene_path, settings: StudySettings, links: tuple[str, ...] | Non
     for dx in settings.strip_steps:
         key = ("strip sums", f"dx = {dx:g} m")
         if stripped:
-            answers[key], mass[key] = _strip_answers(scene, analysis, chosen, [s for s in setups if s.name in stripped], dx, settings)
+            straight = [s for s in setups if s.name in stripped]
+            answers[key], mass[key] = _strip_answers(scene, analysis, chosen, straight, dx, settings)
             notes[key] = strip_note(setups)
     methods = [_method(key, by_link, setups, reference, mass.get(key), notes.get(key, "")) for key, by_link in answers.items()]
     reference_error = {
-        s.name: _worst(member_nominal_errors(s, r.nominal + r.nominal_error, r.nominal)) for s, r in zip(setups, reference.values())
+        s.name: _worst(member_nominal_errors(s, r.nominal + r.nominal_error, r.nominal))
+        for s, r in zip(setups, reference.values())
     }
     title = scene.title if scene.title != scene_path.stem else scene_path.parent.name.replace("_", " ")
     return CaseStudy(
         scene_path.parent.name, title, tuple(s.name for s in setups), len(chosen), tuple(methods),
         reference_error, {s.name: finest[-1][s.name].size for s in setups}, kinetics_seconds,
         tuple(s.name for s in setups if s.curved), tuple(failures), {s.name: s.labels for s in setups},
+        "" if stripped or not settings.strip_steps else f"strip sums {strip_note(setups)}",
     )
 
 
 def strip_note(setups: list[LinkSetup]) -> str:
     """Which links the strip sums leave out, and why ("" when none)."""
-    left = [f"{s.name} ({'curved' if s.curved else f'{len(s.members)} members'})" for s in setups if s.name not in strip_links(setups)]
+    straight = strip_links(setups)
+    left = [f"{s.name} ({'curved' if s.curved else f'{len(s.members)} members'})" for s in setups if s.name not in straight]
     if not left:
         return ""
     return f"not on {', '.join(left)}: the strips are vertical cuts along the frame axis"
