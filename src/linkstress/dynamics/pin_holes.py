@@ -395,10 +395,12 @@ def pin_hole_estimates(
     if not outlines:
         return ()
     joints = link.frame(*loads.frame_joints).to_local(link.joints)
-    if not depths:
+    depths = dict(depths or {})
+    missing = [j for j in outlines if j not in depths]
+    if missing:
         # The section through each pin's centre across the member axis spans the lug's depth there.
-        bottom, top = cut_extent(link.boundary(*loads.frame_joints), joints[list(outlines), 0])
-        depths = {j: float(top[k] - bottom[k]) for k, j in enumerate(outlines)}
+        bottom, top = cut_extent(link.boundary(*loads.frame_joints), joints[missing, 0])
+        depths.update({j: float(top[k] - bottom[k]) for k, j in enumerate(missing)})
     areas = link.holes[1]
     borne = _borne_forces(link, loads)
     estimates = []
