@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 from linkstress.analysis import Plan, run_analysis
 from linkstress.builders import straight_bar, stadium
 from linkstress.dynamics.internal_forces import internal_forces
-from linkstress.dynamics.section_stress import default_stations, section_stresses
+from linkstress.dynamics.section_stress import section_stresses
+from linkstress.members import frame_member
 from linkstress.kinematics.motion import angle_motion
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import Material
@@ -136,7 +137,7 @@ def test_pure_shear_section_peaks_at_the_neutral_axis_with_1_5_v_over_a():
 
 def test_default_stations_avoid_the_ends_where_a_round_link_has_no_depth():
     link = stadium(0.3, 0.06, 0.01, STEEL, hole_diameter=0.02)
-    x = default_stations(link, (0, 1), 50)
+    x = frame_member(link, (0, 1)).stations(50)
     lo, hi = link.x_extent()
     assert x[0] > lo and x[-1] < hi
     assert np.allclose(np.diff(x), (hi - lo) / 50)
@@ -231,7 +232,7 @@ def test_seed_coupler_maximum_with_the_body_load_term_is_that_of_dense_fibres_ov
     scene = replace(scene, motion=angle_motion(np.linspace(0.0, 360.0, 72, endpoint=False), -1.0, 0.0))
     result = run_analysis(scene, Plan(forces=True, stresses=(), stations=200, validate=(), notes=()))
     link, loads = scene.links["coupler"].profile, result.forces.link_loads["coupler"]
-    stress = section_stresses(link, loads, default_stations(link, loads.frame_joints, 200), body_load_near_holes)
+    stress = section_stresses(link, loads, frame_member(link, loads.frame_joints).stations(200), body_load_near_holes)
     table, f = stress.sections, stress.forces
     rho = link.density
     b_y = rho * ((loads.gravity[:, 1] - loads.origin_acceleration[:, 1])[:, None] - loads.alpha[:, None] * table.x)
@@ -264,7 +265,7 @@ def test_equilibrium_check_at_the_hull_corners_equals_the_check_at_every_cut(mon
     forces = run_analysis(scene, Plan(forces=True, stresses=(), stations=200, validate=(), notes=())).forces
     for name in ("crank", "coupler", "output"):
         link, loads = scene.links[name].profile, forces.link_loads[name]
-        stations = default_stations(link, loads.frame_joints, 200)
+        stations = frame_member(link, loads.frame_joints).stations(200)
         # an unbalanced force, so that the moment check varies along the link (and is not rounding)
         extra = np.zeros_like(loads.pin_forces)
         extra[:, 0] = [3.0, 40.0]

@@ -21,8 +21,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
+from numpy.typing import NDArray
 
-from linkstress.curvature import is_curved, neutral_axis_wander
 from linkstress.report.figures import stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
 from linkstress.safety import finite_or_none, yield_factor
@@ -395,20 +395,12 @@ def convergence_words(record: dict) -> str:
 
 def curvature_note(c: LinkComparison) -> str:
     """How a curved link is sectioned (normal to its centreline, with curved-beam normal stress), or
-    why straight-beam sections fall short on it; "" for a straight one."""
-    if c.beam.curved is not None:
-        return (
-            "the link is curved: its sections are cut normal to its centreline and take the curved-beam "
-            "(Winkler-Bach) normal stress, which the FEA checks over the same cuts"
-        )
-    if not is_curved(c.beam.sections, c.beam.near_hole):
+    "" for a straight one."""
+    if c.beam.curved is None:
         return ""
-    wander, depth = neutral_axis_wander(c.beam.sections, c.beam.near_hole)
     return (
-        f"the link is curved (its neutral axis wanders {wander:.3g} m off a straight line, "
-        f"{wander / depth:.2g} section depths): straight-beam sections cut the curved bar at an angle and "
-        "sigma = N/A + M y/I misses the curvature's shift of the neutral axis (Winkler-Bach), so the FEA is "
-        "the value to trust there"
+        "the link is curved: its sections are cut normal to its centreline and take the curved-beam "
+        "(Winkler-Bach) normal stress, which the FEA checks over the same cuts"
     )
 
 

@@ -16,8 +16,8 @@ from numpy.typing import NDArray
 from linkstress.member_cuts import CutLines, Edges, cut_lines, through_axis
 
 CURVED_WANDER = 0.1
-"""A member is curved when its centreline strays more than this many section depths from the line
-through its joints (as ``linkstress.curvature`` judges a link)."""
+"""A member is curved when the bow of its midline (``centreline``) is more than this many section
+depths."""
 
 
 REGULAR_WIDTH = 2.0

@@ -27,7 +27,7 @@ and the chord's interior maxima are found by ``fibre_peaks.single_chord_peak``. 
 bars the term is 2-4 % of the nominal stress and takes the beam-versus-FEA difference there from up
 to 3.8 % to under 0.6 %.
 
-Near a hole (``near_holes``) the values are nominal: elementary beam theory, the stress a Kt
+Near a hole (and at a junction of members, ``linkstress.members``) the values are nominal: elementary beam theory, the stress a Kt
 multiplies. The correction refines beam theory where it holds, so there it is left out, as on
 sections split by holes, unless asked for (``body_load_near_holes``). It is also where it costs
 most: the near-hole stations of an inertia-loaded link (its rounded ends, where N and M fade and
@@ -137,23 +137,6 @@ class SectionStresses:
     def mismatch(self) -> NDArray[np.float64]:
         """(P,) the equilibrium check of ``forces`` (as ``StressSummary.mismatch``)."""
         return self.forces.mismatch
-
-
-def default_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int) -> NDArray[np.float64]:
-    """``count`` stations [m] at the centres of equal cells over the link's extent (never on an end,
-    where a rounded link's section shrinks to a point)."""
-    lo, hi = link.x_extent(*frame_joints)
-    return lo + (hi - lo) * (np.arange(count) + 0.5) / count
-
-
-def near_holes(link: LinkProfile, frame_joints: tuple[int, int], sections: SectionTable) -> NDArray[np.bool_]:
-    """Stations of member frame ``frame_joints`` (vertical cuts of ``sections``) whose cut lies closer
-    to a hole's centre than the section depth (``linkstress.members``: St-Venant)."""
-    centres = link.frame(*frame_joints).to_local(link.holes[0])
-    depth = sections.top - sections.bottom
-    below = np.clip(centres[None, :, 1], sections.bottom[:, None], sections.top[:, None]) - centres[None, :, 1]
-    distance = np.hypot(sections.x[:, None] - centres[None, :, 0], below)
-    return (distance < (depth * (1 - 1e-9))[:, None]).any(axis=1)
 
 
 def section_stresses(
