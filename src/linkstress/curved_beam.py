@@ -126,9 +126,7 @@ def curved_sections(table: SectionTable, curvature: ArrayLike) -> CurvedSections
         raise GeometryError(
             f"station x = {table.x[bad]:.6g} m: curvature must be finite, got {float(kappa[bad])!r} 1/m"
         )
-    present = np.arange(table.lower.shape[1])[None, :] < table.n_chords[:, None]
-    reach = np.where(present, np.maximum(kappa[:, None] * table.lower, kappa[:, None] * table.upper), 0.0)
-    past = (reach >= 1).any(axis=1)
+    past = centre_reach(table, kappa) >= 1
     if past.any():
         i = np.flatnonzero(past)[0]
         raise GeometryError(
@@ -136,6 +134,7 @@ def curved_sections(table: SectionTable, curvature: ArrayLike) -> CurvedSections
             f"v = {table.bottom[i]:.6g}..{table.top[i]:.6g} m, centre at v = {1 / kappa[i]:.6g} m "
             f"(curvature {kappa[i]:.6g} 1/m); a curved member's cut must stop short of its centre"
         )
+    present = table.present
     centroid = table.neutral_axis
     k = kappa / (1 - kappa * centroid)
     # Padding chords are empty: w = 0 at both ends adds nothing.
@@ -144,6 +143,14 @@ def curved_sections(table: SectionTable, curvature: ArrayLike) -> CurvedSections
     cubic = (hi**4 * cubic_kernel(k[:, None] * hi) - lo**4 * cubic_kernel(k[:, None] * lo)).sum(axis=1)
     stiffness = table.second_moment + k * table.thickness * cubic
     return CurvedSections(table.x, kappa, centroid, table.area, k, stiffness)
+
+
+def centre_reach(table: SectionTable, curvature: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(S,): how far each section's material reaches toward its centre of curvature, kappa v at its
+    fibre nearest the centre [-] (1: at the centre; 0 where kappa = 0)."""
+    kappa = np.asarray(curvature, float)[:, None]
+    reach = np.maximum(kappa * table.lower, kappa * table.upper)
+    return np.where(table.present, reach, 0.0).max(axis=1)
 
 
 def cubic_kernel(z: ArrayLike) -> NDArray[np.float64]:

@@ -39,6 +39,7 @@ from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import split
 
 from linkstress.centreline import centreline, first_midline
+from linkstress.curved_beam import centre_reach
 from linkstress.errors import GeometryError
 from linkstress.member_cuts import (
     CutLines, Edges, cut_lines, half_plane_moments, piece_moments, section_chords, segment_distance, through_axis,
@@ -169,11 +170,7 @@ class MemberCuts:
     def tight(self) -> NDArray[np.bool_]:
         """(S,): sections that reach within ``TIGHT`` of their radius of their centre of curvature
         (the inside of a hook), where no beam theory holds."""
-        table = self.table
-        present = np.arange(table.lower.shape[1])[None, :] < table.n_chords[:, None]
-        kappa = self.curvature[:, None]
-        reach = np.where(present, np.maximum(kappa * table.lower, kappa * table.upper), 0.0)
-        return reach.max(axis=1) >= 1 - TIGHT
+        return centre_reach(self.table, self.curvature) >= 1 - TIGHT
 
     @property
     def nominal(self) -> NDArray[np.bool_]:

@@ -143,6 +143,11 @@ class SectionTable:
     def c_bottom(self) -> NDArray[np.float64]:
         return self.neutral_axis - self.bottom
 
+    @property
+    def present(self) -> NDArray[np.bool_]:
+        """(M, K): the real chords of ``lower``/``upper`` (the rest is padding)."""
+        return np.arange(self.lower.shape[1])[None, :] < self.n_chords[:, None]
+
     def chords(self, i: int) -> NDArray[np.float64]:
         """The material chords (n, 2) [a, b] of station ``i``, bottom to top."""
         n = self.n_chords[i]

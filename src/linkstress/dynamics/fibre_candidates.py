@@ -343,7 +343,7 @@ class CurvedFibres:
             return None
         sections = curved_sections(table, np.where(curved, curvature, 0.0))
         fractions = np.linspace(0.0, 1.0, CURVED_SAMPLES)
-        present = np.arange(table.lower.shape[1])[None, :] < table.n_chords[:, None]
+        present = table.present
         # padding chords repeat the first chord's samples
         lower = np.where(present, table.lower, table.lower[:, :1])[at]
         upper = np.where(present, table.upper, table.upper[:, :1])[at]

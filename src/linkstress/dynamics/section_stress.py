@@ -50,6 +50,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -224,24 +225,31 @@ class StressSummary:
     def blocks(self) -> tuple[slice, ...]:
         return self.members[0].blocks
 
-    @property
+    @cached_property
     def max_von_mises(self) -> NDArray[np.float64]:
-        return np.max([m.max_von_mises for m in self.members], axis=0)
+        return self._largest("max_von_mises")
 
-    @property
+    @cached_property
     def max_at(self) -> NDArray[np.float64]:
+        if len(self.members) == 1:
+            return self.members[0].max_at
         k = np.argmax([m.max_von_mises for m in self.members], axis=0)
         places = np.stack([m.max_at for m in self.members])
         return places[k, np.arange(len(k))]
 
-    @property
+    @cached_property
     def max_away_from_holes(self) -> NDArray[np.float64] | None:
         away = [m.max_away_from_holes for m in self.members if m.max_away_from_holes is not None]
-        return np.max(away, axis=0) if away else None
+        return np.max(away, axis=0) if len(away) > 1 else (away[0] if away else None)
 
-    @property
+    @cached_property
     def mismatch(self) -> NDArray[np.float64]:
-        return np.max([m.mismatch for m in self.members], axis=0)
+        return self._largest("mismatch")
+
+    def _largest(self, name: str) -> NDArray[np.float64]:
+        """The largest of the members' per-position ``name`` (a single member's own array)."""
+        values = [getattr(m, name) for m in self.members]
+        return values[0] if len(values) == 1 else np.max(values, axis=0)
 
     @property
     def x(self) -> NDArray[np.float64]:
