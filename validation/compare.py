@@ -395,12 +395,7 @@ def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> Compari
     cuts = member.cuts(candidates)
     centres, radii = hole_circles(member.link, member.frame_joints)
     clearance = segment_distance(centres, cuts.ends).T / radii  # (S, H) [hole radii]
-    depth = cuts.table.top - cuts.table.bottom
-    gap = np.full(len(candidates), np.inf)
-    for axis in member.others:
-        pieces = np.stack([axis[:-1], axis[1:]], axis=1)
-        gap = np.minimum(gap, segment_distance(cuts.origin, pieces).min(axis=1))
-    keep = (clearance > HOLE_CLEARANCE).all(axis=1) & (gap >= depth)
+    keep = (clearance > HOLE_CLEARANCE).all(axis=1) & ~cuts.junction
     if keep.any():
         return ComparisonStations(candidates[keep])
     middle = int(np.argmin(np.abs(candidates - length / 2)))
