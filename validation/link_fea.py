@@ -214,11 +214,12 @@ class LinkFEAResult:
         return gap.argmin(axis=1)
 
 
-def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> LinkFEAResult:
-    """Mesh ``link`` in the member frame of ``loads.frame_joints`` and solve every position of ``loads``.
+def link_model(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> PlaneStressModel:
+    """Mesh ``link`` in the member frame of ``loads.frame_joints`` (refined at its point forces in
+    material) and assemble its plane-stress stiffness.
 
-    Raises FEAError (an InputError) naming the link for: a link without E and nu, a loaded joint
-    without a hole, a part too thin for the sizes, a gmsh or solver failure.
+    Raises FEAError (an InputError) naming the link for: a link without E and nu, a load case that
+    does not fit it, a part too thin for the sizes, a gmsh failure.
     """
     material = link.material
     if material is None or material.youngs_modulus is None or material.poisson_ratio is None:
@@ -226,15 +227,24 @@ def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> Li
             f"link {link.name!r}: the FEA needs a material with density, youngs_modulus and poisson_ratio"
         )
     check_load_case(link, loads)
-    start = time.perf_counter()
     # A force in a hole bears on the hole, which is refined already; one in material needs its patch.
     refine = [
         np.asarray(p.at, float) for p in loads.point_forces
         if point_force_hole(link, loads.frame_joints, p.at) is None
     ]
     plane = mesh_region(link.local_outline(*loads.frame_joints), mesh, refine, name=f"link {link.name!r}")
+    return plane_stress_model(plane, material.youngs_modulus, material.poisson_ratio, link.thickness)
+
+
+def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> LinkFEAResult:
+    """Mesh ``link`` in the member frame of ``loads.frame_joints`` and solve every position of ``loads``.
+
+    Raises FEAError (an InputError) naming the link for: a link without E and nu, a loaded joint
+    without a hole, a part too thin for the sizes, a gmsh or solver failure.
+    """
+    start = time.perf_counter()
+    model = link_model(link, loads, mesh)
     meshed = time.perf_counter()
-    model = plane_stress_model(plane, material.youngs_modulus, material.poisson_ratio, link.thickness)
     forces = link_loads(model, link, loads, patch_radius=mesh.station_size)
     fixed, _ = minimal_support(model)
     try:
@@ -242,27 +252,35 @@ def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> Li
     except FEAError as error:
         raise FEAError(f"link {link.name!r}: {error}") from None
     nodal_stress = stress_recovery(model).nodal_stress(displacement)
-    reactions = _reactions(model, fixed, support)
-    applied = np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0)
-    length = float(np.ptp(model.scalar.doflocs, axis=1).max())
-    size = np.maximum(np.hypot(reactions[:, 0], reactions[:, 1]), np.abs(reactions[:, 2]) / length)
-    ratio = np.divide(size, applied, out=np.zeros_like(size), where=applied > 0)
+    reactions = support_reactions(model, fixed, support)
+    ratio = reaction_ratio(model, forces, reactions)
     return LinkFEAResult(
         link=link,
         frame_joints=tuple(loads.frame_joints),
-        plane=plane,
+        plane=model.plane,
         model=model,
         displacement=displacement,
         nodal_stress=nodal_stress,
         reactions=reactions,
         reaction_ratio=ratio,
-        applied_load=applied,
+        applied_load=np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0),
         mesh_seconds=meshed - start,
         solve_seconds=time.perf_counter() - meshed,
     )
 
 
-def _reactions(
+def reaction_ratio(
+    model: PlaneStressModel, forces: NDArray[np.float64], reactions: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """(P,) [-]: the larger of the support force and moment / the region's length, over the gross
+    applied load (sum of |nodal force| of ``forces`` (dofs, P)): ~0 for loads in equilibrium."""
+    applied = np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0)
+    length = float(np.ptp(model.scalar.doflocs, axis=1).max())
+    size = np.maximum(np.hypot(reactions[:, 0], reactions[:, 1]), np.abs(reactions[:, 2]) / length)
+    return np.divide(size, applied, out=np.zeros_like(size), where=applied > 0)
+
+
+def support_reactions(
     model: PlaneStressModel, fixed: NDArray[np.intp], support: NDArray[np.float64]
 ) -> NDArray[np.float64]:
     """Support reactions (P, 3): force x, y [N] and moment about the origin [N m], from the fixed dofs."""

@@ -1,0 +1,166 @@
+"""FEA peak stresses of a link over a whole sweep, by superposition of its unit load cases.
+
+    cases = unit_load_cases(link, loads, peak_mesh(link, loads.frame_joints))
+    peaks = sweep_peaks(cases, loads, positions)
+
+Each position's recovered nodal stress is the unit cases' stresses weighted by that position's
+loads (``UnitLoadCases.weights``): one matrix product per block of positions. From it, per
+position, the largest von Mises over the nodes and the node where it is; per node, over the sweep,
+the largest von Mises and the largest and smallest signed equivalent stress (von Mises with the
+sign of the principal stress of larger magnitude, ``linkstress.fatigue``) that a fatigue check
+cycles. Memory holds a block of positions and a few values per node, never nodes x positions.
+
+The mesh is validate's finest of its default refinement study (``peak_mesh``). Whether the peak has
+settled on it is checked at the sweep's worst position (``coarser_peak``): the direct FEA on the
+mesh one refinement coarser, whose peak must lie within PEAK_CONVERGED_CHANGE of this one.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.fatigue import signed_von_mises
+from linkstress.loads import LinkLoadCase
+from linkstress.members import Member
+from linkstress.profile import LinkProfile
+from linkstress.validation.compare import choose_stations, default_mesh
+from linkstress.validation.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO
+from linkstress.validation.link_fea import solve_link
+from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.recovery import von_mises
+from linkstress.validation.unit_loads import UnitLoadCases
+
+BLOCK_VALUES = 2_000_000
+"""Stress values (nodes x 3 x positions) superposed at once: 16 MB, whatever the mesh or sweep."""
+MESH_LEVELS = 3
+"""The peak mesh is the finest of validate's default study of this many levels."""
+
+
+@dataclass(frozen=True)
+class SweepPeaks:
+    """One link's superposed FEA over the positions ``positions`` (Pe,) (indices into the sweep).
+
+    ``peak`` (Pe,) [Pa]: the largest recovered von Mises over the nodes, at node ``peak_node`` (Pe,);
+    ``envelope`` (nodes,) [Pa]: each node's largest von Mises over the positions; ``largest`` and
+    ``smallest`` (nodes,) [Pa]: each node's extremes of the signed equivalent stress;
+    ``reaction_ratio`` (Pe,) [-]: the superposed support reactions over the applied load (~0 for
+    loads in equilibrium); ``worst`` the index into ``positions`` of the largest peak and
+    ``worst_stress`` (nodes, 3) [Pa] the field there; ``seconds`` of the superposition.
+    """
+
+    cases: UnitLoadCases
+    positions: NDArray[np.intp]
+    peak: NDArray[np.float64]
+    peak_node: NDArray[np.intp]
+    envelope: NDArray[np.float64]
+    largest: NDArray[np.float64]
+    smallest: NDArray[np.float64]
+    reaction_ratio: NDArray[np.float64]
+    worst: int
+    worst_stress: NDArray[np.float64]
+    seconds: float
+
+    @property
+    def peak_at(self) -> NDArray[np.float64]:
+        """Where (Pe, 2) [m, member frame] each position's peak is."""
+        return self.cases.nodes[self.peak_node]
+
+
+def superposed_stress(cases: UnitLoadCases, weights: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Recovered nodal stress (P, nodes, 3) [Pa] of the unit cases combined with ``weights`` (U, P)."""
+    combined = cases.stress @ np.asarray(weights, float).reshape(cases.count, -1)  # (nodes x 3, P)
+    return combined.reshape(-1, 3, combined.shape[1]).transpose(2, 0, 1)
+
+
+def sweep_peaks(cases: UnitLoadCases, loads: LinkLoadCase, positions: NDArray[np.intp] | None = None) -> SweepPeaks:
+    """Superpose ``cases`` over ``positions`` of ``loads`` (all by default), a block at a time."""
+    start = time.perf_counter()
+    chosen = np.arange(loads.n_positions) if positions is None else np.asarray(positions, dtype=np.intp)
+    n_nodes = cases.stress.shape[0] // 3
+    block = max(1, BLOCK_VALUES // (3 * n_nodes))
+    peak = np.zeros(len(chosen))
+    peak_node = np.zeros(len(chosen), dtype=np.intp)
+    ratio = np.zeros(len(chosen))
+    envelope = np.zeros(n_nodes)
+    largest = np.full(n_nodes, -np.inf)
+    smallest = np.full(n_nodes, np.inf)
+    length = float(np.ptp(cases.nodes, axis=0).max())
+    for first in range(0, len(chosen), block):
+        part = slice(first, first + block)
+        weights = cases.weights(loads.at(chosen[part]))
+        stress = superposed_stress(cases, weights)  # (C, nodes, 3)
+        vm = von_mises(stress)
+        node = vm.argmax(axis=1)
+        peak[part], peak_node[part] = vm[np.arange(len(node)), node], node
+        signed = signed_von_mises(stress)
+        np.maximum(envelope, vm.max(axis=0), out=envelope)
+        np.maximum(largest, signed.max(axis=0), out=largest)
+        np.minimum(smallest, signed.min(axis=0), out=smallest)
+        reactions = weights.T @ cases.reactions  # (C, 3)
+        size = np.maximum(np.hypot(reactions[:, 0], reactions[:, 1]), np.abs(reactions[:, 2]) / length)
+        applied = np.abs(weights).T @ cases.applied
+        ratio[part] = np.divide(size, applied, out=np.zeros_like(size), where=applied > 0)
+    worst = int(np.argmax(peak)) if len(chosen) else 0
+    worst_stress = (
+        superposed_stress(cases, cases.weights(loads.at(chosen[worst:worst + 1])))[0]
+        if len(chosen) else np.zeros((n_nodes, 3))
+    )
+    return SweepPeaks(
+        cases, chosen, peak, peak_node, envelope, largest, smallest, ratio, worst, worst_stress,
+        time.perf_counter() - start,
+    )
+
+
+def peak_mesh(
+    link: LinkProfile,
+    frame_joints: tuple[int, int],
+    members: Sequence[Member] = (),
+    size: float | None = None,
+    order: int = 2,
+    levels: int = MESH_LEVELS,
+) -> MeshSettings:
+    """Validate's default mesh of the link, refined to the finest of a ``levels`` study, without
+    the comparison cuts (a peak is at a hole's rim or a fillet, not on a cut)."""
+    stations = choose_stations(link, frame_joints).x
+    base = replace(default_mesh(link, frame_joints, stations, size, members), order=order)
+    return replace(base.refined(REFINEMENT_RATIO ** (levels - 1)), stations=(), cuts=())
+
+
+@dataclass(frozen=True)
+class PeakCheck:
+    """The direct FEA's peak ``coarser`` [Pa] at the worst position on the mesh one refinement
+    coarser than the superposed ``finer`` [Pa]; ``change`` [-] relative to the finer one."""
+
+    finer: float
+    coarser: float
+    limit: float = PEAK_CONVERGED_CHANGE
+
+    @property
+    def change(self) -> float:
+        return abs(self.finer - self.coarser) / self.finer if self.finer > 0 else 0.0
+
+    @property
+    def converged(self) -> bool:
+        return self.change <= self.limit
+
+
+def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings) -> PeakCheck:
+    """The peak's change over the last refinement at the sweep's worst position: the direct FEA on
+    ``mesh`` (the peak mesh) made REFINEMENT_RATIO coarser."""
+    worst = peaks.positions[peaks.worst : peaks.worst + 1]
+    coarse = solve_link(peaks.cases.link, loads.at(worst), mesh.refined(1 / REFINEMENT_RATIO))
+    return PeakCheck(float(peaks.peak[peaks.worst]), float(coarse.von_mises_peak[0]))
+
+
+def field_error(superposed: NDArray[np.float64], direct: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(P,) [-]: rms over the nodes of the von Mises difference of two nodal stress fields (P, nodes,
+    3), relative to the rms of the direct one's von Mises."""
+    vs, vd = von_mises(superposed), von_mises(direct)
+    rms = np.sqrt((vd**2).mean(axis=1))
+    diff = np.sqrt(((vs - vd) ** 2).mean(axis=1))
+    return np.divide(diff, rms, out=np.zeros_like(diff), where=rms > 0)

@@ -1,0 +1,261 @@
+"""Unit load cases of one link: the recovered stress of each elementary load, one factorisation.
+
+Linear elasticity makes the stress of any combination of loads the same combination of their
+stresses (one stiffness, one set of supports; docs/fea.md, "Peaks over a sweep"). A link's load
+case over a sweep is a combination, position by position, of:
+
+- each loaded pin's cosine bearing pressure (``link_loads.bearing_loads``) for a unit force in each
+  of K directions, every ``DIRECTION_STEP_DEG``: the pressure is not linear in the force's
+  direction (it acts on the half of the hole the force faces), so a pin force between two basis
+  directions takes those two, with the non-negative weights that reproduce the force exactly;
+- a unit couple through each pin that carries one (tangential traction on its hole);
+- each point force: in material its two unit components (a patch load, linear); in a hole, the
+  pin's K bearing directions and a unit couple about the hole's centre for its offset;
+- the d'Alembert body load rho (g - a_O - alpha k x r + omega^2 r), member frame: a uniform load per
+  unit of (g - a_O)_x and (g - a_O)_y, rho (y, -x) per unit alpha and rho (x, y) per unit omega^2.
+
+Every unit load has exactly the resultant its weight stands for, so a combination of a load case
+in equilibrium is in equilibrium and its superposed field is the direct FEA of that combination:
+only the bearing pressure's shape between basis directions differs from the direct solution's
+(measured by ``linkstress bench`` and the tests).
+
+Only the loads a sweep has are modelled: a pin that never carries force, a joint without a couple,
+get no unit cases.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.loads import LinkLoadCase
+from linkstress.profile import LinkProfile
+from linkstress.validation.errors import FEAError
+from linkstress.validation.link_fea import link_model, support_reactions
+from linkstress.validation.link_loads import (
+    bearing_loads,
+    body_loads,
+    patch_loads,
+    point_force_hole,
+    shaft_couple_loads,
+)
+from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.plane_stress import PlaneStressModel, factorise, minimal_support
+from linkstress.validation.recovery import stress_recovery
+
+DIRECTION_STEP_DEG = 10.0
+"""Spacing of a pin's bearing directions (36 per pin). A force halfway between two of them is
+carried by two cosine pressures 5 deg either side, whose shape differs from the direct one near the
+edges of the loaded half; measured by ``linkstress bench`` (superposed against direct peaks)."""
+BODY_TERMS = ("(g - a_O)_x", "(g - a_O)_y", "alpha", "omega^2")
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """A pin's K bearing cases, in the columns from ``first``: on hole ``hole`` (the outline's
+    interior index) about ``centre`` (2,) [m, member frame]."""
+
+    label: str
+    first: int
+    hole: int
+    centre: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class UnitLoadCases:
+    """The unit load cases of ``link`` meshed in ``model`` (member frame of ``frame_joints``).
+
+    ``stress`` (nodes x 3, U) [Pa per unit weight]: the recovered nodal sigma_xx, sigma_yy, tau_xy of
+    unit case u in column u, node-major (rows 3 i, 3 i + 1, 3 i + 2 are node i's components);
+    ``reactions`` (U, 3): each unit case's support force x, y [N] and moment about the origin [N m];
+    ``applied`` (U,) [N]: its gross nodal load (sum of |nodal force|); ``labels`` (U,) name each
+    case; ``directions`` (K,) [rad] the bearing directions. ``seconds``: mesh, solve (factorise,
+    the unit solves and the stress recovery).
+    """
+
+    link: LinkProfile
+    frame_joints: tuple[int, int]
+    model: PlaneStressModel
+    stress: NDArray[np.float64]
+    reactions: NDArray[np.float64]
+    applied: NDArray[np.float64]
+    labels: tuple[str, ...]
+    directions: NDArray[np.float64]
+    pins: tuple[tuple[int, Bearing], ...]
+    couples: tuple[tuple[int, int], ...]
+    point_forces: tuple[tuple[int, Bearing | None, int], ...]
+    body: int
+    seconds: dict[str, float]
+
+    @property
+    def count(self) -> int:
+        return self.stress.shape[1]
+
+    @property
+    def nodes(self) -> NDArray[np.float64]:
+        """Positions (nodes, 2) [m, member frame] of the nodes the stresses are recovered at."""
+        return self.model.scalar.doflocs.T
+
+    @property
+    def dofs(self) -> int:
+        return self.model.n_dofs
+
+    def weights(self, loads: LinkLoadCase) -> NDArray[np.float64]:
+        """(U, P): the weight of each unit case at each position of ``loads`` (the same link, the
+        same load terms: a term the unit cases lack must be zero in ``loads``, else FEAError)."""
+        check_same_terms(self, loads)
+        w = np.zeros((self.count, loads.n_positions))
+        k = len(self.directions)
+        for joint, bearing in self.pins:
+            w[bearing.first:bearing.first + k] = bearing_weights(loads.pin_forces[:, joint], self.directions).T
+        for joint, column in self.couples:
+            w[column] = loads.joint_couples[:, joint]
+        for index, bearing, column in self.point_forces:
+            point = loads.point_forces[index]
+            force = np.asarray(point.force, float)
+            if bearing is None:
+                w[column:column + 2] = force.T
+                continue
+            w[bearing.first:bearing.first + k] = bearing_weights(force, self.directions).T
+            offset = np.asarray(point.at, float) - bearing.centre
+            w[column] = offset[0] * force[:, 1] - offset[1] * force[:, 0]
+        free = loads.gravity - loads.origin_acceleration
+        w[self.body:self.body + 4] = [free[:, 0], free[:, 1], loads.alpha, loads.omega**2]
+        return w
+
+
+def bearing_weights(forces: NDArray[np.float64], directions: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(P, K): weights on K evenly spaced unit ``directions`` [rad] that sum to each force (P, 2) [N]
+    exactly, non-zero only on the two directions either side of it (both >= 0)."""
+    forces = np.asarray(forces, float).reshape(-1, 2)
+    k = len(directions)
+    step = 2 * np.pi / k
+    angle = np.mod(np.arctan2(forces[:, 1], forces[:, 0]) - directions[0], 2 * np.pi)
+    below = np.minimum(np.floor(angle / step).astype(np.intp), k - 1)
+    offset = angle - below * step
+    magnitude = np.hypot(forces[:, 0], forces[:, 1])
+    # F = a d_k + b d_k+1 with d the unit vectors: Cramer's rule on the 2x2 system.
+    a = magnitude * np.sin(step - offset) / np.sin(step)
+    b = magnitude * np.sin(offset) / np.sin(step)
+    w = np.zeros((len(forces), k))
+    rows = np.arange(len(forces))
+    w[rows, below] = a
+    w[rows, (below + 1) % k] = b
+    return w
+
+
+def unit_load_cases(
+    link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings, step_deg: float = DIRECTION_STEP_DEG
+) -> UnitLoadCases:
+    """Mesh ``link`` (member frame of ``loads.frame_joints``), factorise once and solve the unit
+    cases of the load terms ``loads`` has over its sweep (see the module's docstring).
+
+    Raises FEAError naming the link for a loaded joint without a hole, a mesh or solver failure.
+    """
+    start = time.perf_counter()
+    model = link_model(link, loads, mesh)
+    meshed = time.perf_counter()
+    frame = link.frame(*loads.frame_joints)
+    joints = frame.to_local(link.joints)
+    directions = np.deg2rad(np.arange(0.0, 360.0, step_deg))
+    unit = np.column_stack([np.cos(directions), np.sin(directions)])
+    holes = model.plane.holes
+    columns: list[NDArray[np.float64]] = []
+    labels: list[str] = []
+
+    def add(forces: NDArray[np.float64], names: list[str]) -> int:
+        first = sum(c.shape[1] for c in columns)
+        columns.append(forces)
+        labels.extend(names)
+        return first
+
+    def bearing(label: str, hole: int, centre: NDArray[np.float64]) -> Bearing:
+        names = [f"{label}: unit bearing force at {np.rad2deg(d):g} deg" for d in directions]
+        return Bearing(label, add(bearing_loads(model, holes[hole], centre, unit), names), hole, centre)
+
+    pins, couples = [], []
+    for j, hole in enumerate(link.joint_holes):
+        pin, couple = loads.pin_forces[:, j], loads.joint_couples[:, j]
+        loaded, turned = bool(np.any(pin != 0)), bool(np.any(couple != 0))
+        if (loaded or turned) and hole is None:
+            raise FEAError(
+                f"link {link.name!r}: joint {j} carries a pin force or couple but has no hole; the FEA applies "
+                "joint loads on a pin hole: draw the hole (a circle centred on the joint)"
+            )
+        if loaded:
+            pins.append((j, bearing(f"pin {j}", hole, joints[j])))
+        if turned:
+            label = [f"pin {j}: unit couple"]
+            couples.append((j, add(shaft_couple_loads(model, holes[hole], joints[j], np.ones(1)), label)))
+    points = []
+    for index, point in enumerate(loads.point_forces):
+        pin = point_force_hole(link, loads.frame_joints, point.at)
+        label = f"point force {index} at {np.round(np.asarray(point.at, float), 6).tolist()} m"
+        if pin is None:
+            patch = patch_loads(model, point.at, np.eye(2), mesh.station_size)
+            points.append((index, None, add(patch, [f"{label}: unit x", f"{label}: unit y"])))
+            continue
+        hole, centre = pin
+        cases = bearing(label, hole, centre)
+        couple = add(shaft_couple_loads(model, holes[hole], centre, np.ones(1)), [f"{label}: unit couple"])
+        points.append((index, cases, couple))
+    body = add(_unit_body_loads(model, loads.frame_joints, link.density), [f"body: unit {t}" for t in BODY_TERMS])
+    forces = np.hstack(columns)
+    fixed, _ = minimal_support(model)
+    try:
+        displacement, support = factorise(model, fixed).solve(forces)
+    except FEAError as error:
+        raise FEAError(f"link {link.name!r}: {error}") from None
+    nodal = stress_recovery(model).nodal_stress(displacement)  # (U, nodes, 3)
+    stress = np.ascontiguousarray(nodal.reshape(len(labels), -1).T)
+    applied = np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0)
+    return UnitLoadCases(
+        link=link,
+        frame_joints=tuple(loads.frame_joints),
+        model=model,
+        stress=stress,
+        reactions=support_reactions(model, fixed, support),
+        applied=applied,
+        labels=tuple(labels),
+        directions=directions,
+        pins=tuple(pins),
+        couples=tuple(couples),
+        point_forces=tuple(points),
+        body=body,
+        seconds={"mesh": meshed - start, "solve": time.perf_counter() - meshed},
+    )
+
+
+def _unit_body_loads(model: PlaneStressModel, frame_joints: tuple[int, int], density: float) -> NDArray[np.float64]:
+    """The four body-load unit cases (dofs, 4): per unit (g - a_O)_x, (g - a_O)_y, alpha and omega^2."""
+    basis = LinkLoadCase(
+        frame_joints,
+        pin_forces=np.zeros((4, 0, 2)),
+        joint_couples=np.zeros((4, 0)),
+        omega=np.array([0.0, 0.0, 0.0, 1.0]),
+        alpha=np.array([0.0, 0.0, 1.0, 0.0]),
+        origin_acceleration=np.zeros((4, 2)),
+        gravity=np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0], [0.0, 0.0]]),
+    )
+    return body_loads(model, basis, density)
+
+
+def check_same_terms(cases: UnitLoadCases, loads: LinkLoadCase) -> None:
+    """FEAError when ``loads`` has a load the unit cases of ``cases`` were not made for."""
+    name = cases.link.name
+    if tuple(loads.frame_joints) != cases.frame_joints:
+        raise FEAError(f"link {name!r}: load case in the frame of joints {loads.frame_joints}, unit cases in {cases.frame_joints}")
+    pinned = {j for j, _ in cases.pins}
+    turned = {j for j, _ in cases.couples}
+    for j in range(loads.pin_forces.shape[1]):
+        if j not in pinned and np.any(loads.pin_forces[:, j] != 0):
+            raise FEAError(f"link {name!r}: joint {j} carries a pin force its unit load cases were not made for")
+        if j not in turned and np.any(loads.joint_couples[:, j] != 0):
+            raise FEAError(f"link {name!r}: joint {j} carries a couple its unit load cases were not made for")
+    if len(loads.point_forces) != len(cases.point_forces):
+        raise FEAError(
+            f"link {name!r}: {len(loads.point_forces)} point forces, unit load cases made for {len(cases.point_forces)}"
+        )
