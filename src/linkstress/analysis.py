@@ -9,7 +9,7 @@ whose data is missing is an error that says which keys would supply it.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,7 +30,8 @@ DEFAULT_STATIONS = 101
 class Plan:
     """The stages to run: ``forces``; section stresses for ``stresses`` (link names) at ``stations``
     per link, with the body-load term near holes too when ``body_load_near_holes``; FEA for
-    ``validate``; ``notes`` say why a stage or link is left out."""
+    ``validate``; FEA peaks over the sweep, by superposition of unit loads, and fatigue for ``peaks``
+    (judged by ``fatigue_criterion``); ``notes`` say why a stage or link is left out."""
 
     forces: bool
     stresses: tuple[str, ...]
@@ -38,6 +39,12 @@ class Plan:
     validate: tuple[str, ...]
     notes: tuple[str, ...]
     body_load_near_holes: bool = False
+    peaks: tuple[str, ...] = ()
+    fatigue_criterion: str = "goodman"
+
+    def with_peaks(self) -> Plan:
+        """The same plan with FEA peaks for every stressed link."""
+        return replace(self, peaks=self.stresses)
 
     def describe(self) -> str:
         lines = ["plan:", "  kinematics: every position"]
@@ -48,6 +55,11 @@ class Plan:
             + (", body-load term near holes too" if self.stresses and self.body_load_near_holes else "")
         )
         lines.append(f"  FEA check: {', '.join(self.validate) if self.validate else 'none'}")
+        if self.peaks:
+            lines.append(
+                f"  FEA peaks over the sweep (superposed unit loads) and fatigue ({self.fatigue_criterion}): "
+                + ", ".join(self.peaks)
+            )
         lines += [f"  note: {note}" for note in self.notes]
         return "\n".join(lines)
 
@@ -84,7 +96,9 @@ def plan_for(scene: Scene) -> Plan:
         if name not in stressable and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
     body_load_near_holes = asked is not None and asked.body_load_near_holes
-    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes)
+    peaks = stresses if asked is not None and asked.peaks else ()
+    criterion = asked.fatigue_criterion if asked is not None else "goodman"
+    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes, peaks, criterion)
 
 
 @dataclass(frozen=True)
@@ -92,7 +106,8 @@ class AnalysisResult:
     """Everything computed for a scene over its P positions; ``feasible`` (P,) where every stage
     that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage.
     ``stresses`` keep per-position reductions, per member; ``stresses[name].members[k].at(positions)``
-    recomputes the arrays along a member."""
+    recomputes the arrays along a member. ``peaks``: per link of ``plan.peaks``, its FEA peaks over
+    the sweep and fatigue (``linkstress.validation.peaks_scene.LinkPeaks``)."""
 
     scene: Scene
     plan: Plan
@@ -100,6 +115,7 @@ class AnalysisResult:
     forces: MachineForces | None
     stresses: dict[str, StressSummary]
     seconds: dict[str, float] = field(default_factory=dict)
+    peaks: dict[str, object] = field(default_factory=dict)
 
     def curved(self, name: str) -> bool:
         """Whether link ``name`` has a curved member: one sectioned normal to its curved centreline
@@ -119,10 +135,17 @@ class AnalysisResult:
         """Where each position's largest section von Mises of link ``name`` (of its ``member``-th
         member, if given) is, ground frame (P, 2) [m]."""
         stress = self.stresses[name]
-        local = stress.max_at if member is None else stress.members[member].max_at
+        return self.to_ground(name, stress.max_at if member is None else stress.members[member].max_at)
+
+    def to_ground(self, name: str, local: NDArray[np.float64], positions: NDArray[np.intp] | None = None) -> NDArray[np.float64]:
+        """Points (P, 2) [m] fixed in link ``name``'s member frame, one per position (of ``positions``,
+        indices into the sweep, if given), in the ground frame."""
         motion = self.kinematics.links[name]
-        c, s = np.cos(motion.angle), np.sin(motion.angle)
-        return motion.origin + np.column_stack([c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1]])
+        angle, origin = motion.angle, motion.origin
+        if positions is not None:
+            angle, origin = angle[positions], origin[positions]
+        c, s = np.cos(angle), np.sin(angle)
+        return origin + np.column_stack([c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1]])
 
 
 def run_analysis(scene: Scene, plan: Plan | None = None) -> AnalysisResult:
@@ -150,4 +173,12 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
             jobs.append((profile, loads, members, plan.stations))
         stresses = dict(zip(plan.stresses, links_section_stresses(jobs, plan.body_load_near_holes)))
         seconds["stresses"] = time.perf_counter() - start
-    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds)
+    peaks = {}
+    if plan.peaks and forces is not None:
+        # The FEA stack (gmsh, scikit-fem) loads only when peaks are asked for.
+        from linkstress.validation.peaks_scene import scene_peaks
+
+        start = time.perf_counter()
+        peaks = scene_peaks(scene, plan, forces)
+        seconds["peaks"] = time.perf_counter() - start
+    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds, peaks)

@@ -63,9 +63,12 @@ def json_bytes(data: object, option: str) -> bytes:
         raise _non_finite(option) from None
 
 
-def json_stream(key: str, items: Iterable[object], option: str) -> Callable[[BinaryIO], None]:
-    """The writer of ``json_bytes({key: list(items)}, option)``, byte for byte, each item encoded and
-    written as it comes. The items are at depth 2 of that indentation: each item's lines two spaces in."""
+def json_stream(
+    key: str, items: Iterable[object], option: str, after: Callable[[], Mapping[str, object]] | None = None
+) -> Callable[[BinaryIO], None]:
+    """The writer of ``json_bytes({key: list(items), **after()}, option)``, byte for byte, each item
+    encoded and written as it comes. The items are at depth 2 of that indentation: each item's lines
+    two spaces in. ``after`` gives the keys that follow the list, once it is written."""
 
     def write(stream: BinaryIO) -> None:
         stream.write(f"{{\n {json.dumps(key)}: [".encode())
@@ -77,7 +80,14 @@ def json_stream(key: str, items: Iterable[object], option: str) -> Callable[[Bin
                 raise _non_finite(option) from None
             stream.write(f"{separator}{text}".encode())
             separator = ",\n  "
-        stream.write(b"]\n}\n" if separator == "\n  " else b"\n ]\n}\n")
+        stream.write(b"]" if separator == "\n  " else b"\n ]")
+        for name, value in (after() if after is not None else {}).items():
+            try:
+                text = json.dumps(value, indent=1, allow_nan=False).replace("\n", "\n ")
+            except ValueError:
+                raise _non_finite(option) from None
+            stream.write(f",\n {json.dumps(name)}: {text}".encode())
+        stream.write(b"\n}\n")
 
     return write
 

@@ -17,6 +17,7 @@ import numpy as np
 from linkstress.analysis import AnalysisResult, Plan, plan_for, run_analysis
 from linkstress.errors import InputError
 from linkstress.output import check_outputs, json_stream, write_all
+from linkstress.report.peak_records import peak_summaries
 from linkstress.report.records import stream_position_records
 from linkstress.report.text import report
 from linkstress.scene import Scene, load_scene
@@ -49,6 +50,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="add N, V, M and von Mises along every link (member frame) to the JSON",
     )
     parser.add_argument("--html", type=Path, metavar="OUT", help="also write a self-contained HTML report to OUT")
+    parser.add_argument(
+        "--peaks", action="store_true",
+        help="also the FEA peak stress of every stressed link at every position (unit load cases superposed, "
+        "one mesh and factorisation per link) and, where its material gives endurance_limit and ultimate_strength, "
+        "its fatigue safety factor over the sweep; as [analysis] peaks = true",
+    )
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -59,6 +66,10 @@ def run(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     check_outputs(outputs, scene_sketches(scene))
     plan = plan_for(scene)
+    if args.peaks:
+        plan = plan.with_peaks()
+    if plan.peaks or args.peaks:
+        check_peaks(scene, plan)
     check_work(scene, plan)
     if args.explain:
         print(plan.describe())
@@ -71,7 +82,9 @@ def run(args: argparse.Namespace) -> int:
     # JSON is encoded into its staged file as its records are made, a block of positions at a time.
     files = []
     if args.json is not None:
-        files.append((args.json, json_stream("positions", stream_position_records(result, stations=args.stations), "--json")))
+        records = stream_position_records(result, stations=args.stations)
+        after = (lambda: {"links": peak_summaries(result)}) if result.peaks else None
+        files.append((args.json, json_stream("positions", records, "--json", after)))
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 
@@ -79,6 +92,20 @@ def run(args: argparse.Namespace) -> int:
     print(report(result))
     write_all(files)
     return 0
+
+
+def check_peaks(scene: Scene, plan: Plan) -> None:
+    """FEA peaks need stressed links, each with elastic constants and a mesh this machine can carry."""
+    from linkstress.commands.validate import check_materials, check_meshes
+
+    if not plan.peaks:
+        raise InputError(
+            f"{scene.path.name}: --peaks / [analysis] peaks: no link has section stresses; the FEA peaks need links "
+            "drawn in a sketch with a thickness and a material, and joint forces (mass data for every moving link)"
+        )
+    check_materials(scene, plan.peaks)
+    size = scene.analysis.mesh_size if scene.analysis is not None else None
+    check_meshes(scene, plan.peaks, size, 3)
 
 
 def scene_sketches(scene: Scene) -> list[Path]:

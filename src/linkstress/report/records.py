@@ -17,7 +17,9 @@ estimate) where the material gives ``yield_strength`` (null where the stress is 
 ``stations`` the arrays along the link's first member; ``members`` (per member of the link: its
 ``joints``, the ``beam_theory`` its sections took, "straight" or "curved" (Winkler-Bach), and its
 own ``max_von_mises_pa`` and ``max_at_m``); per mechanism ``forces_n`` (Norton names) and
-``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed.
+``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed;
+with FEA peaks, per link ``peak_von_mises_pa``, ``peak_at_m`` and ``peak_yield_safety_factor``
+(``linkstress.report.peak_records``).
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 The records are made a block of positions at a time (``stream_position_records``), for
 ``output.write_json_stream`` to write as they come.
@@ -34,6 +36,7 @@ from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
 from linkstress.dynamics.section_stress import StressSummary
+from linkstress.report.peak_records import peak_columns
 from linkstress.safety import finite_or_none, link_safety_factors
 from linkstress.threads import even_blocks
 
@@ -97,6 +100,8 @@ def stream_position_records(result: AnalysisResult, stations: bool = False) -> I
         if stations:
             values["stations"] = partial(_block_station_lists, stress)
         values["members"] = partial(_member_rows, result, name)
+    for name in result.peaks:
+        link_values.setdefault(name, {}).update(peak_columns(result, name))
     for name, factors in link_safety_factors(result).items():
         link_values[name]["yield_safety_factor"] = partial(_finite_rows, factors.sections)
         if factors.pin_holes is not None:

@@ -23,6 +23,7 @@ from linkstress.kinematics.linkage_class import (
     toggle_angles,
 )
 from linkstress.report.maxima import LinkFigures, link_figures
+from linkstress.report.peak_text import peaks_table
 from linkstress.report.records import link_columns
 from linkstress.safety import link_safety_factors
 from linkstress.scene import Scene
@@ -44,6 +45,8 @@ def report(result: AnalysisResult) -> str:
         parts.append(forces_table(result))
     if result.stresses:
         parts.append(stress_table(result))
+    if result.peaks:
+        parts.append(peaks_table(result))
     parts += curved_warnings(result)
     parts += transmission_warnings(result)
     parts += crossing_warnings(result)

@@ -11,7 +11,9 @@ mechanism name.
 [analysis]: ``kinematics``, ``forces``, ``stresses`` (booleans, default false once the table
 exists), ``stations`` (>= 2), ``validate`` (link names with profiles), ``mesh_size_m`` (> 0),
 ``element_order`` (1 or 2, default 2), ``body_load_near_holes`` (boolean, default false: sections
-within a depth of a hole get nominal beam values, without the body-load term).
+within a depth of a hole get nominal beam values, without the body-load term), ``peaks`` (boolean,
+default false: FEA peaks over the sweep by superposition of unit loads, and fatigue),
+``fatigue_criterion`` ("goodman", "gerber" or "asme-elliptic"; default "goodman").
 """
 
 from __future__ import annotations
@@ -25,8 +27,10 @@ from linkstress.scene.keys import MAX_STATIONS, Table
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
 
 LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
+FATIGUE_CRITERIA = ("goodman", "gerber", "asme-elliptic")
 ANALYSIS_KEYS = (
     "kinematics", "forces", "stresses", "stations", "validate", "mesh_size_m", "element_order", "body_load_near_holes",
+    "peaks", "fatigue_criterion",
 )
 
 
@@ -100,6 +104,8 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
         mesh_size=table.number("mesh_size_m", positive=True, unit="m"),
         element_order=order,
         body_load_near_holes=table.boolean("body_load_near_holes", False),
+        peaks=table.boolean("peaks", False),
+        fatigue_criterion=table.string("fatigue_criterion", "goodman", FATIGUE_CRITERIA),
     )
 
 

@@ -118,7 +118,10 @@ class Analysis:
 
     stations: number of section stations per link (None: the engine's default); validate: links to
     check by FEA; mesh_size [m] (None: the engine's default); element_order 1 or 2;
-    body_load_near_holes: the body-load term on sections near holes too (default: nominal values there).
+    body_load_near_holes: the body-load term on sections near holes too (default: nominal values there);
+    peaks: FEA peak stresses over the sweep by superposition of unit loads, and fatigue, for every
+    stressed link; fatigue_criterion: the criterion of ``fatigue_safety_factor`` ("goodman",
+    "gerber" or "asme-elliptic").
     """
 
     kinematics: bool = False
@@ -129,6 +132,8 @@ class Analysis:
     mesh_size: float | None = None
     element_order: int = 2
     body_load_near_holes: bool = False
+    peaks: bool = False
+    fatigue_criterion: str = "goodman"
 
 
 @dataclass(frozen=True)

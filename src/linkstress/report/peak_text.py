@@ -1,0 +1,58 @@
+"""The terminal report's FEA peaks and fatigue (``analyze --peaks``): one row per link, then what
+each figure means and why a factor is withheld."""
+
+from __future__ import annotations
+
+from linkstress.analysis import AnalysisResult
+from linkstress.report.peak_records import peak_summaries
+from linkstress.tables import format_table
+
+
+def peaks_table(result: AnalysisResult) -> str:
+    """Per link: the FEA peak over the sweep (where and when), the beam's largest nominal value
+    beside it, the peak's check, and the yield and fatigue safety factors taken from the FEA."""
+    summaries = peak_summaries(result)
+    rows, notes = [], []
+    for name, s in summaries.items():
+        beam = s.get("beam_max_von_mises_pa")
+        at = s["peak_max_at_m"]
+        fatigue = s["fatigue_safety_factor"]
+        where = s.get("fatigue_critical_at_m")
+        rows.append((
+            name, s["peak_max_von_mises_pa"], s["peak_max_input_angle_deg"], f"({at[0]:.4g}, {at[1]:.4g})",
+            "-" if beam is None else beam,
+            "-" if not beam else f"{s['peak_max_von_mises_pa'] / beam:.3g}",
+            f"{s['peak_change_pct']:.3g} %" + ("" if s["peak_converged"] else " NOT converged"),
+            _factor(s.get("peak_yield_safety_factor"), "peak_yield_safety_factor" in s),
+            "-" if fatigue is None else f"{fatigue:.3g} ({s['fatigue_criterion']})",
+            "-" if fatigue is None or where is None else f"({where[0]:.4g}, {where[1]:.4g})",
+        ))
+        mesh = s["peak_mesh"]
+        notes.append(
+            f"  {name}: {mesh['dofs']} dofs, {mesh['unit_load_cases']} unit load cases (bearing every "
+            f"{mesh['direction_step_deg']:g} deg); "
+            + (f"fatigue: sigma_a {s['fatigue_alternating_pa']:.4g} Pa, sigma_m {s['fatigue_mean_pa']:.4g} Pa, S_e "
+               f"{s['fatigue_endurance_limit_pa']:.4g} Pa, " + ", ".join(
+                   f"{k} {'-' if v is None else format(v, '.3g')}" for k, v in s["fatigue_safety_factors"].items())
+               if "fatigue_alternating_pa" in s else "no fatigue data")
+        )
+        notes += [f"  {name}: {text}" for text in (s["peak_note"], s["fatigue_note"]) if text]
+    headers = (
+        "link", "FEA peak [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "beam max [Pa]", "peak / beam",
+        "peak check", "yield safety factor (FEA peak)", "fatigue safety factor", "critical point (x, y) [m], drawing",
+    )
+    return "\n".join([
+        "FEA peak stresses over the sweep (plane-stress FEA of each link, its unit load cases superposed at every "
+        "position; von Mises anywhere in the link: pin holes, fillets, curved crowns)",
+        format_table(headers, rows),
+        *notes,
+        "peak check: the peak's change at its worst position over the last mesh refinement (limit 5 %); a peak that "
+        "has not settled gives no safety factor. fatigue: over the sweep, per point, the alternating and mean of the "
+        "signed von Mises (sign of the larger principal stress), Marin-corrected endurance limit (docs/fatigue.md)",
+    ])
+
+
+def _factor(value: float | None, given: bool) -> str:
+    if not given:
+        return "-"
+    return "- (withheld)" if value is None else f"{value:.3g}"

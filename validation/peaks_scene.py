@@ -1,0 +1,154 @@
+"""FEA peaks and fatigue of every link a plan names, over the scene's whole sweep.
+
+For each link of ``plan.peaks``: its unit load cases on the peak mesh (``peaks.peak_mesh``), their
+superposition over every feasible position (``peaks.sweep_peaks``), the peak's check over the last
+refinement at the worst position (``peaks.coarser_peak``), and, where the material gives
+``endurance_limit`` and ``ultimate_strength``, the fatigue safety factor of every node from the
+extremes of its signed equivalent stress over the sweep (``linkstress.fatigue``).
+
+A fatigue factor is the cycle's only when the sweep is one: a whole turn of the input, every
+position feasible. Otherwise it is still given, with a note that says what it covers. A peak that
+moved more than the limit over the last refinement gives no safety factor, yield or fatigue: the
+note says so and why.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.analysis import Plan
+from linkstress.dynamics.machine_forces import MachineForces
+from linkstress.fatigue import NodeFatigue, criteria_available, node_fatigue
+from linkstress.members import link_members
+from linkstress.scene import Scene
+from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.peaks import PeakCheck, SweepPeaks, coarser_peak, peak_mesh, sweep_peaks
+from linkstress.validation.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
+
+FULL_TURN_DEG = 360.0
+
+
+@dataclass(frozen=True)
+class LinkPeaks:
+    """One link's FEA peaks over a sweep of P positions and, where its material allows, its fatigue.
+
+    ``sweep``: the superposed peaks at the feasible positions ``sweep.positions``; ``check``: the
+    peak's change over the last refinement at the worst position; ``mesh``: the peak mesh's
+    settings; ``fatigue``: per node factors and the critical node (None without fatigue data, then
+    ``fatigue_note`` says why); ``fatigue_note``: what the factor covers when not one whole cycle,
+    or why there is none.
+    """
+
+    name: str
+    n_positions: int
+    sweep: SweepPeaks
+    check: PeakCheck
+    mesh: MeshSettings
+    fatigue: NodeFatigue | None
+    fatigue_criterion: str
+    fatigue_note: str
+    check_seconds: float = 0.0
+
+    @property
+    def peak(self) -> NDArray[np.float64]:
+        """(P,) [Pa]: the peak at every position of the sweep, nan where infeasible."""
+        return self._spread(self.sweep.peak)
+
+    @property
+    def peak_at(self) -> NDArray[np.float64]:
+        """(P, 2) [m, member frame]: where each position's peak is, nan where infeasible."""
+        return self._spread(self.sweep.peak_at)
+
+    @property
+    def worst_position(self) -> int:
+        """Index into the sweep of the largest peak."""
+        return int(self.sweep.positions[self.sweep.worst])
+
+    @property
+    def peak_max(self) -> float:
+        """[Pa]: the largest peak over the sweep."""
+        return float(self.sweep.peak[self.sweep.worst])
+
+    @property
+    def trusted(self) -> bool:
+        """Whether the peak settled on its mesh (and safety factors may be taken from it)."""
+        return self.check.converged
+
+    @property
+    def untrusted_reason(self) -> str:
+        """Why no safety factor is taken from the peak ("" when one is)."""
+        if self.trusted:
+            return ""
+        return (
+            f"the FEA peak changed {100 * self.check.change:.3g} % over the last mesh refinement at its worst "
+            f"position (limit {100 * self.check.limit:g} %): a sharp corner or a steep stress the mesh does not "
+            "resolve; round the corner in the drawing or give a finer [analysis] mesh_size_m"
+        )
+
+    def _spread(self, values: NDArray[np.float64]) -> NDArray[np.float64]:
+        out = np.full((self.n_positions, *values.shape[1:]), np.nan)
+        out[self.sweep.positions] = values
+        return out
+
+
+def scene_peaks(scene: Scene, plan: Plan, forces: MachineForces) -> dict[str, LinkPeaks]:
+    """The peaks (and fatigue) of every link of ``plan.peaks`` over the sweep's feasible positions;
+    none where no position is feasible. Raises FEAError (an InputError) naming a link that cannot be
+    meshed or solved."""
+    feasible = np.flatnonzero(forces.feasible)
+    if not len(feasible):
+        return {}
+    size = scene.analysis.mesh_size if scene.analysis is not None else None
+    order = scene.analysis.element_order if scene.analysis is not None else 2
+    note = cycle_note(scene.motion.angle_deg, forces.feasible)
+    out = {}
+    for name in plan.peaks:
+        link = scene.links[name]
+        profile, loads = link.profile, forces.link_loads[name]
+        members = link_members(profile, loads.frame_joints, link.members)
+        mesh = peak_mesh(profile, loads.frame_joints, members, size, order)
+        cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG)
+        sweep = sweep_peaks(cases, loads, feasible)
+        start = time.perf_counter()
+        check = coarser_peak(sweep, loads, mesh)
+        check_seconds = time.perf_counter() - start
+        fatigue, fatigue_note = None, note
+        strength = link.material.fatigue_strength
+        criterion = plan.fatigue_criterion
+        if strength is None:
+            fatigue_note = (
+                f"no fatigue check: materials.{link.material.name} gives no endurance_limit and ultimate_strength"
+            )
+        elif criterion not in criteria_available(strength):
+            fatigue_note = (
+                f"no fatigue check: the {criterion} criterion needs materials.{link.material.name}.yield_strength"
+            )
+        else:
+            fatigue = node_fatigue(sweep.largest, sweep.smallest, strength, criterion)
+        out[name] = LinkPeaks(name, len(forces.feasible), sweep, check, mesh, fatigue, criterion, fatigue_note, check_seconds)
+    return out
+
+
+def cycle_note(angles_deg: NDArray[np.float64], feasible: NDArray[np.bool_]) -> str:
+    """"" when the sweep is one whole cycle (a full turn of the input, every position feasible),
+    else what the stress history covers."""
+    angles = np.asarray(angles_deg, float)
+    if len(angles) < 2:
+        return "over one position only, not a cycle: sweep motion.input_angle_deg over a whole turn"
+    step = float(np.median(np.abs(np.diff(angles))))
+    span = float(np.ptp(angles)) + step
+    if not feasible.all():
+        return (
+            f"over the {int(feasible.sum())} feasible positions of {len(feasible)} only: the linkage cannot reach the "
+            "others, so the stress history is not a whole cycle"
+        )
+    if span < FULL_TURN_DEG - 1e-6 * step:
+        return (
+            f"over the swept {span:.4g} deg of input only, not a whole turn: sweep motion.input_angle_deg over "
+            "360 deg for the cycle's alternating and mean stress"
+        )
+    return ""
