@@ -135,6 +135,11 @@ def test_an_unknown_criterion_is_refused():
         safety_factor("soderberg", 1.0, 1.0, STEEL)
 
 
+def test_a_negative_amplitude_is_refused():
+    with pytest.raises(ValueError, match="sigma_a is half a range and must be >= 0"):
+        safety_factor("goodman", [1.0, -1.0], 0.0, STEEL)
+
+
 def test_marin_factors_multiply_the_specimen_endurance_limit():
     strength = FatigueStrength(200 * MPA, 600 * MPA, surface_factor=0.75, size_factor=0.8)
     assert strength.corrected_endurance_limit == pytest.approx(0.6 * 200 * MPA, rel=1e-15)

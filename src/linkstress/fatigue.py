@@ -101,6 +101,8 @@ def safety_factor(criterion: str, sigma_a: ArrayLike, sigma_m: ArrayLike, streng
     if criterion not in criteria_available(strength):
         raise ValueError(f"{criterion} needs a yield strength")
     sigma_a, sigma_m = np.broadcast_arrays(np.asarray(sigma_a, float), np.asarray(sigma_m, float))
+    if np.any(sigma_a < 0.0):
+        raise ValueError("sigma_a is half a range and must be >= 0")
     s_e = strength.corrected_endurance_limit
     # A compressive mean is taken not to reduce the fatigue strength: only a tensile mean counts.
     tensile_mean = np.maximum(sigma_m, 0.0)
