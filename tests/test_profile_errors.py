@@ -69,6 +69,27 @@ def test_non_positive_density_is_refused(density):
         Material("steel", density)
 
 
+@pytest.mark.parametrize("fatigue, message", [
+    ({"endurance_limit": -1.0, "ultimate_strength": 500e6}, "endurance_limit must be a finite number > 0, got -1.0"),
+    ({"surface_factor": float("nan")}, "surface_factor must be a finite number > 0, got nan"),
+    ({"size_factor": 1.6}, r"size_factor must lie in \(0, 1.5\] \(a Marin factor\), got 1.6"),
+    ({"endurance_limit": 600e6, "ultimate_strength": 500e6}, r"endurance_limit must be below ultimate_strength \(500000000.0 Pa\)"),
+    ({"yield_strength": 600e6, "ultimate_strength": 500e6}, r"yield_strength must not exceed ultimate_strength \(500000000.0 Pa\)"),
+])
+def test_impossible_fatigue_data_is_refused(fatigue, message):
+    with pytest.raises(GeometryError, match=f"material 'steel': {message}"):
+        Material("steel", 7850.0, **fatigue)
+
+
+def test_fatigue_strength_needs_both_endurance_limit_and_ultimate_strength():
+    assert Material("steel", 7850.0, ultimate_strength=500e6).fatigue_strength is None
+    assert Material("steel", 7850.0, endurance_limit=250e6).fatigue_strength is None
+    strength = Material("steel", 7850.0, yield_strength=350e6, endurance_limit=250e6, ultimate_strength=500e6,
+                        surface_factor=0.8).fatigue_strength
+    assert strength.corrected_endurance_limit == pytest.approx(200e6, rel=1e-15)
+    assert strength.yield_strength == 350e6
+
+
 def test_mass_without_material_says_what_is_missing():
     link = LinkProfile(Polygon(BAR), JOINTS, 0.01, name="crank")
     assert link.area == pytest.approx(0.2)

@@ -293,3 +293,59 @@ def test_members_named_in_a_scene_are_the_ones_analysed(tmp_path):
     assert crank.members == ((1, 0),)
     (member,) = link_members(crank.profile, crank.frame_joints, crank.members)
     assert member.joints == (1, 0)
+
+
+FATIGUE = """density = 7850.0
+yield_strength = 350e6
+endurance_limit = 250e6
+ultimate_strength = 500e6
+surface_factor = 0.8
+size_factor = 0.9"""
+"""A steel with every fatigue key: S_e' 250 MPa, S_ut 500 MPa, k_a 0.8, k_b 0.9."""
+
+
+def test_a_material_with_every_fatigue_key_reads_them_in_pascals(tmp_path):
+    steel = load(tmp_path, BASE.replace("density = 7850.0", FATIGUE, 1)).materials["steel"]
+    strength = steel.fatigue_strength
+    assert (strength.endurance_limit, strength.ultimate_strength, strength.yield_strength) == (250e6, 500e6, 350e6)
+    assert (strength.surface_factor, strength.size_factor) == (0.8, 0.9)
+    assert strength.corrected_endurance_limit == pytest.approx(180e6, rel=1e-15)
+
+
+def test_a_material_without_fatigue_keys_has_no_fatigue_strength_and_unit_marin_factors(tmp_path):
+    steel = load(tmp_path, BASE).materials["steel"]
+    assert steel.fatigue_strength is None
+    assert (steel.surface_factor, steel.size_factor) == (1.0, 1.0)
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("endurance_limit = 250e6", "endurance_limit = -250e6", "materials.steel.endurance_limit: must be > 0 Pa, got -250000000.0"),
+    ("ultimate_strength = 500e6", "ultimate_strength = 5e14",
+     "materials.steel.ultimate_strength: must be at most 1e+13 Pa in size (a modulus or strength; check the unit), "
+     "got 500000000000000.0"),
+    ("surface_factor = 0.8", "surface_factor = 0", "materials.steel.surface_factor: must be > 0, got 0"),
+    ("size_factor = 0.9", "size_factor = 2.0", "materials.steel.size_factor: must lie in (0, 1.5] (a Marin factor), got 2.0"),
+    ("surface_factor = 0.8", "surface_factor = 80", "materials.steel.surface_factor: must lie in (0, 1.5] (a Marin factor), got 80.0"),
+    ("size_factor = 0.9", 'size_factor = "0.9"', "materials.steel.size_factor: must be a finite number, got '0.9'"),
+    ("endurance_limit = 250e6", "endurance_limit = 500e6",
+     "materials.steel.endurance_limit: must be below ultimate_strength (500000000.0 Pa), got 500000000.0"),
+    ("yield_strength = 350e6", "yield_strength = 600e6",
+     "materials.steel.yield_strength: must not exceed ultimate_strength (500000000.0 Pa), got 600000000.0"),
+    ("endurance_limit = 250e6\nultimate_strength = 500e6\n", "",
+     "materials.steel.surface_factor: fatigue needs endurance_limit and ultimate_strength together [Pa]; "
+     "missing: endurance_limit, ultimate_strength"),
+    ("ultimate_strength = 500e6\n", "",
+     "materials.steel.endurance_limit: fatigue needs endurance_limit and ultimate_strength together [Pa]; "
+     "missing: ultimate_strength"),
+    ("endurance_limit = 250e6\n", "",
+     "materials.steel.ultimate_strength: fatigue needs endurance_limit and ultimate_strength together [Pa]; "
+     "missing: endurance_limit"),
+])
+def test_a_wrong_fatigue_key_exits_2_with_one_message_naming_it(tmp_path, capsys, old, new, message):
+    assert old in FATIGUE
+    path = tmp_path / "scene.toml"
+    path.write_text(textwrap.dedent(BASE.replace("density = 7850.0", FATIGUE.replace(old, new, 1), 1)))
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(path), "--json", str(out)]) == 2
+    error = capsys.readouterr().err
+    assert error == f"linkstress: error: scene.toml: {message}\n" and not out.exists()

@@ -19,13 +19,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.errors import GeometryError, InputError
-from linkstress.materials import Material
+from linkstress.materials import Material, fatigue_data_problem
 from linkstress.members import check_members
 from linkstress.profile import LinkProfile
 from linkstress.scene.keys import Table
 from linkstress.scene.model import MassData
 
-MATERIAL_KEYS = ("density", "youngs_modulus", "poisson_ratio", "yield_strength")
+MATERIAL_KEYS = (
+    "density", "youngs_modulus", "poisson_ratio", "yield_strength",
+    "endurance_limit", "ultimate_strength", "surface_factor", "size_factor",
+)
+FATIGUE_KEYS = ("endurance_limit", "ultimate_strength", "surface_factor", "size_factor")
 LINK_KEYS = (
     "sketch", "layer", "units", "joints", "thickness", "material", "mass", "inertia", "center_of_mass", "members",
 )
@@ -51,7 +55,8 @@ class LinkSource:
 
 def read_materials(table: Table | None) -> dict[str, Material]:
     """Each [materials.NAME]: density [kg/m^3] required; youngs_modulus [Pa], poisson_ratio [-],
-    yield_strength [Pa] optional."""
+    yield_strength [Pa] optional; for fatigue, endurance_limit and ultimate_strength [Pa] together,
+    with optional Marin surface_factor and size_factor [-] in (0, 1.5] (default 1)."""
     materials: dict[str, Material] = {}
     if table is None:
         return materials
@@ -65,7 +70,19 @@ def read_materials(table: Table | None) -> dict[str, Material]:
         if poisson is not None and not -1.0 < poisson < 0.5:
             raise entry.error("poisson_ratio", f"must lie in (-1, 0.5), got {poisson!r}")
         strength = entry.number("yield_strength", positive=True, unit="Pa")
-        materials[name] = Material(name, density, youngs, poisson, strength)
+        endurance = entry.number("endurance_limit", positive=True, unit="Pa")
+        ultimate = entry.number("ultimate_strength", positive=True, unit="Pa")
+        surface = entry.number("surface_factor", 1.0, positive=True)
+        size = entry.number("size_factor", 1.0, positive=True)
+        given = [k for k in FATIGUE_KEYS if entry.has(k)]
+        if given and (endurance is None or ultimate is None):
+            missing = [k for k in ("endurance_limit", "ultimate_strength") if not entry.has(k)]
+            raise entry.error(
+                given[0], f"fatigue needs endurance_limit and ultimate_strength together [Pa]; missing: {', '.join(missing)}"
+            )
+        if (problem := fatigue_data_problem(endurance, ultimate, strength, surface, size)) is not None:
+            raise entry.error(*problem)
+        materials[name] = Material(name, density, youngs, poisson, strength, endurance, ultimate, surface, size)
     return materials
 
 
