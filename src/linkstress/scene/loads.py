@@ -21,13 +21,13 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from linkstress.fatigue import CRITERIA
 from linkstress.kinematics.machine import Machine
 from linkstress.loads import distance_outside
 from linkstress.scene.keys import MAX_STATIONS, Table
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
 
 LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
-FATIGUE_CRITERIA = ("goodman", "gerber", "asme-elliptic")
 ANALYSIS_KEYS = (
     "kinematics", "forces", "stresses", "stations", "validate", "mesh_size_m", "element_order", "body_load_near_holes",
     "peaks", "fatigue_criterion",
@@ -105,7 +105,7 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
         element_order=order,
         body_load_near_holes=table.boolean("body_load_near_holes", False),
         peaks=table.boolean("peaks", False),
-        fatigue_criterion=table.string("fatigue_criterion", "goodman", FATIGUE_CRITERIA),
+        fatigue_criterion=table.string("fatigue_criterion", "goodman", CRITERIA),
     )
 
 
