@@ -133,28 +133,40 @@ def peak_mesh(
 
 @dataclass(frozen=True)
 class PeakCheck:
-    """The direct FEA's peak ``coarser`` [Pa] at the worst position on the mesh one refinement
-    coarser than the superposed ``finer`` [Pa]; ``change`` [-] relative to the finer one."""
+    """The peak at the sweep's worst position on three meshes, each REFINEMENT_RATIO finer than the
+    last: ``coarsest`` and ``coarser`` [Pa] by direct FEA, ``finer`` [Pa] the superposed peak on the
+    peak mesh. As validate judges its peak: both changes within ``limit`` of the finer value (a
+    singular corner can move little over one refinement and much over the one before)."""
 
     finer: float
     coarser: float
+    coarsest: float
     limit: float = PEAK_CONVERGED_CHANGE
 
     @property
     def change(self) -> float:
+        """[-]: the change over the last refinement, relative to the finer peak."""
         return abs(self.finer - self.coarser) / self.finer if self.finer > 0 else 0.0
 
     @property
+    def previous_change(self) -> float:
+        """[-]: the change over the refinement before, relative to the coarser peak."""
+        return abs(self.coarser - self.coarsest) / self.coarser if self.coarser > 0 else 0.0
+
+    @property
     def converged(self) -> bool:
-        return self.change <= self.limit
+        return self.change <= self.limit and self.previous_change <= self.limit
 
 
 def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings) -> PeakCheck:
-    """The peak's change over the last refinement at the sweep's worst position: the direct FEA on
-    ``mesh`` (the peak mesh) made REFINEMENT_RATIO coarser."""
-    worst = peaks.positions[peaks.worst : peaks.worst + 1]
-    coarse = solve_link(peaks.cases.link, loads.at(worst), mesh.refined(1 / REFINEMENT_RATIO))
-    return PeakCheck(float(peaks.peak[peaks.worst]), float(coarse.von_mises_peak[0]))
+    """The peak's changes over the last two refinements at the sweep's worst position: the direct
+    FEA on ``mesh`` (the peak mesh) made REFINEMENT_RATIO and REFINEMENT_RATIO^2 coarser."""
+    worst = loads.at(peaks.positions[peaks.worst : peaks.worst + 1])
+    link = peaks.cases.link
+    coarser, coarsest = (
+        float(solve_link(link, worst, mesh.refined(REFINEMENT_RATIO ** -k)).von_mises_peak[0]) for k in (1, 2)
+    )
+    return PeakCheck(float(peaks.peak[peaks.worst]), coarser, coarsest)
 
 
 def field_error(superposed: NDArray[np.float64], direct: NDArray[np.float64]) -> NDArray[np.float64]:

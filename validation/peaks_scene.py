@@ -84,9 +84,10 @@ class LinkPeaks:
         if self.trusted:
             return ""
         return (
-            f"the FEA peak changed {100 * self.check.change:.3g} % over the last mesh refinement at its worst "
-            f"position (limit {100 * self.check.limit:g} %): a sharp corner or a steep stress the mesh does not "
-            "resolve; round the corner in the drawing or give a finer [analysis] mesh_size_m"
+            f"the FEA peak is NOT converged: it changed {100 * self.check.change:.3g} % over the last mesh refinement "
+            f"and {100 * self.check.previous_change:.3g} % over the one before at its worst position (limit "
+            f"{100 * self.check.limit:g} % each): a sharp corner or a steep stress the mesh does not resolve; round "
+            "the corner in the drawing or give a finer [analysis] mesh_size_m"
         )
 
     def _spread(self, values: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -6,8 +6,8 @@ largest von Mises anywhere in the link), ``peak_at_m`` (ground frame) and, where
 
 Per link over the sweep (the top-level ``links`` table): ``peak_max_von_mises_pa``,
 ``peak_max_input_angle_deg``, ``peak_max_at_m`` (ground frame), the beam's largest nominal value over
-the same positions, the peak's check (``peak_converged``, ``peak_change_pct`` over the last mesh
-refinement at the worst position, its limit), the yield factor from the peak, the mesh and the time
+the same positions, the peak's check (``peak_converged``, ``peak_change_pct`` and
+``peak_previous_change_pct`` over the last two mesh refinements at the worst position, the limit), the yield factor from the peak, the mesh and the time
 it took; and the fatigue: ``fatigue_safety_factor`` of ``fatigue_criterion``, every criterion's
 factor at the critical node (``fatigue_safety_factors``), its alternating and mean signed
 equivalent stress, the corrected endurance limit, and where the critical node is:
@@ -60,6 +60,7 @@ def _summary(result: AnalysisResult, name: str) -> dict[str, object]:
     record |= {
         "peak_converged": peaks.trusted,
         "peak_change_pct": 100 * peaks.check.change,
+        "peak_previous_change_pct": 100 * peaks.check.previous_change,
         "peak_change_limit_pct": 100 * peaks.check.limit,
         "peak_note": peaks.untrusted_reason,
     }

@@ -22,7 +22,8 @@ def peaks_table(result: AnalysisResult) -> str:
             name, s["peak_max_von_mises_pa"], s["peak_max_input_angle_deg"], f"({at[0]:.4g}, {at[1]:.4g})",
             "-" if beam is None else beam,
             "-" if not beam else f"{s['peak_max_von_mises_pa'] / beam:.3g}",
-            f"{s['peak_change_pct']:.3g} %" + ("" if s["peak_converged"] else " NOT converged"),
+            f"{s['peak_change_pct']:.3g} %, {s['peak_previous_change_pct']:.3g} %"
+            + ("" if s["peak_converged"] else " NOT converged"),
             _factor(s.get("peak_yield_safety_factor"), "peak_yield_safety_factor" in s),
             "-" if fatigue is None else f"{fatigue:.3g} ({s['fatigue_criterion']})",
             "-" if fatigue is None or where is None else f"({where[0]:.4g}, {where[1]:.4g})",
@@ -46,8 +47,8 @@ def peaks_table(result: AnalysisResult) -> str:
         "position; von Mises anywhere in the link: pin holes, fillets, curved crowns)",
         format_table(headers, rows),
         *notes,
-        "peak check: the peak's change at its worst position over the last mesh refinement (limit 5 %); a peak that "
-        "has not settled gives no safety factor. fatigue: over the sweep, per point, the alternating and mean of the "
+        "peak check: the peak's change at its worst position over the last two mesh refinements (limit 5 % each); a "
+        "peak that has not settled gives no safety factor. fatigue: over the sweep, per point, the alternating and mean of the "
         "signed von Mises (sign of the larger principal stress), Marin-corrected endurance limit (docs/fatigue.md)",
     ])
 
