@@ -5,6 +5,7 @@ where they are needed (a block of records with ``--stations``, the positions the
 from __future__ import annotations
 
 import errno
+import io
 import json
 
 import numpy as np
@@ -14,7 +15,7 @@ from linkstress.analysis import run_analysis
 from linkstress.cli import main
 from linkstress.dynamics import section_stress
 from linkstress.dynamics.section_stress import StressSummary
-from linkstress.output import write_json, write_json_stream
+from linkstress.output import json_bytes, json_stream, write_json, write_json_stream
 from linkstress.report.records import position_records
 from linkstress.scene import load_scene
 from linkstress.validation.bench_memory import analyze_in_child, seed_sweep_scene
@@ -148,3 +149,10 @@ def test_writing_the_json_of_a_10000_position_sweep_adds_under_60_mb(tmp_path):
     assert without.code == with_json.code == 0
     assert with_json.json_bytes > 50e6
     assert with_json.peak_bytes - without.peak_bytes < 60e6
+
+
+@pytest.mark.parametrize("after", [{}, {"links": {}}, {"links": {"crank": {"a": [1.0, 2.5], "b": None}}, "more": [1]}])
+def test_json_stream_writes_the_keys_after_the_list_as_write_json_would(after):
+    stream = io.BytesIO()
+    json_stream("positions", iter([{"x": 1.0}, {"y": [2]}]), "--json", lambda: after)(stream)
+    assert stream.getvalue() == json_bytes({"positions": [{"x": 1.0}, {"y": [2]}], **after}, "--json")
