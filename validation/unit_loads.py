@@ -1,7 +1,7 @@
 """Unit load cases of one link: the recovered stress of each elementary load, one factorisation.
 
 Linear elasticity makes the stress of any combination of loads the same combination of their
-stresses (one stiffness, one set of supports; docs/fea.md, "Peaks over a sweep"). A link's load
+stresses (one stiffness, one set of supports; docs/design.md, "FEA peaks over a sweep"). A link's load
 case over a sweep is a combination, position by position, of:
 
 - each loaded pin's cosine bearing pressure (``link_loads.bearing_loads``) for a unit force in each
