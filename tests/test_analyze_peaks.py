@@ -151,6 +151,11 @@ def test_the_asme_elliptic_criterion_needs_a_yield_strength(tmp_path):
          r"scene.toml: analysis.fatigue_criterion: must be one of 'goodman', 'gerber', 'asme-elliptic', got 'soderberg'"),
         (None, "\n[analysis]\nstresses = true\npeaks = 1\n", r"scene.toml: analysis.peaks: must be true or false, got 1"),
         ("", None, r"scene.toml: materials.steel.youngs_modulus: missing; the FEA of link 'crank' needs it"),
+        # 3.5 mm elements, 1.56 mm on the peak mesh: about 5.7e5 quadratic triangles on the 0.6 m^2 crank,
+        # within what validate meshes, but up to 78 unit cases would hold about 6.4 GB
+        (None, "\n[analysis]\nstresses = true\nmesh_size_m = 0.0035\n",
+         r"scene.toml: --peaks: link 'crank' would need about [\d.]+ GB for its unit load cases .* give a coarser "
+         r"\[analysis\] mesh_size_m"),
     ],
 )
 def test_bad_peak_input_is_one_message_and_exit_2(tmp_path, capsys, material, analysis, message):

@@ -24,6 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.analysis import PEAK_MESH_LEVELS
 from linkstress.fatigue import signed_von_mises
 from linkstress.loads import LinkLoadCase
 from linkstress.members import Member
@@ -37,8 +38,6 @@ from linkstress.validation.unit_loads import UnitLoadCases
 
 BLOCK_VALUES = 2_000_000
 """Stress values (nodes x 3 x positions) superposed at once: 16 MB, whatever the mesh or sweep."""
-MESH_LEVELS = 3
-"""The peak mesh is the finest of validate's default study of this many levels."""
 
 
 @dataclass(frozen=True)
@@ -122,7 +121,7 @@ def peak_mesh(
     members: Sequence[Member] = (),
     size: float | None = None,
     order: int = 2,
-    levels: int = MESH_LEVELS,
+    levels: int = PEAK_MESH_LEVELS,
 ) -> MeshSettings:
     """Validate's default mesh of the link, refined to the finest of a ``levels`` study, without
     the comparison cuts (a peak is at a hole's rim or a fillet, not on a cut)."""

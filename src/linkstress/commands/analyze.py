@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from linkstress.analysis import AnalysisResult, Plan, plan_for, run_analysis
+from linkstress.analysis import PEAK_MESH_LEVELS, AnalysisResult, Plan, plan_for, run_analysis
 from linkstress.errors import InputError
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.peak_records import peak_summaries
@@ -30,6 +30,12 @@ MEMORY_LIMIT = 6e9
 # arrays along the links and the JSON records are made and written a block of positions at a time.
 BYTES_PER_LINK_POSITION = {"kinematics": 110, "forces": 230}
 BYTES_PER_STRESSED_LINK_POSITION = 60
+UNIT_CASES_PER_LOAD = 37
+"""Unit load cases a pin or point force can take at most: 36 bearing directions and a couple."""
+NODES_PER_ELEMENT = {1: 0.5, 2: 2.0}
+"""Nodes per triangle of a large mesh: vertices (about half the triangles) and, for P2, edges."""
+PEAK_COPIES = 3
+"""Arrays of nodes x 3 x unit cases held at once while the unit cases are solved and recovered."""
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -96,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
 
 def check_peaks(scene: Scene, plan: Plan) -> None:
     """FEA peaks need stressed links, each with elastic constants and a mesh this machine can carry."""
-    from linkstress.commands.validate import check_materials, check_meshes
+    from linkstress.commands.validate import check_materials, check_meshes, finest_mesh
 
     if not plan.peaks:
         raise InputError(
@@ -105,7 +111,19 @@ def check_peaks(scene: Scene, plan: Plan) -> None:
         )
     check_materials(scene, plan.peaks)
     size = scene.analysis.mesh_size if scene.analysis is not None else None
-    check_meshes(scene, plan.peaks, size, 3)
+    check_meshes(scene, plan.peaks, size, PEAK_MESH_LEVELS)
+    order = scene.analysis.element_order if scene.analysis is not None else 2
+    for name in plan.peaks:
+        elements = finest_mesh(scene, name, size, PEAK_MESH_LEVELS).elements
+        link = scene.links[name]
+        cases = UNIT_CASES_PER_LOAD * (len(link.profile.joints) + len(scene.loads.forces)) + 4
+        estimate = NODES_PER_ELEMENT[order] * elements * 3 * cases * 8 * PEAK_COPIES
+        if estimate > MEMORY_LIMIT:
+            raise InputError(
+                f"{scene.path.name}: --peaks: link {name!r} would need about {estimate / 1e9:.3g} GB for its unit load "
+                f"cases ({elements:.2g} elements, up to {cases} cases), more than the {MEMORY_LIMIT / 1e9:g} GB limit: "
+                "give a coarser [analysis] mesh_size_m"
+            )
 
 
 def scene_sketches(scene: Scene) -> list[Path]:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -136,31 +137,51 @@ def check_materials(scene: Scene, names: tuple[str, ...]) -> None:
 def check_meshes(scene: Scene, names: tuple[str, ...], size: float | None, levels: int) -> None:
     """Refuse, before meshing, an element size coarser than a link's depth or one whose finest mesh
     would hold more than MAX_ELEMENTS triangles (estimated from the link's area)."""
+    size = size or (scene.analysis.mesh_size if scene.analysis is not None else None)
+    flag = "--mesh-size" if size is not None else "the default mesh size"
+    for name in names:
+        link = scene.links[name]
+        mesh = finest_mesh(scene, name, size, levels)
+        if size is not None and size > mesh.depth:
+            raise InputError(
+                f"{flag} (or [analysis] mesh_size_m): {size:g} m is larger than the depth of link {name!r}, {mesh.depth:.3g} m; "
+                f"give at most that (the default is {mesh.default:.3g} m)"
+            )
+        if mesh.elements > MAX_ELEMENTS:
+            raise InputError(
+                f"--mesh-size / --mesh-levels: link {name!r} ({link.profile.area:.3g} m^2) would need about "
+                f"{mesh.elements:.2g} elements of {mesh.finest:.3g} m on its finest mesh, more than the {MAX_ELEMENTS:.0e} "
+                f"this tool meshes; give a size of at least {mesh.coarsest * math.sqrt(mesh.elements / MAX_ELEMENTS):.3g} m or fewer levels"
+            )
+
+
+@dataclass(frozen=True)
+class FinestMesh:
+    """A link's meshes estimated before meshing: its ``depth`` [m] (slenderest compared section),
+    the ``default`` and ``coarsest`` element sizes [m], the ``finest`` after the study's refinements,
+    and about how many ``elements`` that one holds (from the link's area)."""
+
+    depth: float
+    default: float
+    coarsest: float
+    finest: float
+    elements: float
+
+
+def finest_mesh(scene: Scene, name: str, size: float | None, levels: int) -> FinestMesh:
+    """The estimate of link ``name``'s meshes for an element ``size`` [m] (None: the default) over a
+    study of ``levels`` (the finest is REFINEMENT_RATIO^(levels - 1) finer)."""
     from linkstress.validation.compare import ELEMENTS_PER_DEPTH, comparison_stations, default_mesh
     from linkstress.validation.convergence import REFINEMENT_RATIO
     from linkstress.validation.validate_scene import LINEAR_REFINEMENT
 
-    size = size or (scene.analysis.mesh_size if scene.analysis is not None else None)
     order = scene.analysis.element_order if scene.analysis is not None else 2
-    flag = "--mesh-size" if size is not None else "the default mesh size"
-    for name in names:
-        link = scene.links[name]
-        stations = comparison_stations(link.profile, link.frame_joints)
-        default = default_mesh(link.profile, link.frame_joints, stations).size
-        depth = default * ELEMENTS_PER_DEPTH
-        if size is not None and size > depth:
-            raise InputError(
-                f"{flag} (or [analysis] mesh_size_m): {size:g} m is larger than the depth of link {name!r}, {depth:.3g} m; "
-                f"give at most that (the default is {default:.3g} m)"
-            )
-        coarsest = size or default
-        if size is None and order == 1:
-            coarsest /= LINEAR_REFINEMENT
-        finest = coarsest / REFINEMENT_RATIO ** (levels - 1)
-        elements = link.profile.area / (math.sqrt(3) / 4 * finest**2)
-        if elements > MAX_ELEMENTS:
-            raise InputError(
-                f"--mesh-size / --mesh-levels: link {name!r} ({link.profile.area:.3g} m^2) would need about "
-                f"{elements:.2g} elements of {finest:.3g} m on its finest mesh, more than the {MAX_ELEMENTS:.0e} "
-                f"this tool meshes; give a size of at least {coarsest * math.sqrt(elements / MAX_ELEMENTS):.3g} m or fewer levels"
-            )
+    link = scene.links[name]
+    stations = comparison_stations(link.profile, link.frame_joints)
+    default = default_mesh(link.profile, link.frame_joints, stations).size
+    coarsest = size or default
+    if size is None and order == 1:
+        coarsest /= LINEAR_REFINEMENT
+    finest = coarsest / REFINEMENT_RATIO ** (levels - 1)
+    elements = link.profile.area / (math.sqrt(3) / 4 * finest**2)
+    return FinestMesh(default * ELEMENTS_PER_DEPTH, default, coarsest, finest, elements)

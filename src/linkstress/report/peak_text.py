@@ -29,14 +29,17 @@ def peaks_table(result: AnalysisResult) -> str:
             "-" if fatigue is None or where is None else f"({where[0]:.4g}, {where[1]:.4g})",
         ))
         mesh = s["peak_mesh"]
-        notes.append(
+        line = (
             f"  {name}: {mesh['dofs']} dofs, {mesh['unit_load_cases']} unit load cases (bearing every "
-            f"{mesh['direction_step_deg']:g} deg); "
-            + (f"fatigue: sigma_a {s['fatigue_alternating_pa']:.4g} Pa, sigma_m {s['fatigue_mean_pa']:.4g} Pa, S_e "
-               f"{s['fatigue_endurance_limit_pa']:.4g} Pa, " + ", ".join(
-                   f"{k} {'-' if v is None else format(v, '.3g')}" for k, v in s["fatigue_safety_factors"].items())
-               if "fatigue_alternating_pa" in s else "no fatigue data")
+            f"{mesh['direction_step_deg']:g} deg)"
         )
+        if "fatigue_alternating_pa" in s:
+            factors = ", ".join(f"{k} {'-' if v is None else format(v, '.3g')}" for k, v in s["fatigue_safety_factors"].items())
+            line += (
+                f"; fatigue at the critical point: sigma_a {s['fatigue_alternating_pa']:.4g} Pa, sigma_m "
+                f"{s['fatigue_mean_pa']:.4g} Pa, S_e {s['fatigue_endurance_limit_pa']:.4g} Pa; {factors}"
+            )
+        notes.append(line)
         notes += [f"  {name}: {text}" for text in (s["peak_note"], s["fatigue_note"]) if text]
     headers = (
         "link", "FEA peak [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "beam max [Pa]", "peak / beam",
