@@ -84,6 +84,8 @@ def test_superposition_is_the_direct_fea_exactly_when_every_bearing_force_lies_o
     assert np.abs(superposed - direct.nodal_stress).max() <= 1e-9 * scale
     # 2 pins x 36 directions, 2 couples, a point force in material (2), one in a hole (36 + its couple), 4 body terms
     assert cases.count == 72 + 2 + 2 + 37 + 4
+    assert cases.labels[:2] == ("pin 0: unit bearing force at 0 deg", "pin 0: unit bearing force at 10 deg")
+    assert cases.labels[-4:] == tuple(f"body: unit {t}" for t in ("(g - a_O)_x", "(g - a_O)_y", "alpha", "omega^2"))
 
 
 def test_off_basis_bearing_forces_differ_from_the_direct_fea_only_in_the_pressure_shape():

@@ -58,7 +58,6 @@ class Bearing:
     """A pin's K bearing cases, in the columns from ``first``: on hole ``hole`` (the outline's
     interior index) about ``centre`` (2,) [m, member frame]."""
 
-    label: str
     first: int
     hole: int
     centre: NDArray[np.float64]
@@ -174,7 +173,7 @@ def unit_load_cases(
 
     def bearing(label: str, hole: int, centre: NDArray[np.float64]) -> Bearing:
         names = [f"{label}: unit bearing force at {np.rad2deg(d):g} deg" for d in directions]
-        return Bearing(label, add(bearing_loads(model, holes[hole], centre, unit), names), hole, centre)
+        return Bearing(add(bearing_loads(model, holes[hole], centre, unit), names), hole, centre)
 
     pins, couples = [], []
     for j, hole in enumerate(link.joint_holes):

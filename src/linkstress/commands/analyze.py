@@ -166,6 +166,8 @@ def _computed(result: AnalysisResult):
                     yield f"the {label} of mechanism {name!r}", values, FORCE_KEYS
     for name, stress in result.stresses.items():
         yield f"the section von Mises stress of link {name!r}", stress.max_von_mises, STRESS_KEYS
+    for name, peaks in result.peaks.items():
+        yield f"the FEA peak von Mises stress of link {name!r}", peaks.peak, STRESS_KEYS
 
 
 def check_work(scene: Scene, plan: Plan) -> None:
