@@ -11,13 +11,13 @@ from __future__ import annotations
 import html
 
 import numpy as np
-from matplotlib.figure import Figure
 from matplotlib.colors import LogNorm
+from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator, MultipleLocator
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
-from linkstress.report.figures import plt
+from linkstress.report.figures import plt  # pyplot on the reports' Agg backend
 from linkstress.report.html import figure_tag, table_html
 from linkstress.report.peak_records import peak_summaries
 from linkstress.validation.recovery import von_mises
@@ -46,7 +46,7 @@ def peak_sections(result: AnalysisResult) -> list[str]:
         "beam's largest nominal section value. The peak check is the peak's change at its worst position over the "
         "last mesh refinement; a peak that has not settled gives no safety factor. Fatigue: per point, the "
         "alternating and mean of the signed von Mises over the sweep, against the Marin-corrected endurance limit "
-        "(docs/fatigue.md).</p>",
+        "(docs/fatigue.md). Tables in Pa, figures in MPa.</p>",
     ]
     for name, summary in peak_summaries(result).items():
         sections += [
@@ -128,11 +128,10 @@ def peak_sweep_figure(result: AnalysisResult, name: str) -> Figure:
     fea = peaks.peak / 1e6
     fig, ax = plt.subplots(figsize=FIGURE_SIZE, layout="constrained")
     ax.plot(angle, fea, ".-", ms=4, color="#d62728", label="FEA peak, anywhere in the link")
-    largest_beam = 0.0
-    if name in result.stresses:
-        beam = np.where(result.feasible, result.stresses[name].max_von_mises, np.nan) / 1e6
-        ax.plot(angle, beam, ".-", ms=4, color="#1f77b4", label="beam, largest section von Mises (nominal)")
-        largest_beam = float(np.nanmax(beam))
+    # A link with peaks has section stresses (Plan.with_peaks); they hold values at infeasible positions.
+    beam = np.where(result.feasible, result.stresses[name].max_von_mises, np.nan) / 1e6
+    ax.plot(angle, beam, ".-", ms=4, color="#1f77b4", label="beam, largest section von Mises (nominal)")
+    largest_beam = float(np.nanmax(beam))
     worst = peaks.worst_position
     ax.plot(angle[worst], fea[worst], "o", ms=11, mfc="none", mec="k", mew=1.5,
             label=f"worst: {fea[worst]:.4g} MPa at input {angle[worst]:.4g} deg")
