@@ -58,16 +58,17 @@ def peak_sections(result: AnalysisResult) -> list[str]:
     return sections
 
 
-def peak_rows(summary: dict[str, object]) -> list[tuple[str, object]]:
-    """A link's summary record (``peak_summaries``) as (quantity, value) rows; floats stay numbers."""
+def peak_rows(summary: dict[str, object]) -> list[tuple[str, str]]:
+    """A link's summary record (``peak_summaries``) as (quantity, value) text rows (numbers to 6 digits,
+    as the report's other tables)."""
     s = summary
     peak, beam = s["peak_max_von_mises_pa"], s.get("beam_max_von_mises_pa")
     status = "converged" if s["peak_converged"] else "NOT converged"
     rows = [
-        ("FEA peak von Mises, largest over the sweep [Pa]", peak),
-        ("at input angle [deg]", s["peak_max_input_angle_deg"]),
+        ("FEA peak von Mises, largest over the sweep [Pa]", f"{peak:.6g}"),
+        ("at input angle [deg]", f"{s['peak_max_input_angle_deg']:.6g}"),
         ("at (x, y) [m], ground frame", _point(s["peak_max_at_m"])),
-        ("beam maximum, section von Mises (nominal), same positions [Pa]", "-" if beam is None else beam),
+        ("beam maximum, section von Mises (nominal), same positions [Pa]", "-" if beam is None else f"{beam:.6g}"),
         ("FEA peak / beam maximum", "-" if not beam else f"{peak / beam:.3g}"),
         ("peak check: change over the last mesh refinement",
          f"{s['peak_change_pct']:.3g} % (limit {s['peak_change_limit_pct']:g} %): {status}"),
@@ -77,9 +78,9 @@ def peak_rows(summary: dict[str, object]) -> list[tuple[str, object]]:
     ]
     if "fatigue_alternating_pa" in s:
         rows += [
-            ("alternating stress sigma_a at the critical point [Pa]", s["fatigue_alternating_pa"]),
-            ("mean stress sigma_m at the critical point [Pa]", s["fatigue_mean_pa"]),
-            ("corrected endurance limit S_e [Pa]", s["fatigue_endurance_limit_pa"]),
+            ("alternating stress sigma_a at the critical point [Pa]", f"{s['fatigue_alternating_pa']:.6g}"),
+            ("mean stress sigma_m at the critical point [Pa]", f"{s['fatigue_mean_pa']:.6g}"),
+            ("corrected endurance limit S_e [Pa]", f"{s['fatigue_endurance_limit_pa']:.6g}"),
             ("fatigue critical point (x, y) [m], drawing frame (the sketch's coordinates)",
              _point(s["fatigue_critical_at_m"])),
         ]
