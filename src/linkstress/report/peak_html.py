@@ -34,17 +34,18 @@ Mises (field figure), the stress scale is logarithmic, so that the smaller value
 LOG_COLOUR_DECADES_RATIO = 1e3
 """A logarithmic colour scale spans three decades below the peak; lower values take its lowest colour."""
 FIGURE_SIZE = (6.0, 4.0)
+WITHHELD = "withheld: the FEA peak is NOT converged (see the notes)"
 
 
 def peak_sections(result: AnalysisResult) -> list[str]:
-    """The section "FEA peak stresses and fatigue": per link with peaks, its table, its peak over
-    the sweep and its von Mises field at the worst position."""
+    """The section "FEA peak stresses and fatigue": per link with peaks, its table and notes, its peak
+    over the sweep and its von Mises field at the worst position."""
     sections = [
         "<h2>FEA peak stresses and fatigue</h2>",
         '<p class="note">Plane-stress FEA of each link on a refined mesh, its unit load cases superposed at every '
         "feasible position: the von Mises peak anywhere in the link (pin holes, fillets, curved crowns), beside the "
         "beam's largest nominal section value. The peak check is the peak's change at its worst position over the "
-        "last mesh refinement; a peak that has not settled gives no safety factor. Fatigue: per point, the "
+        "last two mesh refinements; a peak that has not settled gives no safety factor. Fatigue: per point, the "
         "alternating and mean of the signed von Mises over the sweep, against the Marin-corrected endurance limit "
         "(docs/fatigue.md). Tables in Pa, figures in MPa.</p>",
     ]
@@ -52,6 +53,7 @@ def peak_sections(result: AnalysisResult) -> list[str]:
         sections += [
             f"<h3>{html.escape(name)}</h3>",
             table_html(("quantity", "value"), peak_rows(summary)),
+            _notes_html(summary),
             figure_tag(peak_sweep_figure(result, name), f"FEA peak of {name} over the sweep"),
             figure_tag(peak_field_figure(result, name), f"von Mises in {name} at its worst position"),
         ]
@@ -70,8 +72,9 @@ def peak_rows(summary: dict[str, object]) -> list[tuple[str, str]]:
         ("at (x, y) [m], ground frame", _point(s["peak_max_at_m"])),
         ("beam maximum, section von Mises (nominal), same positions [Pa]", "-" if beam is None else f"{beam:.6g}"),
         ("FEA peak / beam maximum", "-" if not beam else f"{peak / beam:.3g}"),
-        ("peak check: change over the last mesh refinement",
-         f"{s['peak_change_pct']:.3g} % (limit {s['peak_change_limit_pct']:g} %): {status}"),
+        ("peak check: change over the last mesh refinement, over the one before",
+         f"{s['peak_change_pct']:.3g} %, {s['peak_previous_change_pct']:.3g} % (limit {s['peak_change_limit_pct']:g} % "
+         f"each): {status}"),
         ("yield safety factor, from the FEA peak", _yield_factor(s)),
         (f"fatigue safety factor ({CRITERION_NAMES[s['fatigue_criterion']]}), other criteria beside it",
          _fatigue_factors(s)),
@@ -87,9 +90,17 @@ def peak_rows(summary: dict[str, object]) -> list[tuple[str, str]]:
     mesh = s["peak_mesh"]
     rows.append(("FEA mesh", f"{mesh['dofs']} dofs, P{mesh['element_order']} triangles, {mesh['unit_load_cases']} unit "
                              f"load cases (bearing every {mesh['direction_step_deg']:g} deg)"))
-    notes = [text for text in (s["peak_note"], s["fatigue_note"]) if text]
-    rows.append(("notes", "; ".join(notes) if notes else "-"))
     return rows
+
+
+def _notes_html(summary: dict[str, object]) -> str:
+    """The link's notes under its table, as the text report gives them: why a factor is withheld,
+    what the fatigue covers or why there is none."""
+    notes = [(label, summary[key]) for label, key in (("FEA peak", "peak_note"), ("fatigue", "fatigue_note")) if summary[key]]
+    if not notes:
+        return ""
+    items = "".join(f"<li>{label}: {html.escape(text)}</li>" for label, text in notes)
+    return f'<p class="note">Notes:</p><ul class="note">{items}</ul>'
 
 
 def _point(xy) -> str:
@@ -100,7 +111,7 @@ def _yield_factor(s: dict[str, object]) -> str:
     if "peak_yield_safety_factor" not in s:
         return "- (the material gives no yield_strength)"
     if not s["peak_converged"]:
-        return "withheld: the FEA peak did not converge over the last mesh refinement (see the notes)"
+        return WITHHELD
     factor = s["peak_yield_safety_factor"]
     return "- (no stress)" if factor is None else f"{factor:.3g}"
 
@@ -109,7 +120,7 @@ def _fatigue_factors(s: dict[str, object]) -> str:
     if "fatigue_safety_factors" not in s:
         return "- (no fatigue check: see the notes)"
     if not s["peak_converged"]:
-        return "withheld: the FEA peak did not converge over the last mesh refinement (see the notes)"
+        return WITHHELD
     criterion = s["fatigue_criterion"]
     factors = s["fatigue_safety_factors"]
 
