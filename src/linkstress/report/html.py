@@ -160,6 +160,11 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
                 sections.append(figure_tag(stress_along_figure(result, name, k), f"stresses along {name}"))
         sections.append(_pin_holes_table(result))
         sections.append(_safety_table(result))
+    if result.peaks:
+        # Imported here: peak_html builds on this module's tables and figure tags.
+        from linkstress.report.peak_html import peak_sections
+
+        sections += peak_sections(result)
     if result.seconds:
         rows = [(stage, 1e3 * seconds) for stage, seconds in result.seconds.items()]
         sections += ["<h2>Timings</h2>", table_html(("stage", "time [ms]"), rows)]
