@@ -1,8 +1,8 @@
 """linkstress bench: speed against error of every stress method, measured in one run.
 
 CI runs ``bench --quick`` once (the module fixture) and checks what it measured: errors under their
-bounds, never a time under a bound. The strip-sum baseline and the Pareto front are checked against
-hand-computed values.
+bounds (the superposed FEA peaks' against direct FEA too), never a time under a bound. The strip-sum
+baseline and the Pareto front are checked against hand-computed values.
 """
 
 from __future__ import annotations
