@@ -1,8 +1,8 @@
 """linkstress bench: speed against error of every stress method, measured in one run.
 
 CI runs ``bench --quick`` once (the module fixture) and checks what it measured: errors under their
-bounds, never a time under a bound. The strip-sum baseline and the Pareto front are checked against
-hand-computed values.
+bounds (the superposed FEA peaks' against direct FEA too), never a time under a bound. The strip-sum
+baseline and the Pareto front are checked against hand-computed values.
 """
 
 from __future__ import annotations
@@ -19,6 +19,9 @@ from linkstress.builders import stadium, straight_bar
 from linkstress.cli import main
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
+from linkstress.scene import load_scene
+from linkstress.validation.bench_peaks import full_turn_scene
+from linkstress.validation.bench_suite import SEED
 from linkstress.validation.speed_error import CaseStudy, MethodResult
 from linkstress.validation.strip_sections import piecewise_bounds, strip_sections, strip_stresses
 from test_report_html import embedded_images
@@ -145,6 +148,55 @@ def test_the_report_has_a_log_log_figure_per_case_throughput_memory_and_versions
     assert ("seed_ansys_fourbar", "section stresses") in stages and ("seed_ansys_fourbar", "FEA (one link)") in stages
     memory = data["memory"][0]
     assert memory["peak_mb"] >= memory["baseline_mb"] > 0 and memory["dofs"] > 1000
+
+
+def test_the_quick_bench_superposes_the_seed_links_within_1_percent_of_direct_fea(quick):
+    superposition = quick[1]["superposition"]
+    assert list(superposition["cases"]) == ["seed_ansys_fourbar"]  # the quick run's only case
+    seed = superposition["cases"]["seed_ansys_fourbar"]
+    assert seed["positions"] == 360  # a whole turn, one position per degree
+    links = seed["links"]
+    assert list(links) == ["crank", "coupler", "output"]
+    # Each link's two loaded pins take 36 unit bearing forces (every 10 deg), the body load 4 unit
+    # cases; the crank's driving torque and the output's applied 2 N m one unit couple each.
+    assert {name: link["unit_cases"] for name, link in links.items()} == {"crank": 77, "coupler": 76, "output": 77}
+    for link in links.values():
+        # 180 deg is the seed's change point (all four links aligned): 359 feasible positions.
+        assert link["sweep_positions"] == 359 and link["compared_positions"] == 6
+        assert link["peak_error_pct"] <= 1.0 and link["field_error_pct"] <= 0.5
+        assert link["superposition_ms_per_position"] > 0 and link["direct_ms_per_position"] > 0
+    assert seed["peak_error_pct"] == max(link["peak_error_pct"] for link in links.values())
+    checks = {c["name"]: c for c in quick[1]["checks"]}
+    for name in links:
+        peak = checks[f"seed_ansys_fourbar: superposed FEA peak of {name} against direct FEA"]
+        field = checks[f"seed_ansys_fourbar: superposed FEA field of {name} against direct FEA (rms)"]
+        assert peak["passed"] and peak["bound"] == 0.01
+        assert field["passed"] and field["bound"] == 0.005
+
+
+def test_the_seed_sweep_with_peaks_against_one_validate_is_a_finite_positive_ratio(quick):
+    speed = quick[1]["superposition"]["speed"]
+    assert speed["sweep_positions"] == 360 and speed["links"] == ["crank", "coupler", "output"] and speed["repeat"] == 1
+    # Times are reported, never bounded here (shared machines are noisy): only that they were measured.
+    assert speed["sweep_with_peaks_seconds"] > 0 and speed["validate_one_position_seconds"] > 0
+    assert math.isfinite(speed["ratio"]) and speed["ratio"] > 0
+    assert math.isclose(speed["ratio"], speed["sweep_with_peaks_seconds"] / speed["validate_one_position_seconds"])
+    assert math.isfinite(speed["superposition_ms_per_link_position"]) and speed["superposition_ms_per_link_position"] > 0
+    assert speed["met"] == (speed["ratio"] < 1.0 and speed["superposition_ms_per_link_position"] <= 1.0)
+
+
+def test_the_report_shows_a_superposed_fea_row_per_link(quick):
+    page = quick[2]
+    assert "<h2>Superposed FEA peaks</h2>" in page
+    for link in ("crank", "coupler", "output"):
+        row = f'<tr><td class="text">superposed FEA</td><td class="text">seed_ansys_fourbar</td><td class="text">{link}</td>'
+        assert page.count(row) == 1
+
+
+def test_the_timed_sweep_is_the_seed_over_one_turn_without_repeating_0_deg(tmp_path):
+    scene = load_scene(full_turn_scene(SEED, tmp_path, 360))
+    np.testing.assert_allclose(scene.motion.angle_deg, np.arange(360.0))  # 0, 1, ... 359 deg
+    assert scene.links["crank"].profile.area == load_scene(SEED).links["crank"].profile.area  # its sketch copied beside it
 
 
 def test_bench_refuses_an_output_folder_that_does_not_exist_before_measuring(tmp_path, capsys):

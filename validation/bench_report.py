@@ -14,6 +14,7 @@ import numpy as np
 from linkstress.analysis import DEFAULT_STATIONS
 from linkstress.report.html import figure_tag, page, table_html, versions_html  # its figures module selects Agg
 from linkstress.tables import format_table
+from linkstress.validation.bench_peaks import FIELD_BOUND, PEAK_BOUND, RATIO_TARGET, SETTING, SUPERPOSITION_TARGET
 from linkstress.validation.bench_suite import NOMINAL_BOUND, SPEEDUP, BenchResult, converged_setting
 from linkstress.validation.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy
 
@@ -128,6 +129,39 @@ def sweep_speedup_lines(result: BenchResult) -> list[str]:
     ]
 
 
+def superposition_rows(result: BenchResult) -> list[tuple]:
+    """One row per case and link: the superposed FEA's size, times and errors against direct FEA."""
+    return [
+        ("superposed FEA", study.name, link.name, link.unit_cases, link.dofs, link.sweep_positions,
+         1e3 * (link.mesh_seconds + link.unit_solve_seconds), 1e3 * link.superposition_per_position, 1e3 * link.sweep_seconds,
+         link.compared, 1e3 * link.direct_per_position, 100 * link.peak_error, 100 * link.field_error)
+        for study in result.peaks for link in study.links
+    ]
+
+
+SUPERPOSITION_HEADERS = ("method", "case", "link", "unit cases", "dofs", "feasible positions", "mesh + unit solves [ms]",
+                         "superposition [ms per position]", "whole sweep [ms]", "compared positions",
+                         "direct FEA [ms per position]", "peak error [%]", "field rms error [%]")
+
+
+def superposition_lines(result: BenchResult) -> list[str]:
+    """What the superposed FEA's table measures, and the seed's sweep with peaks against one validate."""
+    s = result.peaks_speed
+    verdict = "met" if s.met else "NOT met"
+    return [
+        f"FEA peaks over a sweep by superposition of unit loads ({SETTING}) against the direct FEA of the same loads on "
+        f"the same mesh at validate's compared positions: peak von Mises error (bound {100 * PEAK_BOUND:g} %) and rms "
+        f"error of the nodal von Mises field (bound {100 * FIELD_BOUND:g} %), worst over those positions; the whole sweep "
+        "is the mesh, the unit solves and the superposition of every feasible position; the direct FEA's time per "
+        "position shares its mesh and factorisation among the compared positions",
+        f"seed: a whole turn of {s.sweep_positions} input angles analysed with FEA peaks for {', '.join(s.links)} in "
+        f"{s.sweep_seconds:.3g} s, one validate at one position (three mesh levels) {s.validate_seconds:.3g} s (best of "
+        f"{s.repeat}, alternated): ratio {s.ratio:.3g} (target < {RATIO_TARGET:g}); superposition "
+        f"{1e3 * s.superposition_per_link_position:.3g} ms per link and position (target <= {1e3 * SUPERPOSITION_TARGET:g} ms): "
+        f"{verdict}",
+    ]
+
+
 def bench_text(result: BenchResult) -> str:
     lines = [f"linkstress bench ({result.settings.name}), {result.seconds:.0f} s; machine: "
              + ", ".join(f"{k} {v}" for k, v in result.machine.items())]
@@ -148,6 +182,8 @@ def bench_text(result: BenchResult) -> str:
     lines += ["", "hard cases (errors of the beam against FEA; flags are what the engine says)", format_table(*stability_table(result))]
     for case in result.stability:
         lines += [f"  {case.name}: {flag}" for flag in case.flags]
+    lines += ["", "superposed FEA peaks against direct FEA", *superposition_lines(result),
+              format_table(SUPERPOSITION_HEADERS, superposition_rows(result))]
     failures = result.failures()
     lines += ["", "checks (errors only): " + ("passed" if not failures else "FAILED\n  " + "\n  ".join(failures))]
     return "\n".join(lines)
@@ -226,6 +262,34 @@ def bench_json(result: BenchResult) -> dict:
                        "rows": [_stability_row(r) for r in c.rows]} for c in result.stability],
         "checks": [c.__dict__ for c in result.checks],
         "failures": result.failures(),
+        "superposition": superposition_json(result),
+    }
+
+
+def superposition_json(result: BenchResult) -> dict:
+    s = result.peaks_speed
+    return {
+        "setting": SETTING, "peak_bound_pct": 100 * PEAK_BOUND, "field_bound_pct": 100 * FIELD_BOUND,
+        "cases": {study.name: {
+            "title": study.title, "positions": study.positions,
+            "peak_error_pct": 100 * study.peak_error, "field_error_pct": 100 * study.field_error,
+            "links": {link.name: {
+                "unit_cases": link.unit_cases, "dofs": link.dofs, "sweep_positions": link.sweep_positions,
+                "mesh_seconds": link.mesh_seconds, "unit_solve_seconds": link.unit_solve_seconds,
+                "superposition_seconds": link.superposition_seconds,
+                "superposition_ms_per_position": 1e3 * link.superposition_per_position, "sweep_seconds": link.sweep_seconds,
+                "compared_positions": link.compared, "direct_seconds": link.direct_seconds,
+                "direct_ms_per_position": 1e3 * link.direct_per_position,
+                "peak_error_pct": 100 * link.peak_error, "field_error_pct": 100 * link.field_error,
+            } for link in study.links},
+        } for study in result.peaks},
+        "speed": {
+            "case": s.study.name, "sweep_positions": s.sweep_positions, "links": list(s.links), "repeat": s.repeat,
+            "sweep_with_peaks_seconds": s.sweep_seconds, "validate_one_position_seconds": s.validate_seconds,
+            "ratio": s.ratio, "ratio_target": RATIO_TARGET,
+            "superposition_ms_per_link_position": 1e3 * s.superposition_per_link_position,
+            "superposition_target_ms": 1e3 * SUPERPOSITION_TARGET, "met": s.met,
+        },
     }
 
 
@@ -300,6 +364,8 @@ def bench_html(result: BenchResult) -> str:
     for case in result.stability:
         sections.append(f"<p><b>{html.escape(case.name)}</b>: {html.escape(case.description)}</p>")
         sections += [f'<p class="note">{html.escape(flag)}</p>' for flag in case.flags]
+    sections += ["<h2>Superposed FEA peaks</h2>", *(f"<p>{html.escape(line)}</p>" for line in superposition_lines(result)),
+                 table_html(SUPERPOSITION_HEADERS, superposition_rows(result))]
     rows = [(c.name, "passed" if c.passed else "FAILED", "-" if c.value is None else 100 * c.value,
              "-" if c.bound is None else 100 * c.bound) for c in result.checks]
     sections += ["<h2>Checks (errors only, never times)</h2>", table_html(("check", "result", "value [%]", "bound [%]"), rows)]

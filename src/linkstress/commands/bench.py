@@ -1,5 +1,6 @@
 """``linkstress bench [--json OUT] [--html OUT] [--quick]``: speed against error of every stress
-method, throughput, FEA memory and the hard cases, in one run (``linkstress.validation.bench_suite``).
+method, throughput, FEA memory, the hard cases and the FEA peaks by superposition of unit loads, in
+one run (``linkstress.validation.bench_suite``).
 
 Exit 0 when every error stays under its bound, 1 when one does not; times are reported, never
 checked. ``--quick`` measures fewer settings (seconds, for CI); the full run takes minutes.
@@ -24,7 +25,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "and a curved-link four-bar; compare each with the Richardson-extrapolated finest FEA; mark the "
             "Pareto front. Also: positions per second of kinematics, joint forces and section stresses over "
             "sweeps, the FEA's peak memory, and the beam against FEA on hard cases (near toggle, change point, "
-            "slender, stubby, hole close to the edge). Checks errors against their bounds, never times."
+            "slender, stubby, hole close to the edge), and FEA peaks by superposition of unit loads against direct "
+            "FEA on the same mesh, with the seed's 360-position sweep with peaks timed against one validate at one "
+            "position. Checks errors against their bounds, never times."
         ),
     )
     parser.add_argument("--json", type=Path, metavar="OUT", help="write the figures as JSON to OUT")
