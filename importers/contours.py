@@ -5,9 +5,12 @@
   curves): both are reported as fixes.
 - Open pieces are chained into rings (:mod:`.chaining`); consecutive vertices closer than
   ``DUPLICATE_VERTEX`` x the drawing size merge, and rings that enclose no area are dropped.
-- Rings that cross themselves or each other are errors. The rest nest by containment: a ring
-  inside an even number of rings is an outer boundary, inside an odd number a hole of the
-  innermost one (so a part drawn inside a hole is a link of its own).
+- Each layer is chained, checked and nested on its own: links drawn assembled, each on its own
+  layer, overlap at their joints.
+- Rings that cross themselves, or each other on one layer, are errors. The rest nest by
+  containment within their layer: a ring inside an even number of rings is an outer boundary,
+  inside an odd number a hole of the innermost one (so a part drawn inside a hole is a link of its
+  own).
 
 Everything here is in drawing units; messages say which.
 """
@@ -77,31 +80,48 @@ class Contours:
 def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size: float, unit: str) -> Contours:
     """Outlines with holes from ``pieces`` (one per origin), closing gaps up to ``tolerance``.
 
-    ``tolerance`` and ``size`` (the drawing's bounding-box diagonal) are in drawing units, named ``unit``.
+    Each layer is its own drawing: its curves chain only with each other, and its outlines must not
+    cross or touch each other, while outlines on different layers may (links drawn assembled
+    overlap at their joints). ``tolerance`` and ``size`` (the drawing's bounding-box diagonal) are in
+    drawing units, named ``unit``.
     """
     report = Report(origins, unit, size)
     fixes: list[str] = []
     keep = ~_small(pieces, tolerance, report, fixes)
     keep &= ~_duplicates(pieces, np.flatnonzero(keep & pieces.closed), tolerance, report, fixes)
+    layers = np.array([origin[2] for origin in origins], dtype=object)
+    loops: list[Loop] = []
+    outlines: list[Outline] = []
+    for layer in dict.fromkeys(layers[keep].tolist()):
+        on_layer = keep & (layers == layer)
+        layer_loops = _layer_loops(pieces, on_layer, tolerance, size, report, fixes)
+        _check_disjoint(layer_loops, report)
+        loops += layer_loops
+        outlines += _nest(layer_loops)
+    if not loops:
+        raise SketchError("no closed outline: the drawing has no curves that enclose an area")
+    return Contours(tuple(sorted(outlines, key=lambda o: _lower_left(o.shell))), tuple(fixes))
+
+
+def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size: float, report: Report,
+                 fixes: list[str]) -> list[Loop]:
+    """The simple closed loops of the pieces ``keep`` (one layer's), curves drawn twice dropped."""
     ends = Ends.of(pieces, np.flatnonzero(keep & ~pieces.closed))
     branched = ends.branched(tolerance)
     if branched.any():
         suspects = np.unique(ends.idx[np.flatnonzero(branched) // 2])
         twice = _duplicates(pieces, suspects, tolerance, report, fixes)
         if twice.any():
-            keep &= ~twice
+            keep = keep & ~twice
             ends = Ends.of(pieces, np.flatnonzero(keep & ~pieces.closed))
     rounding = DUPLICATE_VERTEX * size
     rings = Rings.concatenate(
         closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance),
         chain(pieces, ends, tolerance, rounding, report),
     )
-    loops = _loops(rings, rounding, report, fixes)
-    if not loops:
-        raise SketchError("no closed outline: the drawing has no curves that enclose an area")
+    loops = _loops(rings, rounding, report, fixes) if len(rings) else []
     _check_simple(loops, report)
-    _check_disjoint(loops, report)
-    return Contours(_nest(loops), tuple(fixes))
+    return loops
 
 
 # -- clean-up -----------------------------------------------------------------------------------
