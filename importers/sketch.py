@@ -234,7 +234,8 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], tolerance:
     names, layers = _names(path, outlines, raw.curves.curve_origins())
     points = raw.curves.point_array()
     point_origins = raw.curves.origins["points"]
-    owner = _owners([o.shell.polygon for o in outlines], points)
+    point_layers = [origin[2] for origin in point_origins]
+    owner = _owners([o.shell.polygon for o in outlines], points, _shell_layers(outlines, raw.curves.curve_origins()), point_layers)
     if (owner < 0).any():
         ignored["POINT (outside every outline)"] += int((owner < 0).sum())
     per_metre = raw.unit.per_metre
@@ -264,11 +265,7 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], tolerance:
 def _names(path: Path, outlines, origins) -> tuple[list[str], list[str | None]]:
     """A link is named by its shell's layer when all its curves share one (other than "0"), else
     ``<file stem>-<n>``; links sharing a layer are numbered ``<layer>-<n>``."""
-    layers: list[str | None] = []
-    for outline in outlines:
-        found = {origins[k][2] for k in outline.shell.pieces}
-        layer = found.pop() if len(found) == 1 else None
-        layers.append(layer if layer not in (None, "0") else None)
+    layers = [layer if layer != "0" else None for layer in _shell_layers(outlines, origins)]
     per_layer = Counter(layers)
     seen: Counter = Counter()
     names = []
@@ -284,15 +281,31 @@ def _names(path: Path, outlines, origins) -> tuple[list[str], list[str | None]]:
     return [n if taken[n] == 1 else f"{n}#{k + 1}" for k, n in enumerate(names)], layers
 
 
-def _owners(shells: list[Polygon], points: NDArray[np.float64]) -> NDArray[np.intp]:
-    """For each point, the innermost shell that covers it, or -1."""
+def _shell_layers(outlines, origins) -> list[str | None]:
+    """Each outline's layer: that of its shell's curves when they share one, else None."""
+    layers = []
+    for outline in outlines:
+        found = {origins[k][2] for k in outline.shell.pieces}
+        layers.append(found.pop() if len(found) == 1 else None)
+    return layers
+
+
+def _owners(shells: list[Polygon], points: NDArray[np.float64], shell_layers: list[str | None],
+            point_layers: list[str]) -> NDArray[np.intp]:
+    """For each point, the innermost shell that covers it, or -1: among the shells on the point's
+    own layer when one of them covers it (links drawn assembled share their pins' places), else
+    among all."""
     owner = np.full(len(points), -1)
     if not len(points):
         return owner
     covers = shapely.covers(np.array(shells, dtype=object)[:, None], shapely.points(points)[None, :])
     areas = np.array([s.area for s in shells])
+    layers = np.array(shell_layers, dtype=object)
     for j in range(len(points)):
         candidates = np.flatnonzero(covers[:, j])
+        same = candidates[layers[candidates] == point_layers[j]]
+        if len(same):
+            candidates = same
         if len(candidates):
             owner[j] = candidates[np.argmin(areas[candidates])]
     return owner
