@@ -34,6 +34,8 @@ from linkstress.scene.model import Scene
 
 GROUND_NAMES = ("ground", "frame", "base")
 CRANK_NAMES = ("crank", "input", "driver")
+ANGLE_DIGITS = 9
+"""Decimals of the input angle [deg] written: a 1e-9 deg turn moves a 1 km crank's pin by 2e-8 m."""
 BARE_GROUND = "ground"
 """The name of the ground link when it is not drawn (then no layer is named ground)."""
 
@@ -57,7 +59,8 @@ class Assembly:
     ``links``: the drawn links by name (the ground too when drawn); ``ground``: the ground's name;
     ``ground_joints`` (k, 2) [m]: the fixed pivots of a ground that is not drawn, else None;
     ``loops``: the loops, main first, roles' joints indexing each link's joints; ``input_angle_deg``:
-    the main crank as drawn (from its pivot to its other joint, counter-clockwise from +x);
+    the main crank as drawn (from its pivot to its other joint, counter-clockwise from +x, to
+    ``ANGLE_DIGITS`` decimals);
     ``ground_rule`` and ``crank_rule``: how the ground and the crank were chosen, for the reader.
     """
 
@@ -118,7 +121,8 @@ def find_assembly(sketch: Sketch) -> Assembly:
     loops = tuple(_loop(k, cycle, drive, joints, ground_name, bare) for k, (cycle, drive) in enumerate(chosen))
     main_crank = links[crank]
     o2, a = (main_crank.joints[i] for i in loops[0].crank.joints)
-    angle = math.degrees(math.atan2(a[1] - o2[1], a[0] - o2[0]))
+    # Rounded to 1e-9 deg, so that a crank drawn at 60 deg reads 60.0, not 59.999999999999986.
+    angle = round(math.degrees(math.atan2(a[1] - o2[1], a[0] - o2[0])), ANGLE_DIGITS)
     ground_joints = None if bare is None else np.array([joints[j].at for j in bare])
     return Assembly(links, ground_name, ground_joints, loops, angle, ground_rule, crank_rule)
 

@@ -1,0 +1,129 @@
+"""``linkstress import SKETCH --scene OUT``: a mechanism drawn assembled, each link on its own layer,
+becomes a scene that runs at the drawn crank angle and reproduces the drawing.
+
+The drawings are made here: a validation case's links, read from its DXF, moved into their pose at
+one input angle by the case's own kinematics, and drawn on their own layers with their hole circles
+and a POINT at each joint.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+
+from linkstress.cli import main
+from linkstress.importers import read_sketch
+from linkstress.importers.scene_writer import toml_key, toml_string
+from linkstress.kinematics.motion import angle_motion
+from linkstress.kinematics.solve import solve_machine
+from linkstress.scene.reader import load_scene
+
+CASES = Path(__file__).resolve().parents[1] / "validation" / "cases"
+SEED = CASES / "seed_ansys_fourbar" / "scene.toml"
+SIX_BAR = CASES / "six_bar" / "scene.toml"
+
+
+def posed(scene_path: Path, angle_deg: float) -> dict[str, tuple[np.ndarray, np.ndarray, list]]:
+    """Each sketch link of the scene at input ``angle_deg``: its outline's shell (m, 2) [m], its joints
+    (n, 2) [m] and its holes' diameters [m], moved from where its DXF draws it into that pose."""
+    scene = load_scene(scene_path)
+    motion = solve_machine(scene.machine, angle_motion(np.array([angle_deg]), 0.0, 0.0))
+    assert motion.feasible[0]
+    links = {}
+    for name, link in scene.links.items():
+        if link.sketch is None:
+            continue
+        drawn = read_sketch(link.sketch, units=scene.units).link(link.layer)
+        move = motion.links[name]
+
+        def place(points, move=move, link=link):
+            return move.point(link.to_member(points))[0][0]
+
+        links[name] = (place(np.asarray(drawn.outline.exterior.coords)[:-1]), place(drawn.joints),
+                       list(drawn.hole_diameters_m))
+    return links
+
+
+def draw(path: Path, links: dict, layers: dict[str, str] | None = None) -> Path:
+    """A DXF in metres: each link on its own layer (renamed by ``layers``), its shell a closed
+    LWPOLYLINE, a CIRCLE of its hole diameter and a POINT at each joint."""
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    for name, (shell, joints, holes) in links.items():
+        layer = (layers or {}).get(name, name)
+        doc.layers.add(layer)
+        attrs = {"layer": layer}
+        msp.add_lwpolyline([tuple(p) for p in shell], close=True, dxfattribs=attrs)
+        for p, d in zip(joints, holes):
+            msp.add_circle(tuple(p), d / 2, dxfattribs=attrs)
+            msp.add_point(tuple(p), dxfattribs=attrs)
+    doc.saveas(path)
+    return path
+
+
+def analyze_json(scene: Path, out: Path) -> dict:
+    assert main(["analyze", str(scene), "--json", str(out)]) == 0
+    return json.loads(out.read_text())
+
+
+def test_the_seed_drawn_assembled_at_60_deg_gives_the_seed_scenes_forces(tmp_path, capsys):
+    sketch = draw(tmp_path / "seed_at_60.dxf", posed(SEED, 60.0))
+    scene = tmp_path / "scene.toml"
+    assert main(["import", str(sketch), "--scene", str(scene)]) == 0
+    text = scene.read_text()
+    assert 'crank = "crank"' in text and 'ground = "ground"' in text and 'branch = "open"' in text
+    # The output's joints sort by x as B (1.86, 4.49) then O4 (2, 3): its axis O4 -> B is [1, 0].
+    assert 'output = {link = "output", joints = [1, 0]}' in text
+    assert "input_angle_deg = 60.0 " in text
+    # The seed's plates, motion and load (validation/cases/seed_ansys_fourbar/scene.toml); steel is the default.
+    text = text.replace("thickness = 0.005", "thickness = 0.1")
+    text = text.replace("input_speed_rad_s = 1.0", "input_speed_rad_s = -1.0")
+    scene.write_text(text + "\n[loads.couples]\noutput = 2.0\n")
+    got = analyze_json(scene, tmp_path / "got.json")["positions"][0]
+    want = analyze_json(SEED, tmp_path / "want.json")["positions"][0]
+    forces, expected = got["mechanisms"]["main"], want["mechanisms"]["main"]
+    assert set(forces["forces_n"]) == set(expected["forces_n"]) == {"F12", "F32", "F43", "F14"}
+    for key, value in expected["forces_n"].items():
+        assert np.allclose(forces["forces_n"][key], value, rtol=1e-9, atol=1e-9 * np.hypot(*value))
+    assert forces["driving_torque_nm"] == pytest.approx(expected["driving_torque_nm"], rel=1e-9)
+
+
+def test_a_six_bar_drawn_assembled_becomes_two_chained_loops_at_the_drawn_angle(tmp_path, capsys):
+    # The six_bar case at 30 deg; its ground is bare joints, so it is not drawn.
+    sketch = draw(tmp_path / "six_bar_at_30.dxf", posed(SIX_BAR, 30.0))
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(sketch), "--scene", str(out)]) == 0
+    data = tomllib.loads(out.read_text())
+    # Ground pivots in the order the loops use them: the crank's O2 (0, 0), the rocker's (0.1, 0), out2's (0.1, -0.15).
+    assert np.allclose(data["links"]["ground"]["joints"], [[0, 0], [0.1, 0], [0.1, -0.15]], atol=1e-12)
+    main_loop, second = data["mechanisms"]["main"], data["mechanisms"]["loop2"]
+    # The rocker is ternary: joints by x then y at 30 deg are its second crank pin, its pivot and B.
+    assert main_loop["crank"] == "crank" and main_loop["coupler"] == "coupler"
+    assert main_loop["output"] == {"link": "rocker", "joints": [1, 2]}
+    assert main_loop["ground"] == {"link": "ground", "joints": [0, 1]}
+    assert second["driven_by"] == "main.output"
+    assert second["crank"] == {"link": "rocker", "joints": [1, 0]}
+    assert (second["coupler"], second["output"]) == ("rod2", "out2")
+    assert second["ground"] == {"link": "ground", "joints": [1, 2]}
+    assert data["motion"]["input_angle_deg"] == 30.0
+    # Solved at the drawn angle, every joint of every link lands where the six_bar case puts it.
+    imported, case = load_scene(out), load_scene(SIX_BAR)
+    at_30 = angle_motion(np.array([30.0]), 0.0, 0.0)
+    got, want = solve_machine(imported.machine, at_30), solve_machine(case.machine, at_30)
+    for name in ("crank", "coupler", "rocker", "rod2", "out2"):
+        a, b = imported.links[name], case.links[name]
+        assert len(a.joints) == len(b.joints)
+        here = got.links[name].point(a.to_member(a.joints))[0][0]
+        there = want.links[name].point(b.to_member(b.joints))[0][0]
+        # The same joints, perhaps in another order (they sort by x as drawn).
+        assert np.allclose(np.sort(here, axis=0), np.sort(there, axis=0), atol=1e-12)
+    capsys.readouterr()
+    assert main(["analyze", str(out)]) == 0
+    report = capsys.readouterr().out
+    assert "1 positions, 1 feasible" in report and "mechanism loop2: four-bar" in report
