@@ -105,7 +105,7 @@ def find_assembly(sketch: Sketch) -> Assembly:
         ground_rule = "the ground is not drawn: its pivots are the joints that only one link uses"
     cycles = _cycles(joints, ground if ground is not None else BARE_GROUND)
     if not cycles:
-        raise SketchError(f"{sketch.path.name}: no mechanism found: {_what_joins(sketch, joints)}")
+        raise SketchError(f"no mechanism found: {_what_joins(sketch, joints)}")
     crank, main, crank_rule = _main_cycle(cycles, joints, links)
     chosen = _chain(main, cycles)
     ground_name = ground if ground is not None else BARE_GROUND
@@ -113,7 +113,7 @@ def find_assembly(sketch: Sketch) -> Assembly:
     left = [name for name in links if name not in covered and name != ground_name]
     if left:
         raise SketchError(
-            f"{sketch.path.name}: link(s) {', '.join(repr(n) for n in left)} are in no four-bar loop driven from "
+            f"link(s) {', '.join(repr(n) for n in left)} are in no four-bar loop driven from "
             f"the main one ({_what_joins(sketch, joints)}); linkstress chains four-bars through a shared crank "
             "or output pivoted on the ground: draw those links apart, or write the scene by hand"
         )
@@ -156,7 +156,7 @@ def _ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
     named = [link.name for link in sketch.links if _named(link, GROUND_NAMES)]
     if len(named) > 1:
         raise SketchError(
-            f"{sketch.path.name}: layers {', '.join(repr(n) for n in named)} are all named as a ground; keep one "
+            f"layers {', '.join(repr(n) for n in named)} are all named as a ground; keep one "
             f"layer named {' or '.join(GROUND_NAMES)}"
         )
     if named:

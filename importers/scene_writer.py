@@ -24,8 +24,8 @@ _ESCAPES = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f
 
 def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | None) -> str:
     """The scene of ``assembly``: ``sketch`` is the sketch's path relative to the scene's folder,
-    ``sketch_name`` its file name for the header, ``units`` the unit of a unitless sketch (None when the
-    sketch says)."""
+    ``sketch_name`` its file name for the header, ``units`` the unit given for a sketch that does not
+    say its own (``--units``; None: not given)."""
     lines = [
         f"# Written by `linkstress import {_comment(sketch_name)} --scene`: the mechanism as drawn assembled.",
         "# Edit the material, each link's thickness and the motion; add [loads] (docs/design.md, scene file).",
@@ -33,7 +33,7 @@ def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | N
         f"title = {toml_string(sketch_name + ' as drawn')}",
     ]
     if units is not None:
-        lines.append(f"units = {toml_string(units)}  # the sketch does not say its unit")
+        lines.append(f"units = {toml_string(units)}  # --units: for a sketch that does not say its unit")
     name, values = MATERIAL
     lines += ["", f"[materials.{name}]  # edit: the links' material"]
     lines += [f"{key} = {_number(value)}" for key, value in values.items()]

@@ -18,21 +18,24 @@ import numpy as np
 import pytest
 
 from linkstress.cli import main
+from linkstress.errors import SketchError
 from linkstress.importers import read_sketch
 from linkstress.importers.scene_writer import toml_key, toml_string
 from linkstress.kinematics.motion import angle_motion
 from linkstress.kinematics.solve import solve_machine
-from linkstress.scene.reader import load_scene
+from linkstress.importers.assembly import check_pose
+from linkstress.scene.model import Scene
+from linkstress.scene.reader import load_scene, scene_from_text
 
 CASES = Path(__file__).resolve().parents[1] / "validation" / "cases"
 SEED = CASES / "seed_ansys_fourbar" / "scene.toml"
 SIX_BAR = CASES / "six_bar" / "scene.toml"
 
 
-def posed(scene_path: Path, angle_deg: float) -> dict[str, tuple[np.ndarray, np.ndarray, list]]:
+def posed(scene: Path | Scene, angle_deg: float) -> dict[str, tuple[np.ndarray, np.ndarray, list]]:
     """Each sketch link of the scene at input ``angle_deg``: its outline's shell (m, 2) [m], its joints
     (n, 2) [m] and its holes' diameters [m], moved from where its DXF draws it into that pose."""
-    scene = load_scene(scene_path)
+    scene = load_scene(scene) if isinstance(scene, Path) else scene
     motion = solve_machine(scene.machine, angle_motion(np.array([angle_deg]), 0.0, 0.0))
     assert motion.feasible[0]
     links = {}
@@ -127,3 +130,76 @@ def test_a_six_bar_drawn_assembled_becomes_two_chained_loops_at_the_drawn_angle(
     assert main(["analyze", str(out)]) == 0
     report = capsys.readouterr().out
     assert "1 positions, 1 feasible" in report and "mechanism loop2: four-bar" in report
+
+
+def seed_on_branch(branch: str) -> Scene:
+    """The seed scene on ``branch``."""
+    return scene_from_text(SEED.read_text().replace('branch = "open"', f'branch = "{branch}"'), SEED)
+
+
+def test_a_ground_on_layer_Frame_is_the_ground_and_a_crossed_pose_is_written_crossed(tmp_path):
+    layers = {"ground": "Frame", "crank": "Input"}
+    sketch = draw(tmp_path / "crossed.dxf", posed(seed_on_branch("crossed"), 60.0), layers)
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(sketch), "--scene", str(out)]) == 0
+    data = tomllib.loads(out.read_text())
+    # The drawn frame is a link of the scene, read from the sketch, not bare joints.
+    assert data["links"]["Frame"] == {"sketch": "crossed.dxf", "layer": "Frame", "thickness": 0.005, "material": "steel"}
+    mechanism = data["mechanisms"]["main"]
+    assert (mechanism["crank"], mechanism["ground"], mechanism["branch"]) == ("Input", "Frame", "crossed")
+    assert data["motion"]["input_angle_deg"] == 60.0
+
+
+def test_a_scene_on_the_other_branch_than_drawn_is_refused_naming_the_joint(tmp_path):
+    sketch = draw(tmp_path / "open.dxf", posed(SEED, 60.0))
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(sketch), "--scene", str(out)]) == 0
+    flipped = scene_from_text(out.read_text().replace('branch = "open"', 'branch = "crossed"'), out)
+    with pytest.raises(SketchError, match=r"link 'coupler', joint 1 drawn at \(1\.86237, 4\.49367\) m: the loop solved"):
+        check_pose(flipped, 1e-6)
+
+
+def test_links_that_close_no_loop_exit_2_naming_the_joint_they_share(tmp_path, capsys):
+    links = posed(SEED, 60.0)
+    sketch = draw(tmp_path / "two.dxf", {name: links[name] for name in ("crank", "coupler")})
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(sketch), "--scene", str(out)]) == 2
+    err = capsys.readouterr().err
+    # The crank's pin A at 60 deg: (cos 60, 3 + sin 60) m.
+    assert err.startswith("linkstress: error: two.dxf: --scene: no mechanism found: links 'crank', 'coupler' share "
+                          "the joint at (0.5, 3.86603) m; no closed loop of four links") and err.count("\n") == 1
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("target", ["sketch", "folder"])
+def test_the_scene_output_is_refused_like_other_outputs(tmp_path, capsys, target):
+    sketch = draw(tmp_path / "seed.dxf", posed(SEED, 60.0))
+    out = sketch if target == "sketch" else tmp_path
+    before = sketch.read_bytes()
+    assert main(["import", str(sketch), "--scene", str(out)]) == 2
+    assert capsys.readouterr().err.startswith("linkstress: error: --scene: ")
+    assert sketch.read_bytes() == before
+
+
+def test_layer_names_with_quotes_backslashes_and_unicode_round_trip_through_the_scene(tmp_path):
+    # ezdxf refuses such layer names, other CAD writes them: rename the layers in the DXF text.
+    names = {"crank": 'Kurbel "A" \\ ü', "coupler": "Koppel's arm", "output": "Schwinge ☃", "ground": "ground"}
+    sketch = draw(tmp_path / "names.dxf", posed(SEED, 60.0), {k: f"LAYER{i}X" for i, k in enumerate(names)})
+    text = sketch.read_text()
+    for i, name in enumerate(names.values()):
+        text = text.replace(f"LAYER{i}X", name)
+    sketch.write_text(text, encoding="utf-8")
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(sketch), "--scene", str(out)]) == 0
+    data = tomllib.loads(out.read_text(encoding="utf-8"))
+    assert sorted(data["links"]) == sorted(names.values())
+    assert all(data["links"][name]["layer"] == name for name in names.values())
+    # No layer is named crank: the crank is the shortest link pivoted on the ground, the seed's 1 m crank.
+    assert data["mechanisms"]["main"]["crank"] == 'Kurbel "A" \\ ü'
+    assert load_scene(out).machine.main.coupler.link == "Koppel's arm"
+
+
+def test_toml_strings_and_keys_escape_what_toml_needs():
+    for text in ['plain', 'a "quoted" name', "back\\slash", "tab\tand\nnewline", "bell\x07 del\x7f", "ü ☃ 𝄞", ""]:
+        assert tomllib.loads(f"{toml_key(text)} = {toml_string(text)}") == {text: text}
+    assert toml_key("crank_2-b") == "crank_2-b" and toml_key("a b") == '"a b"'

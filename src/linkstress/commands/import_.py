@@ -81,9 +81,12 @@ def _scene_bytes(sketch, out: Path, units: str | None) -> bytes:
     from linkstress.importers.scene_writer import scene_text
     from linkstress.scene.reader import scene_from_text
 
-    assembly = find_assembly(sketch)
-    text = scene_text(assembly, _relative(sketch.path, out), sketch.path.name, units)
-    check_pose(scene_from_text(text, out), sketch.gap_tolerance_m)
+    try:
+        assembly = find_assembly(sketch)
+        text = scene_text(assembly, _relative(sketch.path, out), sketch.path.name, units)
+        check_pose(scene_from_text(text, out), sketch.gap_tolerance_m)
+    except InputError as error:
+        raise InputError(f"{sketch.path.name}: --scene: {error}") from None
     return text.encode("utf-8")
 
 
