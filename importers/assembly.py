@@ -28,6 +28,8 @@ from numpy.typing import NDArray
 from linkstress.errors import SketchError
 from linkstress.importers.chaining import close_pairs
 from linkstress.importers.sketch import ImportedLink, Sketch
+from linkstress.kinematics.fourbar import FourBar
+from linkstress.kinematics.linkage_class import feasible_input_ranges
 from linkstress.kinematics.machine import Drive, Loop, Role
 from linkstress.kinematics.solve import solve_machine
 from linkstress.scene.model import Scene
@@ -60,7 +62,8 @@ class Assembly:
     ``ground_joints`` (k, 2) [m]: the fixed pivots of a ground that is not drawn, else None;
     ``loops``: the loops, main first, roles' joints indexing each link's joints; ``input_angle_deg``:
     the main crank as drawn (from its pivot to its other joint, counter-clockwise from +x, to
-    ``ANGLE_DIGITS`` decimals);
+    ``ANGLE_DIGITS`` decimals); ``sweep_deg``: (start, stop) [deg] of the main loop's input range
+    about the drawn angle, one turn from it when the crank turns fully, else toggle to toggle;
     ``ground_rule`` and ``crank_rule``: how the ground and the crank were chosen, for the reader.
     """
 
@@ -69,6 +72,7 @@ class Assembly:
     ground_joints: NDArray[np.float64] | None
     loops: tuple[Loop, ...]
     input_angle_deg: float
+    sweep_deg: tuple[float, float]
     ground_rule: str
     crank_rule: str
 
@@ -124,7 +128,8 @@ def find_assembly(sketch: Sketch) -> Assembly:
     # Rounded to 1e-9 deg, so that a crank drawn at 60 deg reads 60.0, not 59.999999999999986.
     angle = round(math.degrees(math.atan2(a[1] - o2[1], a[0] - o2[0])), ANGLE_DIGITS)
     ground_joints = None if bare is None else np.array([joints[j].at for j in bare])
-    return Assembly(links, ground_name, ground_joints, loops, angle, ground_rule, crank_rule)
+    sweep = _sweep(chosen[0][0], joints, loops[0].branch, angle)
+    return Assembly(links, ground_name, ground_joints, loops, angle, sweep, ground_rule, crank_rule)
 
 
 def shared_joints(links: tuple[ImportedLink, ...], tolerance: float) -> list[Joint]:
@@ -293,6 +298,21 @@ def _loop(k: int, cycle: _Cycle, drive: Drive | None, joints: list[Joint], groun
         branch=_branch(name, a.at, b.at, o4.at, cycle),
         driven_by=drive,
     )
+
+
+def _sweep(main: _Cycle, joints: list[Joint], branch: str, angle_deg: float) -> tuple[float, float]:
+    """The main loop's input range [deg] that holds the drawn angle (linkage_class.feasible_input_ranges)."""
+    o2, a, b, o4 = (joints[j].at for j in (main.jp, main.kp, main.kq, main.jq))
+    lengths = (float(np.hypot(*(q - p))) for p, q in ((o2, a), (a, b), (o4, b)))
+    linkage = FourBar(tuple(o2), tuple(o4), *lengths, branch)
+    angle = math.radians(angle_deg)
+    for start, stop in feasible_input_ranges(linkage):
+        if stop - start >= 2 * math.pi - 1e-12:
+            return angle_deg, angle_deg + 360.0
+        turns = math.floor((angle - start) / (2 * math.pi))
+        if start + 2 * math.pi * turns <= angle <= stop + 2 * math.pi * turns:
+            return tuple(math.degrees(x + 2 * math.pi * turns) for x in (start, stop))
+    return angle_deg, angle_deg
 
 
 def _branch(name: str, a: NDArray[np.float64], b: NDArray[np.float64], o4: NDArray[np.float64], cycle: _Cycle) -> str:

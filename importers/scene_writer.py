@@ -7,6 +7,7 @@ speed, no loads. Comments say what to edit. Lengths in metres, angles in degrees
 
 from __future__ import annotations
 
+import math
 import re
 
 from linkstress.errors import InputError
@@ -127,11 +128,18 @@ def _role(role: Role, assembly: Assembly, ground: bool) -> str:
 
 def _motion(assembly: Assembly) -> list[str]:
     angle = assembly.input_angle_deg
+    start, stop = assembly.sweep_deg
+    if stop - start == 360.0:
+        sweep, why = f"{{start = {_number(start)}, stop = {_number(stop)}, num = 361}}", "one turn from the drawn angle"
+    else:
+        # Rounded inward, so that every position of the sweep assembles.
+        inside = math.ceil(start * 1e6) / 1e6, math.floor(stop * 1e6) / 1e6
+        sweep = f"{{start = {_number(inside[0])}, stop = {_number(inside[1])}, num = 201}}"
+        why = "the crank rocks, from toggle to toggle"
     return [
         "",
         "[motion]",
         f"input_angle_deg = {_number(angle)}  # the crank as drawn, degrees from +x",
-        f"# input_angle_deg = {{start = {_number(angle)}, stop = {_number(angle + 360.0)}, num = 361}}  "
-        "# a sweep: one turn from the drawn angle",
+        f"# input_angle_deg = {sweep}  # a sweep: {why}",
         f"input_speed_rad_s = {_number(SPEED_RAD_S)}  # a default: edit",
     ]

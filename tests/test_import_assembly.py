@@ -203,3 +203,65 @@ def test_toml_strings_and_keys_escape_what_toml_needs():
     for text in ['plain', 'a "quoted" name', "back\\slash", "tab\tand\nnewline", "bell\x07 del\x7f", "ü ☃ 𝄞", ""]:
         assert tomllib.loads(f"{toml_key(text)} = {toml_string(text)}") == {text: text}
     assert toml_key("crank_2-b") == "crank_2-b" and toml_key("a b") == '"a b"'
+
+
+def bar_drawing(path: Path, pins: dict[str, tuple]) -> Path:
+    """A DXF in metres of straight bars 0.05 m wide, each from its first pin to its second on its own
+    layer, with 0.01 m pin holes and POINTs."""
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    for layer, (p, q) in pins.items():
+        doc.layers.add(layer)
+        p, q = np.asarray(p, float), np.asarray(q, float)
+        u = (q - p) / np.hypot(*(q - p))
+        n = 0.025 * np.array([-u[1], u[0]])
+        ends = (p - 0.025 * u, q + 0.025 * u)
+        corners = [ends[0] - n, ends[1] - n, ends[1] + n, ends[0] + n]
+        msp.add_lwpolyline([tuple(c) for c in corners], close=True, dxfattribs={"layer": layer})
+        for pin in (p, q):
+            msp.add_circle(tuple(pin), 0.005, dxfattribs={"layer": layer})
+            msp.add_point(tuple(pin), dxfattribs={"layer": layer})
+    doc.saveas(path)
+    return path
+
+
+def double_rocker(ground_layer: str | None) -> dict[str, tuple]:
+    """Crank 0.8 m at 45 deg from O2 (0, 0), coupler 0.4 m, output 0.7 m, ground 1 m to O4 (1, 0), open
+    branch: Grashof with the coupler shortest, so the crank rocks. ``ground_layer``: None leaves the
+    ground undrawn."""
+    o2, o4 = np.array([0.0, 0.0]), np.array([1.0, 0.0])
+    a = 0.8 * np.array([math.cos(math.radians(45)), math.sin(math.radians(45))])
+    d = o4 - a
+    s = np.hypot(*d)
+    along = (0.4**2 - 0.7**2 + s**2) / (2 * s)
+    across = math.sqrt(0.4**2 - along**2)
+    b = a + along * d / s + across * np.array([-d[1], d[0]]) / s  # left of A -> O4: the open branch
+    pins = {"crank": (o2, a), "link_b": (a, b), "rocker_c": (o4, b)}
+    if ground_layer is not None:
+        pins[ground_layer] = (o2, o4)
+    return pins
+
+
+def test_a_crank_that_rocks_gets_a_sweep_between_its_toggles_and_an_undrawn_ground(tmp_path):
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(bar_drawing(tmp_path / "rocker.dxf", double_rocker(None))), "--scene", str(out)]) == 0
+    text = out.read_text()
+    data = tomllib.loads(text)
+    assert np.allclose(data["links"]["ground"]["joints"], [[0, 0], [1, 0]], atol=1e-12)
+    assert (data["mechanisms"]["main"]["crank"], data["mechanisms"]["main"]["branch"]) == ("crank", "open")
+    # |A O4|^2 = a^2 + d^2 - 2 a d cos(phi) reaches b + c = 1.1 m and |b - c| = 0.3 m at
+    # cos(phi) = (0.64 + 1 - 1.21) / 1.6 and (0.64 + 1 - 0.09) / 1.6: 74.4101 and 14.3615 deg.
+    low, high = math.degrees(math.acos(1.55 / 1.6)), math.degrees(math.acos(0.43 / 1.6))
+    # The sweep's ends are rounded inward to 1e-6 deg, so that every position assembles.
+    assert "# input_angle_deg = {start = 14.361512, stop = 74.410101, num = 201}" in text
+    assert (low, high) == pytest.approx((14.3615116, 74.4101019), abs=1e-7)
+    assert data["motion"]["input_angle_deg"] == 45.0
+
+
+def test_an_unnamed_drawn_ground_is_the_largest_link_in_every_loop(tmp_path):
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(bar_drawing(tmp_path / "plate.dxf", double_rocker("plate"))), "--scene", str(out)]) == 0
+    text = out.read_text()
+    # All four bars are in the one loop with two joints each: the 1.05 m plate is the largest.
+    assert 'ground = "plate"  # no layer is named ground, frame, base:' in text
+    assert tomllib.loads(text)["links"]["plate"]["layer"] == "plate"
