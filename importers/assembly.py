@@ -24,6 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 
 from linkstress.errors import SketchError
 from linkstress.importers.chaining import close_pairs
@@ -139,20 +141,13 @@ def shared_joints(links: tuple[ImportedLink, ...], tolerance: float) -> list[Joi
     if not ends:
         return []
     points = np.vstack([link.joints for link in links if len(link.joints)])
-    parent = list(range(len(points)))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for i, j in close_pairs(points, tolerance, "joints"):
-        parent[root(int(i))] = root(int(j))
-    groups: dict[int, list[int]] = {}
-    for i in range(len(points)):
-        groups.setdefault(root(i), []).append(i)
-    found = [Joint(points[g].mean(axis=0), tuple(ends[i] for i in g)) for g in groups.values()]
+    pairs = close_pairs(points, tolerance, "joints")
+    near = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(points), len(points)))
+    _, pin = connected_components(near, directed=False)
+    found = [
+        Joint(points[pin == k].mean(axis=0), tuple(ends[i] for i in np.flatnonzero(pin == k)))
+        for k in range(pin.max() + 1)
+    ]
     return sorted(found, key=lambda j: (j.at[0], j.at[1]))
 
 

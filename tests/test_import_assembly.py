@@ -265,3 +265,12 @@ def test_an_unnamed_drawn_ground_is_the_largest_link_in_every_loop(tmp_path):
     # All four bars are in the one loop with two joints each: the 1.05 m plate is the largest.
     assert 'ground = "plate"  # no layer is named ground, frame, base:' in text
     assert tomllib.loads(text)["links"]["plate"]["layer"] == "plate"
+
+
+def test_links_drawn_apart_exit_2_saying_no_two_share_a_joint(tmp_path, capsys):
+    # The seed's own DXF draws its bars one above the other, 1 m apart: a parts sheet, not an assembly.
+    sketch = CASES / "seed_ansys_fourbar" / "ansys_four_bars.dxf"
+    assert main(["import", str(sketch), "--scene", str(tmp_path / "scene.toml")]) == 2
+    assert ("--scene: no mechanism found: no two of the links ('crank', 'coupler', 'output', 'ground') share a joint"
+            in capsys.readouterr().err)
+    assert list(tmp_path.iterdir()) == []
