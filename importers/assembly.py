@@ -79,6 +79,17 @@ class Assembly:
     crank_rule: str
 
 
+    def summary(self) -> list[str]:
+        """One line per loop, for the terminal: its links by role, its branch and how it is driven."""
+        lines = []
+        for loop in self.loops:
+            roles = ", ".join(f"{role} {getattr(loop, role).link!r}" for role in ("crank", "coupler", "output", "ground"))
+            drive = f"driven by {loop.driven_by.loop}'s {loop.driven_by.role}" if loop.driven_by else (
+                f"crank drawn at {self.input_angle_deg:.6g} deg")
+            lines.append(f"mechanism {loop.name}: four-bar, {roles}; {loop.branch} branch; {drive}")
+        return lines
+
+
 @dataclass(frozen=True)
 class _Cycle:
     """A four-bar loop through the ground: pivoted links ``p`` at joint ``jp`` and ``q`` at ``jq``,

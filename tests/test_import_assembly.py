@@ -53,9 +53,9 @@ def posed(scene: Path | Scene, angle_deg: float) -> dict[str, tuple[np.ndarray, 
     return links
 
 
-def draw(path: Path, links: dict, layers: dict[str, str] | None = None) -> Path:
+def draw(path: Path, links: dict, layers: dict[str, str] | None = None, points: bool = True) -> Path:
     """A DXF in metres: each link on its own layer (renamed by ``layers``), its shell a closed
-    LWPOLYLINE, a CIRCLE of its hole diameter and a POINT at each joint."""
+    LWPOLYLINE, a CIRCLE of its hole diameter and (with ``points``) a POINT at each joint."""
     doc = ezdxf.new("R2013", units=6)
     msp = doc.modelspace()
     for name, (shell, joints, holes) in links.items():
@@ -65,7 +65,8 @@ def draw(path: Path, links: dict, layers: dict[str, str] | None = None) -> Path:
         msp.add_lwpolyline([tuple(p) for p in shell], close=True, dxfattribs=attrs)
         for p, d in zip(joints, holes):
             msp.add_circle(tuple(p), d / 2, dxfattribs=attrs)
-            msp.add_point(tuple(p), dxfattribs=attrs)
+            if points:
+                msp.add_point(tuple(p), dxfattribs=attrs)
     doc.saveas(path)
     return path
 
@@ -75,8 +76,9 @@ def analyze_json(scene: Path, out: Path) -> dict:
     return json.loads(out.read_text())
 
 
-def test_the_seed_drawn_assembled_at_60_deg_gives_the_seed_scenes_forces(tmp_path, capsys):
-    sketch = draw(tmp_path / "seed_at_60.dxf", posed(SEED, 60.0))
+@pytest.mark.parametrize("points", [True, False], ids=["joints at POINTs", "joints at hole centres"])
+def test_the_seed_drawn_assembled_at_60_deg_gives_the_seed_scenes_forces(tmp_path, capsys, points):
+    sketch = draw(tmp_path / "seed_at_60.dxf", posed(SEED, 60.0), points=points)
     scene = tmp_path / "scene.toml"
     assert main(["import", str(sketch), "--scene", str(scene)]) == 0
     text = scene.read_text()
@@ -102,6 +104,8 @@ def test_a_six_bar_drawn_assembled_becomes_two_chained_loops_at_the_drawn_angle(
     sketch = draw(tmp_path / "six_bar_at_30.dxf", posed(SIX_BAR, 30.0))
     out = tmp_path / "scene.toml"
     assert main(["import", str(sketch), "--scene", str(out)]) == 0
+    assert ("mechanism loop2: four-bar, crank 'rocker', coupler 'rod2', output 'out2', ground 'ground'; open branch; "
+            "driven by main's output") in capsys.readouterr().out
     data = tomllib.loads(out.read_text())
     # Ground pivots in the order the loops use them: the crank's O2 (0, 0), the rocker's (0.1, 0), out2's (0.1, -0.15).
     assert np.allclose(data["links"]["ground"]["joints"], [[0, 0], [0.1, 0], [0.1, -0.15]], atol=1e-12)
@@ -126,7 +130,6 @@ def test_a_six_bar_drawn_assembled_becomes_two_chained_loops_at_the_drawn_angle(
         there = want.links[name].point(b.to_member(b.joints))[0][0]
         # The same joints, perhaps in another order (they sort by x as drawn).
         assert np.allclose(np.sort(here, axis=0), np.sort(there, axis=0), atol=1e-12)
-    capsys.readouterr()
     assert main(["analyze", str(out)]) == 0
     report = capsys.readouterr().out
     assert "1 positions, 1 feasible" in report and "mechanism loop2: four-bar" in report

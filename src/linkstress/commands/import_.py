@@ -65,18 +65,20 @@ def run(args: argparse.Namespace) -> int:
         from linkstress.importers.figure import sketch_png
 
         files.append((Path(args.plot), sketch_png(sketch)))
+    found = []
     if args.scene:
-        files.append((Path(args.scene), _scene_bytes(sketch, Path(args.scene), args.units)))
+        text, found = _scene(sketch, Path(args.scene), args.units)
+        files.append((Path(args.scene), text))
     write_all(files)
     print(sketch_text(sketch))
     if args.scene:
-        print(f"\nscene: wrote {args.scene}")
+        print("\n".join(["", f"scene {args.scene}:", *found]))
     return 0
 
 
-def _scene_bytes(sketch, out: Path, units: str | None) -> bytes:
+def _scene(sketch, out: Path, units: str | None) -> tuple[bytes, list[str]]:
     """The scene of the mechanism drawn in ``sketch``, checked by reading it back as file ``out`` and
-    solving it at the drawn angle."""
+    solving it at the drawn angle, and a line per mechanism found."""
     from linkstress.importers.assembly import check_pose, find_assembly
     from linkstress.importers.scene_writer import scene_text
     from linkstress.scene.reader import scene_from_text
@@ -87,7 +89,7 @@ def _scene_bytes(sketch, out: Path, units: str | None) -> bytes:
         check_pose(scene_from_text(text, out), sketch.gap_tolerance_m)
     except InputError as error:
         raise InputError(f"{sketch.path.name}: --scene: {error}") from None
-    return text.encode("utf-8")
+    return text.encode("utf-8"), assembly.summary()
 
 
 def _relative(sketch: Path, out: Path) -> str:
