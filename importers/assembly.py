@@ -83,7 +83,9 @@ class Assembly:
         """One line per loop, for the terminal: its links by role, its branch and how it is driven."""
         lines = []
         for loop in self.loops:
-            roles = ", ".join(f"{role} {getattr(loop, role).link!r}" for role in ("crank", "coupler", "output", "ground"))
+            roles = ", ".join(
+                f"{role} {getattr(loop, role).link!r}" for role in ("crank", "coupler", "output", "ground")
+            )
             drive = f"driven by {loop.driven_by.loop}'s {loop.driven_by.role}" if loop.driven_by else (
                 f"crank drawn at {self.input_angle_deg:.6g} deg")
             lines.append(f"mechanism {loop.name}: four-bar, {roles}; {loop.branch} branch; {drive}")
@@ -293,7 +295,10 @@ def _loop(k: int, cycle: _Cycle, drive: Drive | None, joints: list[Joint], groun
     on the branch the drawing shows."""
     o2, a, b, o4 = (joints[j] for j in (cycle.jp, cycle.kp, cycle.kq, cycle.jq))
     name = "main" if k == 0 else f"loop{k + 1}"
-    ground_joints = (bare.index(cycle.jp), bare.index(cycle.jq)) if bare is not None else (o2.index(ground), o4.index(ground))
+    if bare is None:
+        ground_joints = (o2.index(ground), o4.index(ground))
+    else:
+        ground_joints = (bare.index(cycle.jp), bare.index(cycle.jq))
     return Loop(
         name=name,
         kind="four-bar",
