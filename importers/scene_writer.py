@@ -18,7 +18,8 @@ THICKNESS_M = 0.005
 """The plate thickness written for every link [m], a placeholder the user edits."""
 SPEED_RAD_S = 1.0
 """The crank speed written [rad/s], a placeholder the user edits."""
-MATERIAL = ("steel", {"density": 7850.0, "youngs_modulus": 200e9, "poisson_ratio": 0.3})
+MATERIAL = ("steel", {"density": ("7850.0", "kg/m^3"), "youngs_modulus": ("200e9", "Pa"), "poisson_ratio": ("0.3", "-")})
+"""The material written for every link: name, and per key its value (TOML text) and unit, to edit."""
 _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 _ESCAPES = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
 
@@ -37,7 +38,7 @@ def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | N
         lines.append(f"units = {toml_string(units)}  # --units: for a sketch that does not say its unit")
     name, values = MATERIAL
     lines += ["", f"[materials.{name}]  # edit: the links' material"]
-    lines += [f"{key} = {_number(value)}" for key, value in values.items()]
+    lines += [f"{key} = {value}  # {unit}" for key, (value, unit) in values.items()]
     lines += _links(assembly, sketch)
     for loop in assembly.loops:
         lines += _mechanism(loop, assembly)

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from linkstress.cli import main
-from linkstress.errors import SketchError
+from linkstress.errors import InputError, SketchError
 from linkstress.importers import read_sketch
 from linkstress.importers.scene_writer import toml_key, toml_string
 from linkstress.kinematics.motion import angle_motion
@@ -226,6 +226,8 @@ def test_toml_strings_and_keys_escape_what_toml_needs():
     for text in ['plain', 'a "quoted" name', "back\\slash", "tab\tand\nnewline", "bell\x07 del\x7f", "ü ☃ 𝄞", ""]:
         assert tomllib.loads(f"{toml_key(text)} = {toml_string(text)}") == {text: text}
     assert toml_key("crank_2-b") == "crank_2-b" and toml_key("a b") == '"a b"'
+    with pytest.raises(InputError, match="lone surrogate"):
+        toml_string("broken \ud800 name")
 
 
 def bar_drawing(path: Path, pins: dict[str, tuple]) -> Path:
