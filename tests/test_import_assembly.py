@@ -230,21 +230,21 @@ def test_toml_strings_and_keys_escape_what_toml_needs():
         toml_string("broken \ud800 name")
 
 
-def bar_drawing(path: Path, pins: dict[str, tuple]) -> Path:
-    """A DXF in metres of straight bars 0.05 m wide, each from its first pin to its second on its own
-    layer, with 0.01 m pin holes and POINTs."""
-    doc = ezdxf.new("R2013", units=6)
+def bar_drawing(path: Path, pins: dict[str, tuple], per_metre: float = 1.0) -> Path:
+    """A DXF of straight bars 0.05 m wide, each from its first pin to its second on its own layer, with
+    0.01 m pin holes and POINTs; in metres, or unitless at ``per_metre`` drawing units per metre."""
+    doc = ezdxf.new("R2013", units=6 if per_metre == 1.0 else 0)
     msp = doc.modelspace()
     for layer, (p, q) in pins.items():
         doc.layers.add(layer)
-        p, q = np.asarray(p, float), np.asarray(q, float)
+        p, q = np.asarray(p, float) * per_metre, np.asarray(q, float) * per_metre
         u = (q - p) / np.hypot(*(q - p))
-        n = 0.025 * np.array([-u[1], u[0]])
-        ends = (p - 0.025 * u, q + 0.025 * u)
+        n = 0.025 * per_metre * np.array([-u[1], u[0]])
+        ends = (p - 0.025 * per_metre * u, q + 0.025 * per_metre * u)
         corners = [ends[0] - n, ends[1] - n, ends[1] + n, ends[0] + n]
         msp.add_lwpolyline([tuple(c) for c in corners], close=True, dxfattribs={"layer": layer})
         for pin in (p, q):
-            msp.add_circle(tuple(pin), 0.005, dxfattribs={"layer": layer})
+            msp.add_circle(tuple(pin), 0.005 * per_metre, dxfattribs={"layer": layer})
             msp.add_point(tuple(pin), dxfattribs={"layer": layer})
     doc.saveas(path)
     return path
@@ -281,6 +281,17 @@ def test_a_crank_that_rocks_gets_a_sweep_between_its_toggles_and_an_undrawn_grou
     assert "# input_angle_deg = {start = 14.361512, stop = 74.410101, num = 201}" in text
     assert (low, high) == pytest.approx((14.3615116, 74.4101019), abs=1e-7)
     assert data["motion"]["input_angle_deg"] == 45.0
+
+
+def test_a_unitless_drawing_imported_with_units_mm_writes_the_unit_into_the_scene(tmp_path):
+    sketch = bar_drawing(tmp_path / "mm.dxf", double_rocker(None), per_metre=1000.0)
+    out = tmp_path / "scene.toml"
+    assert main(["import", str(sketch), "--units", "mm", "--scene", str(out)]) == 0
+    data = tomllib.loads(out.read_text())
+    assert data["units"] == "mm"
+    # Bare joints are always metres: O2 (0, 0) and O4 (1, 0) m, drawn at (0, 0) and (1000, 0) mm.
+    assert np.allclose(data["links"]["ground"]["joints"], [[0, 0], [1, 0]], atol=1e-12)
+    assert load_scene(out).links["crank"].profile.joints[1] == pytest.approx([0.8 / math.sqrt(2)] * 2, abs=1e-12)
 
 
 def test_an_unnamed_drawn_ground_is_the_largest_link_in_every_loop(tmp_path):
