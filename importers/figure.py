@@ -81,10 +81,11 @@ def sketch_figure(sketch: Sketch) -> Figure:
 
 
 def _overview_height(links: Sequence[ImportedLink], width: float) -> float:
-    """Height [in] of the overview: the sketch's aspect at ``width`` less the legend, within limits."""
+    """Height [in] of the overview: the sketch's aspect at ``width`` less the legend's 1.5 in, from
+    3 in to 0.6 ``width`` (a tall sketch is drawn narrower rather than as a tower)."""
     xmin, ymin, xmax, ymax = _box(links)
     aspect = (ymax - ymin) / (xmax - xmin)
-    return float(np.clip((width - 1.5) * aspect, 3.0, width))
+    return float(np.clip((width - 1.5) * aspect, 3.0, 0.6 * width))
 
 
 def _overview(ax: Axes, links: Sequence[ImportedLink]) -> None:
