@@ -34,8 +34,8 @@ DPI = 100
 ROW_HEIGHT_IN = 3.2
 """Height of one link's row of panels [in]."""
 WIDTH_IN = 11.0
-"""Width of a picture with per-link rows [in]; an overview alone grows to ``MAX_WIDTH_IN`` with the
-number of links, so that each part stays about half an inch across."""
+"""Width of a picture with per-link rows [in]; an overview alone is 2 sqrt(n) in wide for n links, up
+to ``MAX_WIDTH_IN``: on a square sheet each part keeps about 2 in, room for its name."""
 MAX_WIDTH_IN = 20.0
 TICKS = 6
 """At most this many ticks per axis: coordinates such as 0.325 m need the room."""
@@ -64,6 +64,7 @@ def sketch_figure(sketch: Sketch) -> Figure:
     rows = links if len(links) <= MAX_LINK_PANELS else ()
     width = WIDTH_IN if rows else float(np.clip(2.0 * np.sqrt(len(links)), WIDTH_IN, MAX_WIDTH_IN))
     heights = ([_overview_height(links, width)] if len(links) > 1 else []) + [ROW_HEIGHT_IN] * len(rows)
+    # A bare Figure, not pyplot's: nothing global to close; its Agg canvas can draw to measure text.
     fig = Figure(figsize=(width, sum(heights) + 0.6), layout="constrained")
     FigureCanvasAgg(fig)
     grid = fig.add_gridspec(len(heights), 2, height_ratios=heights)
