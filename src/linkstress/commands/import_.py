@@ -28,7 +28,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--sagitta", type=float, metavar="FRACTION",
                         help="chord tolerance of arcs as a fraction of each arc's radius (default 1e-4)")
     parser.add_argument("--json", metavar="OUT", help="write the links as JSON (docs/design.md's import shape)")
-    parser.add_argument("--plot", metavar="OUT.png", help="draw outline, holes, joints, member axis and U(x)/L(x)")
+    parser.add_argument("--plot", metavar="OUT.png", help="draw an overview of every link, named, then per link its outline, joints, member axis and U(x)/L(x) (up to 12 links)")
     parser.add_argument(
         "--scene", metavar="OUT.toml",
         help="write a scene of the mechanism drawn assembled (each link on its own layer, pinned where pin centres "
