@@ -1,8 +1,8 @@
 """From flattened pieces to outlines with holes, as real sketches need.
 
-- Curves no larger than the gap tolerance are dropped, and so are curves drawn twice (same ends
-  and vertex mean within the tolerance; looked for only where ends branch, and among closed
-  curves): both are reported as fixes.
+- Curves no larger than the gap tolerance are dropped, and so are curves drawn twice on one layer
+  (same ends and vertex mean within the tolerance; looked for only where ends branch, and among
+  closed curves): both are reported as fixes.
 - Open pieces are chained into rings (:mod:`.chaining`); consecutive vertices closer than
   ``DUPLICATE_VERTEX`` x the drawing size merge, and rings that enclose no area are dropped.
 - Each layer is chained, checked and nested on its own: links drawn assembled, each on its own
@@ -88,12 +88,13 @@ def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size
     report = Report(origins, unit, size)
     fixes: list[str] = []
     keep = ~_small(pieces, tolerance, report, fixes)
-    keep &= ~_duplicates(pieces, np.flatnonzero(keep & pieces.closed), tolerance, report, fixes)
     layers = np.array([origin[2] for origin in origins], dtype=object)
     loops: list[Loop] = []
     outlines: list[Outline] = []
     for layer in dict.fromkeys(layers[keep].tolist()):
         on_layer = keep & (layers == layer)
+        # Only within a layer: links drawn assembled have the same pin hole on two layers.
+        on_layer &= ~_duplicates(pieces, np.flatnonzero(on_layer & pieces.closed), tolerance, report, fixes)
         layer_loops = _layer_loops(pieces, on_layer, tolerance, size, report, fixes)
         _check_disjoint(layer_loops, report)
         loops += layer_loops

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 from pathlib import Path
 
 from linkstress.errors import InputError
@@ -28,6 +29,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="chord tolerance of arcs as a fraction of each arc's radius (default 1e-4)")
     parser.add_argument("--json", metavar="OUT", help="write the links as JSON (docs/design.md's import shape)")
     parser.add_argument("--plot", metavar="OUT.png", help="draw an overview of every link, named, then per link its outline, joints, member axis and U(x)/L(x) (up to 12 links)")
+    parser.add_argument(
+        "--scene", metavar="OUT.toml",
+        help="write a scene of the mechanism drawn assembled (each link on its own layer, pinned where pin centres "
+             "meet): four-bar loops, ground, crank, the drawn angle and branch; edit thickness, material, motion, loads",
+    )
     parser.set_defaults(run=run)
 
 
@@ -35,8 +41,16 @@ def run(args: argparse.Namespace) -> int:
     from linkstress.importers import read_sketch
     from linkstress.importers.summary import finite, sketch_json, sketch_text
 
-    outputs = {"--json": args.json and Path(args.json), "--plot": args.plot and Path(args.plot)}
+    outputs = {
+        "--json": args.json and Path(args.json), "--plot": args.plot and Path(args.plot),
+        "--scene": args.scene and Path(args.scene),
+    }
     check_outputs(outputs, [Path(args.sketch)])
+    if args.scene and (args.tolerance is not None or args.sagitta is not None):
+        raise InputError(
+            "--scene: a scene reads its sketches with the default --tolerance and --sagitta (it has no keys for "
+            "them); import without them, closing the drawing's gaps, or drop --scene"
+        )
     sketch = read_sketch(args.sketch, args.units, args.tolerance, args.sagitta)
     files: list[tuple[Path, bytes]] = []
     if args.json:
@@ -51,6 +65,36 @@ def run(args: argparse.Namespace) -> int:
         from linkstress.importers.figure import sketch_png
 
         files.append((Path(args.plot), sketch_png(sketch)))
+    found = []
+    if args.scene:
+        text, found = _scene(sketch, Path(args.scene), args.units)
+        files.append((Path(args.scene), text))
     write_all(files)
     print(sketch_text(sketch))
+    if args.scene:
+        print("\n".join(["", f"scene {args.scene}:", *found]))
     return 0
+
+
+def _scene(sketch, out: Path, units: str | None) -> tuple[bytes, list[str]]:
+    """The scene of the mechanism drawn in ``sketch``, checked by reading it back as file ``out`` and
+    solving it at the drawn angle, and a line per mechanism found."""
+    from linkstress.importers.assembly import check_pose, find_assembly
+    from linkstress.importers.scene_writer import scene_text
+    from linkstress.scene.reader import scene_from_text
+
+    try:
+        assembly = find_assembly(sketch)
+        text = scene_text(assembly, _relative(sketch.path, out), sketch.path.name, units)
+        check_pose(scene_from_text(text, out), sketch.gap_tolerance_m)
+    except InputError as error:
+        raise InputError(f"{sketch.path.name}: --scene: {error}") from None
+    return text.encode("utf-8"), assembly.summary()
+
+
+def _relative(sketch: Path, out: Path) -> str:
+    """The sketch's path from the scene's folder, with forward slashes (absolute across drives)."""
+    try:
+        return Path(os.path.relpath(sketch.resolve(), out.resolve().parent)).as_posix()
+    except ValueError:
+        return sketch.resolve().as_posix()

@@ -29,7 +29,13 @@ TOP_KEYS = ("title", "notes", "units", "materials", "links", "mechanisms", "moti
 def load_scene(path: str | Path) -> Scene:
     """The scene in file ``path``; a ``SceneError`` naming the key for anything wrong in it."""
     path = Path(path)
-    data = _parsed(path, _text(path))
+    return scene_from_text(_text(path), path)
+
+
+def scene_from_text(text: str, path: Path) -> Scene:
+    """The scene that ``text`` would be as file ``path`` (sketches are read relative to its folder):
+    what a writer of scenes checks before writing."""
+    data = _parsed(path, text)
     try:
         return _scene(Table(data, "", path.name), path)
     except SceneError:

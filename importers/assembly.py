@@ -1,0 +1,380 @@
+"""Mechanisms drawn assembled: links in place, each on its own layer, pinned where their pins meet.
+
+A joint shared by links is a place where their pin centres (a POINT, or a circular hole's centre:
+``ImportedLink.joints``) coincide within the sketch's gap tolerance, across layers. Links are the
+nodes of a graph and joints its (hyper)edges; a four-bar is a cycle of four links and four distinct
+joints through the ground:
+
+- Ground: the link on a layer named ground, frame or base (any case); else, when the drawn links
+  close a loop by themselves, the link common to every loop with the most joints (then the largest
+  area); else the ground is not drawn, and the joints that only one link uses are its fixed pivots.
+- Main loop: the one whose crank is the link on a layer named crank, input or driver; else the
+  shortest link pivoted on the ground of any loop.
+- Further loops: one that shares a single link with the loops found so far, where that link is
+  their crank or output and pivots on the same ground joint, is ``driven_by`` it (a rigid drive).
+
+A slider-crank is not recognised: a drawing has no mark for a prismatic joint, so a slider block
+looks like a link with one pin. Everything here is in metres, sketch frame = ground frame.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+from linkstress.errors import SketchError
+from linkstress.importers.chaining import close_pairs
+from linkstress.importers.sketch import ImportedLink, Sketch
+from linkstress.kinematics.fourbar import FourBar
+from linkstress.kinematics.linkage_class import feasible_input_ranges
+from linkstress.kinematics.machine import Drive, Loop, Role
+from linkstress.kinematics.solve import solve_machine
+from linkstress.scene.model import Scene
+
+GROUND_NAMES = ("ground", "frame", "base")
+CRANK_NAMES = ("crank", "input", "driver")
+ANGLE_DIGITS = 9
+"""Decimals of the input angle [deg] written: a 1e-9 deg turn moves a 1 km crank's pin by 2e-8 m."""
+BARE_GROUND = "ground"
+"""The name of the ground link when it is not drawn (then no layer is named ground)."""
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A pin: ``at`` (2,) [m] the mean of its drawn centres; ``ends`` (link name, joint index) per link."""
+
+    at: NDArray[np.float64]
+    ends: tuple[tuple[str, int], ...]
+
+    def index(self, link: str) -> int:
+        """The joint's index among ``link``'s joints (sorted by x, then y)."""
+        return next(k for name, k in self.ends if name == link)
+
+
+@dataclass(frozen=True)
+class Assembly:
+    """The mechanisms of a drawing.
+
+    ``links``: the drawn links by name (the ground too when drawn); ``ground``: the ground's name;
+    ``ground_joints`` (k, 2) [m]: the fixed pivots of a ground that is not drawn, else None;
+    ``loops``: the loops, main first, roles' joints indexing each link's joints; ``input_angle_deg``:
+    the main crank as drawn (from its pivot to its other joint, counter-clockwise from +x, to
+    ``ANGLE_DIGITS`` decimals); ``sweep_deg``: (start, stop) [deg] of the main loop's input range
+    about the drawn angle, one turn from it when the crank turns fully, else toggle to toggle;
+    ``ground_rule`` and ``crank_rule``: how the ground and the crank were chosen, for the reader.
+    """
+
+    links: dict[str, ImportedLink]
+    ground: str
+    ground_joints: NDArray[np.float64] | None
+    loops: tuple[Loop, ...]
+    input_angle_deg: float
+    sweep_deg: tuple[float, float]
+    ground_rule: str
+    crank_rule: str
+
+
+    def summary(self) -> list[str]:
+        """One line per loop, for the terminal: its links by role, its branch and how it is driven."""
+        lines = []
+        for loop in self.loops:
+            roles = ", ".join(
+                f"{role} {getattr(loop, role).link!r}" for role in ("crank", "coupler", "output", "ground")
+            )
+            drive = f"driven by {loop.driven_by.loop}'s {loop.driven_by.role}" if loop.driven_by else (
+                f"crank drawn at {self.input_angle_deg:.6g} deg")
+            lines.append(f"mechanism {loop.name}: four-bar, {roles}; {loop.branch} branch; {drive}")
+        return lines
+
+
+@dataclass(frozen=True)
+class _Cycle:
+    """A four-bar loop through the ground: pivoted links ``p`` at joint ``jp`` and ``q`` at ``jq``,
+    coupler ``k`` pinned to ``p`` at ``kp`` and to ``q`` at ``kq`` (joints by index into the list)."""
+
+    p: str
+    jp: int
+    kp: int
+    k: str
+    kq: int
+    q: str
+    jq: int
+
+    @property
+    def moving(self) -> frozenset[str]:
+        return frozenset((self.p, self.k, self.q))
+
+    def reversed(self) -> "_Cycle":
+        return _Cycle(self.q, self.jq, self.kq, self.k, self.kp, self.p, self.jp)
+
+
+def find_assembly(sketch: Sketch) -> Assembly:
+    """The mechanisms of ``sketch``, its links drawn in place; a SketchError that names the links and
+    the joints found when no four-bar loop closes, or when some link is in none."""
+    links = {link.name: link for link in sketch.links}
+    joints = shared_joints(sketch.links, sketch.gap_tolerance_m)
+    ground, ground_rule = _ground(sketch, joints)
+    if ground is None:
+        joints = _with_bare_ground(joints)
+        ground_rule = "the ground is not drawn: its pivots are the joints that only one link uses"
+    cycles = _cycles(joints, ground if ground is not None else BARE_GROUND)
+    if not cycles:
+        raise SketchError(f"no mechanism found: {_what_joins(sketch, joints)}")
+    crank, main, crank_rule = _main_cycle(cycles, joints, links)
+    chosen = _chain(main, cycles)
+    ground_name = ground if ground is not None else BARE_GROUND
+    covered = set().union(*(c.moving for c, _ in chosen))
+    left = [name for name in links if name not in covered and name != ground_name]
+    if left:
+        raise SketchError(
+            f"link(s) {', '.join(repr(n) for n in left)} are in no four-bar loop driven from "
+            f"the main one ({_what_joins(sketch, joints)}); linkstress chains four-bars through a shared crank "
+            "or output pivoted on the ground: remove those links from the drawing, or write the scene by hand"
+        )
+    bare = _bare_pivots(chosen, joints) if ground is None else None
+    loops = tuple(_loop(k, cycle, drive, joints, ground_name, bare) for k, (cycle, drive) in enumerate(chosen))
+    main_crank = links[crank]
+    o2, a = (main_crank.joints[i] for i in loops[0].crank.joints)
+    # Rounded to 1e-9 deg, so that a crank drawn at 60 deg reads 60.0, not 59.999999999999986.
+    angle = round(math.degrees(math.atan2(a[1] - o2[1], a[0] - o2[0])), ANGLE_DIGITS)
+    ground_joints = None if bare is None else np.array([joints[j].at for j in bare])
+    sweep = _sweep(chosen[0][0], joints, loops[0].branch, angle)
+    return Assembly(links, ground_name, ground_joints, loops, angle, sweep, ground_rule, crank_rule)
+
+
+def shared_joints(links: tuple[ImportedLink, ...], tolerance: float) -> list[Joint]:
+    """Every link's joints gathered into pins: centres closer than ``tolerance`` [m] (directly or through
+    others) are one pin. Sorted by x, then y."""
+    ends = [(link.name, k) for link in links for k in range(len(link.joints))]
+    if not ends:
+        return []
+    points = np.vstack([link.joints for link in links if len(link.joints)])
+    pairs = close_pairs(points, tolerance, "joints")
+    near = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(points), len(points)))
+    _, pin = connected_components(near, directed=False)
+    found = [
+        Joint(points[pin == k].mean(axis=0), tuple(ends[i] for i in np.flatnonzero(pin == k)))
+        for k in range(pin.max() + 1)
+    ]
+    return sorted(found, key=lambda j: (j.at[0], j.at[1]))
+
+
+def _ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
+    """The drawn ground and why, or None when the drawing has no ground."""
+    named = [link.name for link in sketch.links if _named(link, GROUND_NAMES)]
+    if len(named) > 1:
+        raise SketchError(
+            f"layers {', '.join(repr(n) for n in named)} are all named as a ground; keep one "
+            f"layer named {' or '.join(GROUND_NAMES)}"
+        )
+    if named:
+        return named[0], f"the link on layer {named[0]!r}"
+    cycles = {name: _cycles(joints, name) for name in (link.name for link in sketch.links)}
+    loops = [c.moving | {g} for g, found in cycles.items() for c in found]
+    if not loops:
+        return None, ""
+    common = [link for link in sketch.links if all(link.name in loop for loop in loops)]
+    if not common:
+        return None, ""
+    pick = max(common, key=lambda link: (len(link.joints), link.outline.area))
+    return pick.name, (
+        f"no layer is named {', '.join(GROUND_NAMES)}: the link in every loop with the most joints "
+        "(then the largest area); rename its layer ground if this is wrong"
+    )
+
+
+def _named(link: ImportedLink, names: tuple[str, ...]) -> bool:
+    return any(text is not None and text.casefold() in names for text in (link.layer, link.name))
+
+
+def _with_bare_ground(joints: list[Joint]) -> list[Joint]:
+    """The joints with the missing ground pinned at every joint that only one link uses."""
+    return [Joint(j.at, j.ends + ((BARE_GROUND, -1),)) if len(j.ends) == 1 else j for j in joints]
+
+
+def _cycles(joints: list[Joint], ground: str) -> list[_Cycle]:
+    """Every four-bar loop through ``ground``: four distinct links, four distinct joints, each found once."""
+    at: dict[str, list[int]] = {}
+    for index, joint in enumerate(joints):
+        for name, _ in joint.ends:
+            at.setdefault(name, []).append(index)
+    found: dict[tuple, _Cycle] = {}
+    for jp in at.get(ground, []):
+        for p in _others(joints[jp], ground):
+            for kp in at[p]:
+                if kp == jp:
+                    continue
+                for k in _others(joints[kp], ground, p):
+                    for kq in at[k]:
+                        if kq in (kp, jp):
+                            continue
+                        for q in _others(joints[kq], ground, p, k):
+                            for jq in at[q]:
+                                if jq not in (jp, kp, kq) and ground in _names(joints[jq]):
+                                    cycle = _Cycle(p, jp, kp, k, kq, q, jq)
+                                    key = min(_key(cycle), _key(cycle.reversed()))
+                                    found.setdefault(key, cycle)
+    return [found[key] for key in sorted(found)]
+
+
+def _names(joint: Joint) -> list[str]:
+    return [name for name, _ in joint.ends]
+
+
+def _others(joint: Joint, *excluded: str) -> list[str]:
+    return [name for name in dict.fromkeys(_names(joint)) if name not in excluded]
+
+
+def _key(cycle: _Cycle) -> tuple:
+    return (cycle.p, cycle.jp, cycle.kp, cycle.k, cycle.kq, cycle.q, cycle.jq)
+
+
+def _main_cycle(cycles: list[_Cycle], joints: list[Joint], links: dict[str, ImportedLink]) -> tuple[str, _Cycle, str]:
+    """The crank, the main loop oriented with the crank as ``p``, and why that crank."""
+    named = [name for name, link in links.items() if _named(link, CRANK_NAMES)]
+    if named:
+        crank = named[0]
+        for cycle in cycles:
+            for oriented in (cycle, cycle.reversed()):
+                if oriented.p == crank:
+                    return crank, oriented, f"the link on layer {crank!r}"
+        raise SketchError(
+            f"link {crank!r} (on a layer named as the crank) is not pivoted on the ground in any four-bar loop; "
+            "the crank turns about a fixed pivot"
+        )
+    options = [
+        (_length(joints, c.jp, c.kp), c.p, k, c)
+        for k, cycle in enumerate(cycles) for c in (cycle, cycle.reversed())
+    ]
+    _, crank, _, main = min(options, key=lambda o: o[:3])
+    return crank, main, (
+        f"no layer is named {', '.join(CRANK_NAMES)}: the shortest link pivoted on the ground; rename its layer "
+        "crank to choose another"
+    )
+
+
+def _length(joints: list[Joint], i: int, j: int) -> float:
+    return float(math.hypot(*(joints[j].at - joints[i].at)))
+
+
+def _chain(main: _Cycle, cycles: list[_Cycle]) -> list[tuple[_Cycle, Drive | None]]:
+    """The main loop, then each loop driven rigidly by a placed loop's crank or output."""
+    chosen: list[tuple[_Cycle, Drive | None]] = [(main, None)]
+    grounded = {(main.p, main.jp): ("main", "crank"), (main.q, main.jq): ("main", "output")}
+    covered = set(main.moving)
+    growing = True
+    while growing:
+        growing = False
+        for cycle in cycles:
+            for oriented in (cycle, cycle.reversed()):
+                if (oriented.p, oriented.jp) not in grounded or len(oriented.moving & covered) != 1:
+                    continue
+                loop, role = grounded[(oriented.p, oriented.jp)]
+                name = f"loop{len(chosen) + 1}"
+                chosen.append((oriented, Drive(loop, role)))
+                grounded[(oriented.q, oriented.jq)] = (name, "output")
+                covered |= oriented.moving
+                growing = True
+                break
+    return chosen
+
+
+def _bare_pivots(chosen: list[tuple[_Cycle, Drive | None]], joints: list[Joint]) -> list[int]:
+    """The undrawn ground's pivots (indices into ``joints``) in the order the loops use them."""
+    return list(dict.fromkeys(j for cycle, _ in chosen for j in (cycle.jp, cycle.jq)))
+
+
+def _loop(k: int, cycle: _Cycle, drive: Drive | None, joints: list[Joint], ground: str,
+          bare: list[int] | None) -> Loop:
+    """The cycle as a four-bar: crank p (O2 -> A), coupler k (A -> B), output q (O4 -> B), ground O2 -> O4,
+    on the branch the drawing shows."""
+    o2, a, b, o4 = (joints[j] for j in (cycle.jp, cycle.kp, cycle.kq, cycle.jq))
+    name = "main" if k == 0 else f"loop{k + 1}"
+    if bare is None:
+        ground_joints = (o2.index(ground), o4.index(ground))
+    else:
+        ground_joints = (bare.index(cycle.jp), bare.index(cycle.jq))
+    return Loop(
+        name=name,
+        kind="four-bar",
+        crank=Role(cycle.p, (o2.index(cycle.p), a.index(cycle.p))),
+        coupler=Role(cycle.k, (a.index(cycle.k), b.index(cycle.k))),
+        output=Role(cycle.q, (o4.index(cycle.q), b.index(cycle.q))),
+        ground=Role(ground, ground_joints),
+        branch=_branch(name, a.at, b.at, o4.at, cycle),
+        driven_by=drive,
+    )
+
+
+def _sweep(main: _Cycle, joints: list[Joint], branch: str, angle_deg: float) -> tuple[float, float]:
+    """The main loop's input range [deg] that holds the drawn angle (linkage_class.feasible_input_ranges)."""
+    o2, a, b, o4 = (joints[j].at for j in (main.jp, main.kp, main.kq, main.jq))
+    lengths = (float(np.hypot(*(q - p))) for p, q in ((o2, a), (a, b), (o4, b)))
+    linkage = FourBar(tuple(o2), tuple(o4), *lengths, branch)
+    angle = math.radians(angle_deg)
+    for start, stop in feasible_input_ranges(linkage):
+        if stop - start >= 2 * math.pi - 1e-12:
+            return angle_deg, angle_deg + 360.0
+        turns = math.floor((angle - start) / (2 * math.pi))
+        if start + 2 * math.pi * turns <= angle <= stop + 2 * math.pi * turns:
+            return tuple(math.degrees(x + 2 * math.pi * turns) for x in (start, stop))
+    return angle_deg, angle_deg
+
+
+def _branch(name: str, a: NDArray[np.float64], b: NDArray[np.float64], o4: NDArray[np.float64], cycle: _Cycle) -> str:
+    """The drawn branch in kinematics.fourbar's terms: ``open`` has B to the left of the directed line
+    A -> O4 (sigma = +1), ``crossed`` to the right. B on that line is a toggle, which has no branch."""
+    d, r = o4 - a, b - a
+    cross = float(d[0] * r[1] - d[1] * r[0])
+    if abs(cross) <= 1e-9 * float(np.hypot(*d)) * float(np.hypot(*r)):
+        raise SketchError(
+            f"mechanism {name}: the drawing is at a toggle (coupler {cycle.k!r} and output {cycle.q!r} in line at "
+            f"B ({b[0]:.6g}, {b[1]:.6g}) m), where neither branch is drawn; draw the mechanism at another crank angle"
+        )
+    return "open" if cross > 0 else "crossed"
+
+
+def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
+    """Which links share which joints, for a refusal."""
+    shared = [j for j in joints if len({n for n, _ in j.ends if n != BARE_GROUND}) > 1]
+    names = ", ".join(repr(link.name) for link in sketch.links)
+    if not shared:
+        return (
+            f"no two of the links ({names}) share a joint: pin centres (POINTs or circular holes) of links "
+            f"drawn in place must coincide within the gap tolerance {sketch.gap_tolerance_m:.3g} m"
+        )
+    pairs = "; ".join(
+        f"links {', '.join(repr(n) for n in dict.fromkeys(_names(j)) if n != BARE_GROUND)} share the joint at "
+        f"({j.at[0]:.6g}, {j.at[1]:.6g}) m" for j in shared
+    )
+    return (
+        f"{pairs}; no closed loop of four links and four joints through a ground (a layer named "
+        f"{', '.join(GROUND_NAMES)}, or fixed pivots that one link alone uses); slider-cranks are not recognised "
+        "from a drawing"
+    )
+
+
+def check_pose(scene: Scene, tolerance: float) -> None:
+    """Refuse a scene whose kinematics at its (single) input angle does not put every drawn joint of
+    every link back where it is drawn, within ``tolerance`` [m]: a wrong branch, or a drawing whose
+    links do not close (lengths that fit no pose of the loop)."""
+    motion = solve_machine(scene.machine, scene.motion)
+    if not motion.feasible[0]:
+        raise SketchError(f"the mechanism as drawn does not assemble at the drawn crank angle: {motion.reasons[0]}")
+    for name, link in scene.links.items():
+        moved, _, _ = motion.links[name].point(link.to_member(link.joints))
+        miss = np.hypot(*(moved[0] - link.joints).T)
+        k = int(np.argmax(miss))
+        if miss[k] > tolerance:
+            x, y = link.joints[k]
+            sx, sy = moved[0, k]
+            raise SketchError(
+                f"link {name!r}, joint {k} drawn at ({x:.6g}, {y:.6g}) m: the loop solved at the drawn crank angle "
+                f"puts it at ({sx:.6g}, {sy:.6g}) m, {miss[k]:.3g} m away (more than the gap tolerance "
+                f"{tolerance:.3g} m); the links' pins do not meet in one pose of the mechanism: check the drawing"
+            )
