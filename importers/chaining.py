@@ -1,22 +1,27 @@
 """Chaining open pieces end to end into closed rings, in any order and direction.
 
 Two ends join when each is the other's nearest end and they are within the gap tolerance; the
-joint vertex is their midpoint. An end with no partner leaves an outline open; three or more ends
-within the tolerance of one another are a branch. Both are errors naming the curves, the position
-and the gap. Everything is in drawing units.
+joint vertex is their midpoint. An end with no partner leaves its chain open; three or more ends
+within the tolerance of one another are a branch. Either leaves that chain out, a problem naming
+the curves, the position, the gap and a tolerance that would close it; the other chains still
+close. Everything is in drawing units.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from linkstress.errors import SketchError
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.primitives import Origin, describe
+from linkstress.importers.problems import SketchProblem
 
 
 class Report:
@@ -138,11 +143,16 @@ class Ends:
         return self.second <= tolerance
 
 
-def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report: Report) -> Rings:
-    """Rings of the open pieces in ``ends``; gaps up to ``tolerance`` close, those above ``rounding`` count."""
+def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report: Report,
+          layer: str | None) -> tuple[Rings, list[SketchProblem], list[NDArray[np.intp]]]:
+    """Rings of the open pieces in ``ends`` (one layer's); gaps up to ``tolerance`` close, those above
+    ``rounding`` count. A chain that stays open or branches is left out: a problem each (a branch
+    reported once), and the pieces of each such chain."""
+    good, problems, left_out = _open_chains(ends, tolerance, report, layer)
+    if not good.all():
+        ends = Ends.of(pieces, ends.idx[good])
     if len(ends.idx) == 0:
-        return closed_rings(pieces, ends.idx, tolerance)
-    _check_pairs(ends, tolerance, report)
+        return closed_rings(pieces, ends.idx, tolerance), problems, left_out
     partner = ends.nearest.tolist()
     # Walk each cycle: enter a piece at one end, leave by the other, go on at that end's partner,
     # until back at the first entry.
@@ -161,32 +171,119 @@ def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report:
             if entry == 2 * p:
                 break
         ring_sizes.append(size)
-    return _assemble(pieces, ends.idx, np.array(entries), np.array(ring_sizes), tolerance, rounding)
+    rings = _assemble(pieces, ends.idx, np.array(entries), np.array(ring_sizes), tolerance, rounding)
+    return rings, problems, left_out
 
 
-def _check_pairs(ends: Ends, tolerance: float, report: Report) -> None:
+def advised_tolerance(gap: float, size: float) -> float | None:
+    """A gap tolerance (fraction of the drawing ``size``) that closes ``gap``: a quarter above it,
+    rounded up to two significant digits; None when that is not below 0.5, the largest allowed."""
+    wanted = 1.25 * gap / size
+    if not 0 < wanted < 0.5:
+        return None
+    step = 10.0 ** (math.floor(math.log10(wanted)) - 1)
+    advised = math.ceil(wanted / step) * step
+    return advised if advised < 0.5 else None
+
+
+def _open_chains(ends: Ends, tolerance: float, report: Report,
+                 layer: str | None) -> tuple[NDArray[np.bool_], list[SketchProblem], list[NDArray[np.intp]]]:
+    """Which pieces of ``ends`` close into rings, and a problem per chain that does not.
+
+    Two ends pair when each is the other's nearest, within ``tolerance``, and neither has a third
+    end within it (a branch). Pieces linked by pairs form chains; a chain with an unpaired end is
+    open (or branched) and is left out whole, so the rest of the layer still chains.
+    """
+    n = len(ends.idx)
+    if n == 0:
+        return np.ones(0, bool), [], []
+    rows = np.arange(2 * n)
     branch = ends.branched(tolerance)
-    if branch.any():
-        i = int(np.argmax(branch))
-        meeting = sorted(cKDTree(ends.xy).query_ball_point(ends.xy[i], tolerance))
-        names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
-        raise SketchError(
-            f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names}); a closed outline passes "
-            "each corner once: remove the duplicate or overlapping curve there (or lower the gap "
-            "tolerance if these are separate corners)"
+    paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance) & ~branch & ~branch[ends.nearest]
+    links = coo_matrix((np.ones(int(paired.sum())), (rows[paired] // 2, ends.nearest[paired] // 2)), shape=(n, n))
+    count, label = connected_components(links, directed=False)
+    open_chain = np.zeros(count, bool)
+    open_chain[label[rows[~paired] // 2]] = True
+    problems: list[SketchProblem] = []
+    left_out: list[NDArray[np.intp]] = []
+    branches_seen: set[tuple[int, ...]] = set()
+    for c in np.flatnonzero(open_chain).tolist():
+        members = np.flatnonzero(label == c)
+        left_out.append(ends.idx[members])
+        loose = np.flatnonzero(~paired & (label[rows // 2] == c))
+        branched = loose[branch[loose]]
+        if len(branched):
+            problem = _branch(ends, int(branched[0]), tolerance, report, layer, members, branches_seen)
+        else:
+            problem = _open_end(ends, loose, tolerance, report, layer, members)
+        if problem is not None:
+            problems.append(problem)
+    return ~open_chain[label], problems, left_out
+
+
+def _branch(ends: Ends, i: int, tolerance: float, report: Report, layer: str | None, members,
+            seen: set[tuple[int, ...]]) -> SketchProblem | None:
+    """Three or more ends meet near end ``i``; None when another chain already reported that spot."""
+    meeting = tuple(sorted(cKDTree(ends.xy).query_ball_point(ends.xy[i], tolerance)))
+    if meeting in seen:
+        return None
+    seen.add(meeting)
+    names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
+    return SketchProblem(
+        layer, _point(ends.xy[i]), report.unit, _names(report, ends.idx[members]),
+        f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names})",
+        "a closed outline passes each corner once: remove the duplicate or overlapping curve there (or "
+        "lower the gap tolerance if these are separate corners)",
+    )
+
+
+def _open_end(ends: Ends, loose: NDArray[np.intp], tolerance: float, report: Report, layer: str | None,
+              members) -> SketchProblem:
+    """A chain with the unpaired ends ``loose``: named by the loose end nearest another curve's end."""
+    k = min(len(ends.xy), 4)
+    dist, near = cKDTree(ends.xy).query(ends.xy[loose], k=k)
+    dist, near = dist.reshape(len(loose), k), near.reshape(len(loose), k)
+    # Another curve's end: neither the end itself nor the other end of its own curve.
+    foreign = (near // 2) != (loose // 2)[:, None]
+    gap = np.where(foreign, dist, np.inf).min(axis=1)
+    pick = int(np.argmin(gap))
+    i = int(loose[pick])
+    curve = report.curve(ends.idx[i // 2])
+    own = float(np.hypot(*(ends.xy[i] - ends.xy[i ^ 1])))
+    closing_itself = len(members) == 1 and own <= gap[pick]
+    if closing_itself:
+        d = own
+        problem = (
+            f"open curve: {curve} from {report.at(ends.xy[i])} to {report.at(ends.xy[i ^ 1])} does not "
+            f"close (its ends are {report.length(own)} apart) and no other curve end is within the gap "
+            f"tolerance {report.length(tolerance)}"
         )
-    rows = np.arange(len(ends.xy))
-    paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance)
-    if not paired.all():
-        i = int(np.argmin(np.where(paired, np.inf, ends.gap)))
-        j = int(ends.nearest[i])
-        raise SketchError(
-            f"open outline: the end of {report.curve(ends.idx[i // 2])} at {report.at(ends.xy[i])} is "
-            f"{report.length(ends.gap[i])} from the nearest curve end ({report.curve(ends.idx[j // 2])} at "
-            f"{report.at(ends.xy[j])}), more than the gap tolerance {report.length(tolerance)}; close the "
-            f"gap in CAD, or raise the gap tolerance (--tolerance, a fraction of the drawing size) above "
-            f"{ends.gap[i] / report.size:.2g} ({int((~paired).sum())} curve ends have no partner)"
+    else:
+        d = float(gap[pick])
+        if math.isfinite(d):
+            j = int(near[pick][np.argmax(foreign[pick])])
+            nearest = f"from the nearest curve end ({report.curve(ends.idx[j // 2])} at {report.at(ends.xy[j])})"
+        else:
+            nearest = "from any other curve end (there is none on its layer)"
+        problem = (
+            f"open outline: the end of {curve} at {report.at(ends.xy[i])} is {report.length(d)} {nearest}, "
+            f"more than the gap tolerance {report.length(tolerance)}"
         )
+    advised = advised_tolerance(d, report.size) if math.isfinite(d) else None
+    raise_it = f", or raise the gap tolerance to --tolerance {advised:.2g}" if advised is not None else ""
+    return SketchProblem(
+        layer, _point(ends.xy[i]), report.unit, _names(report, ends.idx[members]), problem,
+        f"close the gap in CAD, delete the curve(s) if they are no outline (or leave their layer out with "
+        f"--exclude-layers){raise_it}",
+    )
+
+
+def _names(report: Report, pieces: NDArray[np.intp]) -> tuple[str, ...]:
+    return tuple(report.curve(int(k)) for k in pieces)
+
+
+def _point(p) -> tuple[float, float]:
+    return float(p[0]), float(p[1])
 
 
 def _assemble(pieces: Pieces, idx: NDArray[np.intp], entries: NDArray[np.intp], ring_sizes: NDArray[np.intp],
