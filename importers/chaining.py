@@ -148,7 +148,7 @@ def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report:
     """Rings of the open pieces in ``ends`` (one layer's); gaps up to ``tolerance`` close, those above
     ``rounding`` count. A chain that stays open or branches is left out: a problem each (a branch
     reported once), and the pieces of each such chain."""
-    good, problems, left_out = _open_chains(ends, tolerance, report, layer)
+    good, problems, left_out = _open_chains(pieces, ends, tolerance, report, layer)
     if not good.all():
         ends = Ends.of(pieces, ends.idx[good])
     if len(ends.idx) == 0:
@@ -186,7 +186,7 @@ def advised_tolerance(gap: float, size: float) -> float | None:
     return advised if advised < 0.5 else None
 
 
-def _open_chains(ends: Ends, tolerance: float, report: Report,
+def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
                  layer: str | None) -> tuple[NDArray[np.bool_], list[SketchProblem], list[NDArray[np.intp]]]:
     """Which pieces of ``ends`` close into rings, and a problem per chain that does not.
 
@@ -207,6 +207,7 @@ def _open_chains(ends: Ends, tolerance: float, report: Report,
     problems: list[SketchProblem] = []
     left_out: list[NDArray[np.intp]] = []
     branches_seen: set[tuple[int, ...]] = set()
+    loose_tree = _LooseEnds(rows[~paired], cKDTree(ends.xy[~paired]))
     for c in np.flatnonzero(open_chain).tolist():
         members = np.flatnonzero(label == c)
         left_out.append(ends.idx[members])
@@ -215,7 +216,9 @@ def _open_chains(ends: Ends, tolerance: float, report: Report,
         if len(branched):
             problem = _branch(ends, int(branched[0]), tolerance, report, layer, members, branches_seen)
         else:
-            problem = _open_end(ends, loose, tolerance, report, layer, members)
+            vertices = np.concatenate([pieces.vertices(k) for k in ends.idx[members]])
+            extent = float(np.hypot(*np.ptp(vertices, axis=0)))
+            problem = _open_end(ends, loose, loose_tree, extent, tolerance, report, layer, members)
         if problem is not None:
             problems.append(problem)
     return ~open_chain[label], problems, left_out
@@ -237,12 +240,28 @@ def _branch(ends: Ends, i: int, tolerance: float, report: Report, layer: str | N
     )
 
 
-def _open_end(ends: Ends, loose: NDArray[np.intp], tolerance: float, report: Report, layer: str | None,
-              members) -> SketchProblem:
-    """A chain with the unpaired ends ``loose``: named by the loose end nearest another curve's end."""
-    k = min(len(ends.xy), 4)
-    dist, near = cKDTree(ends.xy).query(ends.xy[loose], k=k)
-    dist, near = dist.reshape(len(loose), k), near.reshape(len(loose), k)
+@dataclass(frozen=True)
+class _LooseEnds:
+    """The unpaired ends (indices into ``Ends``) and a k-d tree of their positions."""
+
+    ends: NDArray[np.intp]
+    tree: cKDTree
+
+
+GAP_OF_EXTENT = 0.1
+"""A distance between loose ends up to this fraction of its chain's extent looks like a gap to close:
+the message then advises a tolerance that closes it. Farther apart (a stray line's two ends, letters
+of an engraving) raising the tolerance would join curves that are not one outline."""
+
+
+def _open_end(ends: Ends, loose: NDArray[np.intp], loose_ends: _LooseEnds, extent: float, tolerance: float,
+              report: Report, layer: str | None, members) -> SketchProblem:
+    """A chain with the unpaired ends ``loose`` and ``extent`` (its bounding-box diagonal), named by
+    the end nearest another curve's unpaired end (the gap to close); a lone curve nearer its own
+    other end is one that does not close."""
+    k = min(len(loose_ends.ends), 3)
+    dist, near = loose_ends.tree.query(ends.xy[loose], k=k)
+    dist, near = dist.reshape(len(loose), k), loose_ends.ends[near.reshape(len(loose), k)]
     # Another curve's end: neither the end itself nor the other end of its own curve.
     foreign = (near // 2) != (loose // 2)[:, None]
     gap = np.where(foreign, dist, np.inf).min(axis=1)
@@ -250,8 +269,7 @@ def _open_end(ends: Ends, loose: NDArray[np.intp], tolerance: float, report: Rep
     i = int(loose[pick])
     curve = report.curve(ends.idx[i // 2])
     own = float(np.hypot(*(ends.xy[i] - ends.xy[i ^ 1])))
-    closing_itself = len(members) == 1 and own <= gap[pick]
-    if closing_itself:
+    if not math.isfinite(gap[pick]) or (len(members) == 1 and own <= gap[pick]):
         d = own
         problem = (
             f"open curve: {curve} from {report.at(ends.xy[i])} to {report.at(ends.xy[i ^ 1])} does not "
@@ -260,22 +278,19 @@ def _open_end(ends: Ends, loose: NDArray[np.intp], tolerance: float, report: Rep
         )
     else:
         d = float(gap[pick])
-        if math.isfinite(d):
-            j = int(near[pick][np.argmax(foreign[pick])])
-            nearest = f"from the nearest curve end ({report.curve(ends.idx[j // 2])} at {report.at(ends.xy[j])})"
-        else:
-            nearest = "from any other curve end (there is none on its layer)"
+        j = int(near[pick][np.argmax(foreign[pick])])
         problem = (
-            f"open outline: the end of {curve} at {report.at(ends.xy[i])} is {report.length(d)} {nearest}, "
-            f"more than the gap tolerance {report.length(tolerance)}"
+            f"open outline: the end of {curve} at {report.at(ends.xy[i])} is {report.length(d)} from the "
+            f"nearest curve end ({report.curve(ends.idx[j // 2])} at {report.at(ends.xy[j])}), more than "
+            f"the gap tolerance {report.length(tolerance)}"
         )
-    advised = advised_tolerance(d, report.size) if math.isfinite(d) else None
-    raise_it = f", or raise the gap tolerance to --tolerance {advised:.2g}" if advised is not None else ""
-    return SketchProblem(
-        layer, _point(ends.xy[i]), report.unit, _names(report, ends.idx[members]), problem,
-        f"close the gap in CAD, delete the curve(s) if they are no outline (or leave their layer out with "
-        f"--exclude-layers){raise_it}",
-    )
+    advised = advised_tolerance(d, report.size) if d <= GAP_OF_EXTENT * extent else None
+    if advised is None:
+        fix = ("delete the curve(s) if they belong to no outline (or leave their layer out with --exclude-layers), "
+               "or close the outline in CAD")
+    else:
+        fix = f"close the gap in CAD, or raise the gap tolerance to --tolerance {advised:.2g}"
+    return SketchProblem(layer, _point(ends.xy[i]), report.unit, _names(report, ends.idx[members]), problem, fix)
 
 
 def _names(report: Report, pieces: NDArray[np.intp]) -> tuple[str, ...]:
