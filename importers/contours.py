@@ -2,8 +2,9 @@
 
 - Curves no larger than the gap tolerance are dropped, and so are curves drawn twice (open ones:
   same ends and vertex mean within the tolerance, looked for only where ends branch; closed ones:
-  the same region, whatever vertex they start at and whichever way round): both are reported as
-  fixes.
+  the same region, whatever vertex they start at and whichever way round), and after chaining,
+  loops of one layer enclosing the same region (an outline drawn as a polyline and again as
+  LINEs): all are reported as fixes.
 - Open pieces are chained into rings (:mod:`.chaining`); consecutive vertices closer than
   ``DUPLICATE_VERTEX`` x the drawing size merge, and rings that enclose no area are dropped.
 - Each layer is chained, checked and nested on its own: links drawn assembled, each on its own
@@ -133,6 +134,7 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
     problems += open_problems
     rings = Rings.concatenate(closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance), chained)
     loops = _loops(rings, rounding, report, fixes) if len(rings) else []
+    loops = _drop_repeated_loops(loops, tolerance, report, fixes)
     return loops, _within_open(loops, pieces, left_out, report, layer, problems)
 
 
@@ -222,23 +224,44 @@ def _same_open(pieces: Pieces, idx: NDArray[np.intp], tolerance: float) -> NDArr
 
 
 def _same_closed(pieces: Pieces, idx: NDArray[np.intp], tolerance: float) -> NDArray[np.intp]:
-    """(M, 2) piece pairs i < j of the closed pieces ``idx`` that enclose the same region: the area
-    between them at most a band ``tolerance`` wide along the outline. Candidates share their
-    bounding box within ``tolerance``; the vertices may start anywhere, run either way round and
-    repeat the first one at the end."""
+    """(M, 2) piece pairs i < j of the closed pieces ``idx`` that enclose the same region, whatever
+    vertex they start at, whichever way round, repeating the first vertex at the end or not."""
     idx = idx[np.diff(pieces.start)[idx] >= 3]
-    if len(idx) < 2:
+    pairs = _same_regions([Polygon(pieces.vertices(k)) for k in idx.tolist()], tolerance)
+    return np.sort(idx[pairs], axis=1).reshape(-1, 2)
+
+
+def _same_regions(polygons: list[Polygon], tolerance: float) -> NDArray[np.intp]:
+    """(M, 2) index pairs i < j of ``polygons`` enclosing the same region: the area between them at
+    most a band ``tolerance`` wide along the outline. Candidates share their bounding box within
+    ``tolerance``."""
+    if len(polygons) < 2:
         return np.zeros((0, 2), np.intp)
-    lo, hi = _piece_boxes(pieces)
-    candidates = close_pairs(np.hstack([lo[idx], hi[idx]]), tolerance, "curves")
+    polygons = np.array(polygons, dtype=object)
+    candidates = close_pairs(shapely.bounds(polygons), tolerance, "curves")
     if not len(candidates):
         return np.zeros((0, 2), np.intp)
     used, inverse = np.unique(candidates, return_inverse=True)
-    regions = shapely.make_valid(np.array([Polygon(pieces.vertices(k)) for k in idx[used]], dtype=object))
-    a, b = regions[inverse.reshape(-1, 2)].T
+    a, b = shapely.make_valid(polygons[used])[inverse.reshape(-1, 2)].T
     between = shapely.area(shapely.symmetric_difference(a, b))
     same = between <= tolerance * np.maximum(shapely.length(a), shapely.length(b))
-    return np.sort(idx[candidates[same]], axis=1).reshape(-1, 2)
+    return np.sort(candidates[same], axis=1).reshape(-1, 2)
+
+
+def _drop_repeated_loops(loops: list[Loop], tolerance: float, report: Report, fixes: list[str]) -> list[Loop]:
+    """Loops of one layer enclosing the same region as an earlier one, e.g. an outline drawn as a
+    closed polyline and again as LINEs: all but the first dropped, as a fix."""
+    pairs = _same_regions([loop.polygon for loop in loops], tolerance)
+    if not len(pairs):
+        return loops
+    twice = np.zeros(len(loops), bool)
+    twice[pairs[:, 1]] = True
+    i, j = pairs[0]
+    fixes.append(
+        f"dropped {int(twice.sum())} outline(s) drawn twice, e.g. the one through {report.curve(loops[j].pieces[0])} "
+        f"repeats the one through {report.curve(loops[i].pieces[0])} at {report.at(loops[i].xy[0])}"
+    )
+    return [loop for loop, repeated in zip(loops, twice) if not repeated]
 
 
 def _loops(rings: Rings, eps: float, report: Report, fixes: list[str]) -> list[Loop]:

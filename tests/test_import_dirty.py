@@ -226,3 +226,16 @@ def test_a_scene_link_on_a_layer_with_a_problem_exits_2_with_that_problem(tmp_pa
 
 def test_a_scene_link_on_a_clean_layer_of_a_dirty_sheet_runs(tmp_path, capsys):
     assert main(["analyze", str(scene_on(tmp_path, "crank"))]) == 0
+
+
+def test_an_outline_drawn_as_a_polyline_and_again_as_lines_is_one_link_and_a_fix(tmp_path):
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (2, 0), (2, 1), (0, 1)], close=True)
+    for a, b in [((2, 1), (0, 1)), ((0, 1), (0, 0)), ((0, 0), (2, 0)), ((2, 0), (2, 1))]:
+        msp.add_line(a, b)
+    sketch = read_sketch(save(doc, tmp_path))
+    assert len(sketch.links) == 1 and sketch.link().outline.area == pytest.approx(2.0, rel=1e-12)
+    assert sketch.problems == ()
+    assert re.fullmatch(r"dropped 1 outline\(s\) drawn twice, e.g. the one through LINE \(handle \w+, layer '0'\) "
+                        r"repeats the one through LWPOLYLINE \(handle \w+, layer '0'\) at \(0, 0\) m", sketch.fixes[0])
