@@ -191,8 +191,9 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
     """Which pieces of ``ends`` close into rings, and a problem per chain that does not.
 
     Two ends pair when each is the other's nearest, within ``tolerance``, and neither has a third
-    end within it (a branch). Pieces linked by pairs form chains; a chain with an unpaired end is
-    open (or branched) and is left out whole, so the rest of the layer still chains.
+    end within it (a branch). Pieces linked by pairs form chains; a chain with an unpaired (loose)
+    end is open (or branched) and is left out whole, so the rest of the layer still chains. Each is
+    named by a branched end if it has one, else by the loose end nearest another curve's loose end.
     """
     n = len(ends.idx)
     if n == 0:
@@ -202,50 +203,63 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
     paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance) & ~branch & ~branch[ends.nearest]
     links = coo_matrix((np.ones(int(paired.sum())), (rows[paired] // 2, ends.nearest[paired] // 2)), shape=(n, n))
     count, label = connected_components(links, directed=False)
+    loose = rows[~paired]
+    if not len(loose):
+        return np.ones(n, bool), [], []
     open_chain = np.zeros(count, bool)
-    open_chain[label[rows[~paired] // 2]] = True
+    open_chain[label[loose // 2]] = True
+    by_chain = np.argsort(label, kind="stable")
+    chain_start = np.searchsorted(label[by_chain], np.arange(count + 1))
+    # Each loose end's nearest loose end on another curve (never its own curve's other end).
+    k = min(len(loose), 3)
+    dist, near = cKDTree(ends.xy[loose]).query(ends.xy[loose], k=k)
+    dist, near = dist.reshape(-1, k), loose[near.reshape(-1, k)]
+    foreign = (near // 2) != (loose // 2)[:, None]
+    first = np.argmax(foreign, axis=1)
+    found = foreign.any(axis=1)
+    other = np.where(found, near[np.arange(len(loose)), first], -1)
+    gap = np.where(found, dist[np.arange(len(loose)), first], np.inf)
+    chain_of = label[loose // 2]
+    order = np.lexsort((gap, ~branch[loose], chain_of))
+    named = order[np.r_[True, np.diff(chain_of[order]) != 0]]
+    lo = np.minimum.reduceat(pieces.xy, pieces.start[:-1])[ends.idx]
+    hi = np.maximum.reduceat(pieces.xy, pieces.start[:-1])[ends.idx]
+    chain_lo, chain_hi = np.full((count, 2), np.inf), np.full((count, 2), -np.inf)
+    np.minimum.at(chain_lo, label, lo)
+    np.maximum.at(chain_hi, label, hi)
+    extent = np.hypot(*(chain_hi - chain_lo).T)
+    all_ends = cKDTree(ends.xy) if branch.any() else None
     problems: list[SketchProblem] = []
     left_out: list[NDArray[np.intp]] = []
     branches_seen: set[tuple[int, ...]] = set()
-    loose_tree = _LooseEnds(rows[~paired], cKDTree(ends.xy[~paired]))
-    for c in np.flatnonzero(open_chain).tolist():
-        members = np.flatnonzero(label == c)
-        left_out.append(ends.idx[members])
-        loose = np.flatnonzero(~paired & (label[rows // 2] == c))
-        branched = loose[branch[loose]]
-        if len(branched):
-            problem = _branch(ends, int(branched[0]), tolerance, report, layer, members, branches_seen)
+    for p in named.tolist():
+        e, c = int(loose[p]), int(chain_of[p])
+        members = ends.idx[by_chain[chain_start[c]:chain_start[c + 1]]]
+        left_out.append(members)
+        if branch[e]:
+            problem = _branch(ends, all_ends, e, tolerance, report, layer, members, branches_seen)
         else:
-            vertices = np.concatenate([pieces.vertices(k) for k in ends.idx[members]])
-            extent = float(np.hypot(*np.ptp(vertices, axis=0)))
-            problem = _open_end(ends, loose, loose_tree, extent, tolerance, report, layer, members)
+            problem = _open_end(ends, e, int(other[p]), float(gap[p]), float(extent[c]), tolerance, report, layer,
+                                members)
         if problem is not None:
             problems.append(problem)
     return ~open_chain[label], problems, left_out
 
 
-def _branch(ends: Ends, i: int, tolerance: float, report: Report, layer: str | None, members,
-            seen: set[tuple[int, ...]]) -> SketchProblem | None:
+def _branch(ends: Ends, tree: cKDTree, i: int, tolerance: float, report: Report, layer: str | None,
+            members: NDArray[np.intp], seen: set[tuple[int, ...]]) -> SketchProblem | None:
     """Three or more ends meet near end ``i``; None when another chain already reported that spot."""
-    meeting = tuple(sorted(cKDTree(ends.xy).query_ball_point(ends.xy[i], tolerance)))
+    meeting = tuple(sorted(tree.query_ball_point(ends.xy[i], tolerance)))
     if meeting in seen:
         return None
     seen.add(meeting)
     names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
     return SketchProblem(
-        layer, _point(ends.xy[i]), report.unit, _names(report, ends.idx[members]),
+        layer, _point(ends.xy[i]), report.unit, _names(report, members),
         f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names})",
         "a closed outline passes each corner once: remove the duplicate or overlapping curve there (or "
         "lower the gap tolerance if these are separate corners)",
     )
-
-
-@dataclass(frozen=True)
-class _LooseEnds:
-    """The unpaired ends (indices into ``Ends``) and a k-d tree of their positions."""
-
-    ends: NDArray[np.intp]
-    tree: cKDTree
 
 
 GAP_OF_EXTENT = 0.1
@@ -254,22 +268,14 @@ the message then advises a tolerance that closes it. Farther apart (a stray line
 of an engraving) raising the tolerance would join curves that are not one outline."""
 
 
-def _open_end(ends: Ends, loose: NDArray[np.intp], loose_ends: _LooseEnds, extent: float, tolerance: float,
-              report: Report, layer: str | None, members) -> SketchProblem:
-    """A chain with the unpaired ends ``loose`` and ``extent`` (its bounding-box diagonal), named by
-    the end nearest another curve's unpaired end (the gap to close); a lone curve nearer its own
-    other end is one that does not close."""
-    k = min(len(loose_ends.ends), 3)
-    dist, near = loose_ends.tree.query(ends.xy[loose], k=k)
-    dist, near = dist.reshape(len(loose), k), loose_ends.ends[near.reshape(len(loose), k)]
-    # Another curve's end: neither the end itself nor the other end of its own curve.
-    foreign = (near // 2) != (loose // 2)[:, None]
-    gap = np.where(foreign, dist, np.inf).min(axis=1)
-    pick = int(np.argmin(gap))
-    i = int(loose[pick])
+def _open_end(ends: Ends, i: int, j: int, gap: float, extent: float, tolerance: float, report: Report,
+              layer: str | None, members: NDArray[np.intp]) -> SketchProblem:
+    """An open chain (pieces ``members``, bounding-box diagonal ``extent``) named by its loose end
+    ``i``, ``gap`` from ``j``, the nearest loose end of another curve (-1 and inf if none); a lone
+    curve nearer its own other end is one that does not close."""
     curve = report.curve(ends.idx[i // 2])
     own = float(np.hypot(*(ends.xy[i] - ends.xy[i ^ 1])))
-    if not math.isfinite(gap[pick]) or (len(members) == 1 and own <= gap[pick]):
+    if j < 0 or (len(members) == 1 and own <= gap):
         d = own
         problem = (
             f"open curve: {curve} from {report.at(ends.xy[i])} to {report.at(ends.xy[i ^ 1])} does not "
@@ -277,8 +283,7 @@ def _open_end(ends: Ends, loose: NDArray[np.intp], loose_ends: _LooseEnds, exten
             f"tolerance {report.length(tolerance)}"
         )
     else:
-        d = float(gap[pick])
-        j = int(near[pick][np.argmax(foreign[pick])])
+        d = gap
         problem = (
             f"open outline: the end of {curve} at {report.at(ends.xy[i])} is {report.length(d)} from the "
             f"nearest curve end ({report.curve(ends.idx[j // 2])} at {report.at(ends.xy[j])}), more than "
@@ -290,7 +295,7 @@ def _open_end(ends: Ends, loose: NDArray[np.intp], loose_ends: _LooseEnds, exten
                "or close the outline in CAD")
     else:
         fix = f"close the gap in CAD, or raise the gap tolerance to --tolerance {advised:.2g}"
-    return SketchProblem(layer, _point(ends.xy[i]), report.unit, _names(report, ends.idx[members]), problem, fix)
+    return SketchProblem(layer, _point(ends.xy[i]), report.unit, _names(report, members), problem, fix)
 
 
 def _names(report: Report, pieces: NDArray[np.intp]) -> tuple[str, ...]:
