@@ -148,8 +148,11 @@ def _within_open(loops: list[Loop], pieces: Pieces, left_out: list[NDArray[np.in
     hulls = shapely.convex_hull(shapely.multipoints([
         np.concatenate([pieces.vertices(k) for k in chain_pieces]) for chain_pieces in left_out
     ]))
+    # A straight stray line encloses nothing: only hulls with an area can hold holes.
+    solid = np.flatnonzero(shapely.area(hulls) > 0)
     probes = shapely.points([loop.xy[0] for loop in loops])
-    loop_at, hull_at = shapely.STRtree(hulls).query(probes, predicate="within")
+    loop_at, hull_at = shapely.STRtree(hulls[solid]).query(probes, predicate="within")
+    hull_at = solid[hull_at]
     inside[loop_at] = True
     for h in np.unique(hull_at).tolist():
         swallowed = loop_at[hull_at == h]

@@ -239,3 +239,31 @@ def test_an_outline_drawn_as_a_polyline_and_again_as_lines_is_one_link_and_a_fix
     assert sketch.problems == ()
     assert re.fullmatch(r"dropped 1 outline\(s\) drawn twice, e.g. the one through LINE \(handle \w+, layer '0'\) "
                         r"repeats the one through LWPOLYLINE \(handle \w+, layer '0'\) at \(0, 0\) m", sketch.fixes[0])
+
+
+def test_a_stray_line_through_a_part_leaves_the_part_in(tmp_path):
+    # A construction line across the plate, on its layer: it encloses nothing, so the plate and its
+    # hole import; the line is the one problem.
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (40, 0), (40, 20), (0, 20)], close=True)
+    msp.add_circle((20, 10), 3)
+    msp.add_line((-10, 10), (50, 10))
+    sketch = read_sketch(save(doc, tmp_path))
+    assert len(sketch.links) == 1 and len(sketch.link("sketch-1").outline.interiors) == 1
+    (problem,) = sketch.problems
+    assert problem.problem.startswith("open curve: LINE")
+
+
+def test_a_point_off_its_hole_centre_leaves_out_only_its_link(tmp_path):
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    for layer, y in (("good", 0), ("bad", 40)):
+        msp.add_lwpolyline([(0, y), (40, y), (40, y + 20), (0, y + 20)], close=True, dxfattribs={"layer": layer})
+        msp.add_circle((10, y + 10), 3, dxfattribs={"layer": layer})
+    msp.add_point((11, 50), dxfattribs={"layer": "bad"})  # 1 mm off the centre (10, 50)
+    sketch = read_sketch(save(doc, tmp_path))
+    assert [link.name for link in sketch.links] == ["good"]
+    (problem,) = sketch.problems
+    assert problem.layer == "bad" and problem.at == (11.0, 50.0)
+    assert "lies in a hole of link 'bad' but not at its centre (10, 50) mm" in problem.problem
