@@ -350,7 +350,9 @@ def _crossing(loops: list[Loop], tolerance: float, report: Report, layer: str | 
         else:
             where = meet[0].representative_point()
             at = (where.x, where.y)
-            problem = f"outlines cross or touch at {report.at(at)}: the one through {first} and the one through {second}"
+            problem = (
+                f"outlines cross or touch at {report.at(at)}: the one through {first} and the one through {second}"
+            )
             fix = "outlines and holes must not meet: draw them apart, or on separate layers"
         problems.append(SketchProblem(
             layer, (float(at[0]), float(at[1])), report.unit, _curves(loops[i], report) + _curves(loops[j], report),

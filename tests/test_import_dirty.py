@@ -199,7 +199,8 @@ def test_the_holes_of_an_open_outline_do_not_import_as_discs(tmp_path):
     sketch = read_sketch(save(doc, tmp_path))
     assert len(sketch.links) == 1 and sketch.links[0].outline.area == pytest.approx(400e-6, rel=1e-9)
     open_shell, swallowed = sketch.problems
-    assert open_shell.problem.startswith(f"open curve: LWPOLYLINE (handle {shell.dxf.handle}, layer '0') from (0, 0) mm")
+    handle = shell.dxf.handle
+    assert open_shell.problem.startswith(f"open curve: LWPOLYLINE (handle {handle}, layer '0') from (0, 0) mm")
     assert swallowed.problem.startswith(
         f"1 closed curve(s) inside the open chain through LWPOLYLINE (handle {shell.dxf.handle}, layer '0') are "
         f"left out with it, e.g. the one through CIRCLE (handle {hole.dxf.handle}, layer '0')"
@@ -220,7 +221,9 @@ def scene_on(tmp_path, layer: str):
 def test_a_scene_link_on_a_layer_with_a_problem_exits_2_with_that_problem(tmp_path, capsys):
     assert main(["analyze", str(scene_on(tmp_path, "parts"))]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("linkstress: error: scene.toml: links.crank.sketch: sketch.dxf: layer 'parts': open curve: LINE")
+    assert err.startswith(
+        "linkstress: error: scene.toml: links.crank.sketch: sketch.dxf: layer 'parts': open curve: LINE"
+    )
     assert err.count("\n") == 1
 
 
