@@ -10,7 +10,7 @@ close. Everything is in drawing units.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -231,35 +231,36 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
     all_ends = cKDTree(ends.xy) if branch.any() else None
     problems: list[SketchProblem] = []
     left_out: list[NDArray[np.intp]] = []
-    branches_seen: set[tuple[int, ...]] = set()
+    branches_seen: dict[tuple[int, ...], int] = {}
     for p in named.tolist():
         e, c = int(loose[p]), int(chain_of[p])
         members = ends.idx[by_chain[chain_start[c]:chain_start[c + 1]]]
         left_out.append(members)
         if branch[e]:
-            problem = _branch(ends, all_ends, e, tolerance, report, layer, members, branches_seen)
+            _branch(ends, all_ends, e, tolerance, report, layer, members, branches_seen, problems)
         else:
-            problem = _open_end(ends, e, int(other[p]), float(gap[p]), float(extent[c]), tolerance, report, layer,
-                                members)
-        if problem is not None:
-            problems.append(problem)
+            problems.append(_open_end(ends, e, int(other[p]), float(gap[p]), float(extent[c]), tolerance, report,
+                                      layer, members))
     return ~open_chain[label], problems, left_out
 
 
 def _branch(ends: Ends, tree: cKDTree, i: int, tolerance: float, report: Report, layer: str | None,
-            members: NDArray[np.intp], seen: set[tuple[int, ...]]) -> SketchProblem | None:
-    """Three or more ends meet near end ``i``; None when another chain already reported that spot."""
+            members: NDArray[np.intp], seen: dict[tuple[int, ...], int], problems: list[SketchProblem]) -> None:
+    """Three or more ends meet near end ``i``, the chain ``members`` one of those meeting there: a
+    problem, or the chain added to the one already made for that spot (``seen``: its index)."""
     meeting = tuple(sorted(tree.query_ball_point(ends.xy[i], tolerance)))
     if meeting in seen:
-        return None
-    seen.add(meeting)
+        k = seen[meeting]
+        problems[k] = replace(problems[k], entities=problems[k].entities + _names(report, members))
+        return
+    seen[meeting] = len(problems)
     names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
-    return SketchProblem(
+    problems.append(SketchProblem(
         layer, _point(ends.xy[i]), report.unit, _names(report, members),
         f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names})",
         "a closed outline passes each corner once: remove the duplicate or overlapping curve there (or "
         "lower the gap tolerance if these are separate corners)",
-    )
+    ))
 
 
 GAP_OF_EXTENT = 0.1

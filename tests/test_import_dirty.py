@@ -270,3 +270,23 @@ def test_a_point_off_its_hole_centre_leaves_out_only_its_link(tmp_path):
     (problem,) = sketch.problems
     assert problem.layer == "bad" and problem.at == (11.0, 50.0)
     assert "lies in a hole of link 'bad' but not at its centre (10, 50) mm" in problem.problem
+
+
+def test_a_junction_of_three_curve_ends_leaves_out_only_its_outline(tmp_path):
+    # Two squares sharing an edge, drawn as LINEs on layer "pair": three ends meet at (1, 0) and at
+    # (1, 1). The plate on layer "plate" imports.
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    for a, b in [((0, 0), (1, 0)), ((1, 0), (2, 0)), ((2, 0), (2, 1)), ((2, 1), (1, 1)), ((1, 1), (0, 1)),
+                 ((0, 1), (0, 0)), ((1, 0), (1, 1))]:
+        msp.add_line(a, b, dxfattribs={"layer": "pair"})
+    msp.add_lwpolyline([(0, 3), (2, 3), (2, 4), (0, 4)], close=True, dxfattribs={"layer": "plate"})
+    sketch = read_sketch(save(doc, tmp_path))
+    assert [link.name for link in sketch.links] == ["plate"]
+    # Three chains meet at each junction: the left square's, the right square's and the middle LINE;
+    # every one of the seven LINEs is named by the problem of a junction it reaches.
+    assert {p.layer for p in sketch.problems} == {"pair"}
+    assert len({name for p in sketch.problems for name in p.entities}) == 7
+    for junction in sketch.problems:
+        assert re.match(r"3 curve ends meet at \(1, (0|1)\) m \(LINE", junction.problem)
+        assert junction.fix.startswith("a closed outline passes each corner once")
