@@ -1,22 +1,27 @@
 """Chaining open pieces end to end into closed rings, in any order and direction.
 
 Two ends join when each is the other's nearest end and they are within the gap tolerance; the
-joint vertex is their midpoint. An end with no partner leaves an outline open; three or more ends
-within the tolerance of one another are a branch. Both are errors naming the curves, the position
-and the gap. Everything is in drawing units.
+joint vertex is their midpoint. An end with no partner leaves its chain open; three or more ends
+within the tolerance of one another are a branch. Either leaves that chain out, a problem naming
+the curves, the position, the gap and a tolerance that would close it; the other chains still
+close. Everything is in drawing units.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from linkstress.errors import SketchError
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.primitives import Origin, describe
+from linkstress.importers.problems import SketchProblem
 
 
 class Report:
@@ -138,11 +143,16 @@ class Ends:
         return self.second <= tolerance
 
 
-def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report: Report) -> Rings:
-    """Rings of the open pieces in ``ends``; gaps up to ``tolerance`` close, those above ``rounding`` count."""
+def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report: Report,
+          layer: str | None) -> tuple[Rings, list[SketchProblem], list[NDArray[np.intp]]]:
+    """Rings of the open pieces in ``ends`` (one layer's); gaps up to ``tolerance`` close, those above
+    ``rounding`` count. A chain that stays open or branches is left out: a problem each (a branch
+    reported once), and the pieces of each such chain."""
+    good, problems, left_out = _open_chains(pieces, ends, tolerance, report, layer)
+    if not good.all():
+        ends = Ends.of(pieces, ends.idx[good])
     if len(ends.idx) == 0:
-        return closed_rings(pieces, ends.idx, tolerance)
-    _check_pairs(ends, tolerance, report)
+        return closed_rings(pieces, ends.idx, tolerance), problems, left_out
     partner = ends.nearest.tolist()
     # Walk each cycle: enter a piece at one end, leave by the other, go on at that end's partner,
     # until back at the first entry.
@@ -161,32 +171,140 @@ def chain(pieces: Pieces, ends: Ends, tolerance: float, rounding: float, report:
             if entry == 2 * p:
                 break
         ring_sizes.append(size)
-    return _assemble(pieces, ends.idx, np.array(entries), np.array(ring_sizes), tolerance, rounding)
+    rings = _assemble(pieces, ends.idx, np.array(entries), np.array(ring_sizes), tolerance, rounding)
+    return rings, problems, left_out
 
 
-def _check_pairs(ends: Ends, tolerance: float, report: Report) -> None:
+def advised_tolerance(gap: float, size: float) -> float | None:
+    """A gap tolerance (fraction of the drawing ``size``) that closes ``gap``: a quarter above it,
+    rounded up to two significant digits; None when that is not below 0.5, the largest allowed."""
+    wanted = 1.25 * gap / size
+    if not 0 < wanted < 0.5:
+        return None
+    step = 10.0 ** (math.floor(math.log10(wanted)) - 1)
+    advised = math.ceil(wanted / step) * step
+    return advised if advised < 0.5 else None
+
+
+def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
+                 layer: str | None) -> tuple[NDArray[np.bool_], list[SketchProblem], list[NDArray[np.intp]]]:
+    """Which pieces of ``ends`` close into rings, and a problem per chain that does not.
+
+    Two ends pair when each is the other's nearest, within ``tolerance``, and neither has a third
+    end within it (a branch). Pieces linked by pairs form chains; a chain with an unpaired (loose)
+    end is open (or branched) and is left out whole, so the rest of the layer still chains. Each is
+    named by a branched end if it has one, else by the loose end nearest another curve's loose end.
+    """
+    n = len(ends.idx)
+    if n == 0:
+        return np.ones(0, bool), [], []
+    rows = np.arange(2 * n)
     branch = ends.branched(tolerance)
-    if branch.any():
-        i = int(np.argmax(branch))
-        meeting = sorted(cKDTree(ends.xy).query_ball_point(ends.xy[i], tolerance))
-        names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
-        raise SketchError(
-            f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names}); a closed outline passes "
-            "each corner once: remove the duplicate or overlapping curve there (or lower the gap "
-            "tolerance if these are separate corners)"
+    paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance) & ~branch & ~branch[ends.nearest]
+    links = coo_matrix((np.ones(int(paired.sum())), (rows[paired] // 2, ends.nearest[paired] // 2)), shape=(n, n))
+    count, label = connected_components(links, directed=False)
+    loose = rows[~paired]
+    if not len(loose):
+        return np.ones(n, bool), [], []
+    open_chain = np.zeros(count, bool)
+    open_chain[label[loose // 2]] = True
+    by_chain = np.argsort(label, kind="stable")
+    chain_start = np.searchsorted(label[by_chain], np.arange(count + 1))
+    # Each loose end's nearest loose end on another curve (never its own curve's other end).
+    k = min(len(loose), 3)
+    dist, near = cKDTree(ends.xy[loose]).query(ends.xy[loose], k=k)
+    dist, near = dist.reshape(-1, k), loose[near.reshape(-1, k)]
+    foreign = (near // 2) != (loose // 2)[:, None]
+    first = np.argmax(foreign, axis=1)
+    found = foreign.any(axis=1)
+    other = np.where(found, near[np.arange(len(loose)), first], -1)
+    gap = np.where(found, dist[np.arange(len(loose)), first], np.inf)
+    chain_of = label[loose // 2]
+    order = np.lexsort((gap, ~branch[loose], chain_of))
+    named = order[np.r_[True, np.diff(chain_of[order]) != 0]]
+    lo = np.minimum.reduceat(pieces.xy, pieces.start[:-1])[ends.idx]
+    hi = np.maximum.reduceat(pieces.xy, pieces.start[:-1])[ends.idx]
+    chain_lo, chain_hi = np.full((count, 2), np.inf), np.full((count, 2), -np.inf)
+    np.minimum.at(chain_lo, label, lo)
+    np.maximum.at(chain_hi, label, hi)
+    extent = np.hypot(*(chain_hi - chain_lo).T)
+    all_ends = cKDTree(ends.xy) if branch.any() else None
+    problems: list[SketchProblem] = []
+    left_out: list[NDArray[np.intp]] = []
+    branches_seen: dict[tuple[int, ...], int] = {}
+    for p in named.tolist():
+        e, c = int(loose[p]), int(chain_of[p])
+        members = ends.idx[by_chain[chain_start[c]:chain_start[c + 1]]]
+        left_out.append(members)
+        if branch[e]:
+            _branch(ends, all_ends, e, tolerance, report, layer, members, branches_seen, problems)
+        else:
+            problems.append(_open_end(ends, e, int(other[p]), float(gap[p]), float(extent[c]), tolerance, report,
+                                      layer, members))
+    return ~open_chain[label], problems, left_out
+
+
+def _branch(ends: Ends, tree: cKDTree, i: int, tolerance: float, report: Report, layer: str | None,
+            members: NDArray[np.intp], seen: dict[tuple[int, ...], int], problems: list[SketchProblem]) -> None:
+    """Three or more ends meet near end ``i``, the chain ``members`` one of those meeting there: a
+    problem, or the chain added to the one already made for that spot (``seen``: its index)."""
+    meeting = tuple(sorted(tree.query_ball_point(ends.xy[i], tolerance)))
+    if meeting in seen:
+        k = seen[meeting]
+        problems[k] = replace(problems[k], entities=problems[k].entities + _names(report, members))
+        return
+    seen[meeting] = len(problems)
+    names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
+    problems.append(SketchProblem(
+        layer, _point(ends.xy[i]), report.unit, _names(report, members),
+        f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names})",
+        "a closed outline passes each corner once: remove the duplicate or overlapping curve there (or "
+        "lower the gap tolerance if these are separate corners)",
+    ))
+
+
+GAP_OF_EXTENT = 0.1
+"""A distance between loose ends up to this fraction of its chain's extent looks like a gap to close:
+the message then advises a tolerance that closes it. Farther apart (a stray line's two ends, letters
+of an engraving) raising the tolerance would join curves that are not one outline."""
+
+
+def _open_end(ends: Ends, i: int, j: int, gap: float, extent: float, tolerance: float, report: Report,
+              layer: str | None, members: NDArray[np.intp]) -> SketchProblem:
+    """An open chain (pieces ``members``, bounding-box diagonal ``extent``) named by its loose end
+    ``i``, ``gap`` from ``j``, the nearest loose end of another curve (-1 and inf if none); a lone
+    curve nearer its own other end is one that does not close."""
+    curve = report.curve(ends.idx[i // 2])
+    own = float(np.hypot(*(ends.xy[i] - ends.xy[i ^ 1])))
+    if j < 0 or (len(members) == 1 and own <= gap):
+        d = own
+        problem = (
+            f"open curve: {curve} from {report.at(ends.xy[i])} to {report.at(ends.xy[i ^ 1])} does not "
+            f"close (its ends are {report.length(own)} apart) and no other curve end is within the gap "
+            f"tolerance {report.length(tolerance)}"
         )
-    rows = np.arange(len(ends.xy))
-    paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance)
-    if not paired.all():
-        i = int(np.argmin(np.where(paired, np.inf, ends.gap)))
-        j = int(ends.nearest[i])
-        raise SketchError(
-            f"open outline: the end of {report.curve(ends.idx[i // 2])} at {report.at(ends.xy[i])} is "
-            f"{report.length(ends.gap[i])} from the nearest curve end ({report.curve(ends.idx[j // 2])} at "
-            f"{report.at(ends.xy[j])}), more than the gap tolerance {report.length(tolerance)}; close the "
-            f"gap in CAD, or raise the gap tolerance (--tolerance, a fraction of the drawing size) above "
-            f"{ends.gap[i] / report.size:.2g} ({int((~paired).sum())} curve ends have no partner)"
+    else:
+        d = gap
+        problem = (
+            f"open outline: the end of {curve} at {report.at(ends.xy[i])} is {report.length(d)} from the "
+            f"nearest curve end ({report.curve(ends.idx[j // 2])} at {report.at(ends.xy[j])}), more than "
+            f"the gap tolerance {report.length(tolerance)}"
         )
+    advised = advised_tolerance(d, report.size) if d <= GAP_OF_EXTENT * extent else None
+    if advised is None:
+        fix = ("delete the curve(s) if they belong to no outline (or leave their layer out with --exclude-layers), "
+               "or close the outline in CAD")
+    else:
+        fix = f"close the gap in CAD, or raise the gap tolerance to --tolerance {advised:.2g}"
+    return SketchProblem(layer, _point(ends.xy[i]), report.unit, _names(report, members), problem, fix)
+
+
+def _names(report: Report, pieces: NDArray[np.intp]) -> tuple[str, ...]:
+    return tuple(report.curve(int(k)) for k in pieces)
+
+
+def _point(p) -> tuple[float, float]:
+    return float(p[0]), float(p[1])
 
 
 def _assemble(pieces: Pieces, idx: NDArray[np.intp], entries: NDArray[np.intp], ring_sizes: NDArray[np.intp],

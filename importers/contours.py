@@ -1,16 +1,22 @@
 """From flattened pieces to outlines with holes, as real sketches need.
 
-- Curves no larger than the gap tolerance are dropped, and so are curves drawn twice on one layer
-  (same ends and vertex mean within the tolerance; looked for only where ends branch, and among
-  closed curves): both are reported as fixes.
+- Curves no larger than the gap tolerance are dropped, and so are curves drawn twice on one layer (open ones:
+  same ends and vertex mean within the tolerance, looked for only where ends branch; closed ones:
+  the same region, whatever vertex they start at and whichever way round), and after chaining,
+  loops of one layer enclosing the same region (an outline drawn as a polyline and again as
+  LINEs): all are reported as fixes. Not across layers: links drawn assembled have the same pin
+  hole on two layers.
 - Open pieces are chained into rings (:mod:`.chaining`); consecutive vertices closer than
   ``DUPLICATE_VERTEX`` x the drawing size merge, and rings that enclose no area are dropped.
 - Each layer is chained, checked and nested on its own: links drawn assembled, each on its own
   layer, overlap at their joints.
-- Rings that cross themselves, or each other on one layer, are errors. The rest nest by
-  containment within their layer: a ring inside an even number of rings is an outer boundary,
-  inside an odd number a hole of the innermost one (so a part drawn inside a hole is a link of its
-  own).
+- All rings nest by containment within their layer: a ring inside an even number of rings is an
+  outer boundary, inside an odd number a hole of the innermost one (so a part drawn inside a hole is
+  a link of its own).
+- A dirty sheet keeps its clean outlines. A chain that stays open or branches, a ring that crosses
+  itself, and two rings of one layer that cross, touch or share a cut are problems
+  (:class:`SketchProblem`): those curves or rings are left out, and so is an outline whose hole is
+  left out (it must not import without it), with a problem saying so.
 
 Everything here is in drawing units; messages say which.
 """
@@ -30,6 +36,7 @@ from linkstress.errors import SketchError
 from linkstress.importers.chaining import Ends, Report, Rings, chain, close_pairs, closed_rings
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.primitives import Origin
+from linkstress.importers.problems import SketchProblem
 
 DUPLICATE_VERTEX = 1e-9
 """Consecutive ring vertices closer than this fraction of the drawing size are merged."""
@@ -73,40 +80,49 @@ class Outline:
 
 @dataclass(frozen=True)
 class Contours:
+    """The clean outlines, the repairs made and the problems left out (drawing units)."""
+
     outlines: tuple[Outline, ...]
     fixes: tuple[str, ...]
+    problems: tuple[SketchProblem, ...]
 
 
-def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size: float, unit: str) -> Contours:
-    """Outlines with holes from ``pieces`` (one per origin), closing gaps up to ``tolerance``.
+def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size: float, unit: str,
+                   use: NDArray[np.bool_] | None = None) -> Contours:
+    """Outlines with holes from ``pieces`` (one per origin; only those ``use`` marks, default all),
+    closing gaps up to ``tolerance``.
 
     Each layer is its own drawing: its curves chain only with each other, and its outlines must not
     cross or touch each other, while outlines on different layers may (links drawn assembled
-    overlap at their joints). ``tolerance`` and ``size`` (the drawing's bounding-box diagonal) are in
-    drawing units, named ``unit``.
+    overlap at their joints). What cannot make a clean outline is left out as a problem; raises
+    SketchError only when nothing encloses an area and there is no problem to tell why.
+    ``tolerance`` and ``size`` (the drawing's bounding-box diagonal) are in drawing units, named ``unit``.
     """
     report = Report(origins, unit, size)
     fixes: list[str] = []
-    keep = ~_small(pieces, tolerance, report, fixes)
+    problems: list[SketchProblem] = []
+    keep = np.ones(len(pieces), bool) if use is None else use.copy()
+    keep &= ~_small(pieces, keep, tolerance, report, fixes)
     layers = np.array([origin[2] for origin in origins], dtype=object)
-    loops: list[Loop] = []
     outlines: list[Outline] = []
     for layer in dict.fromkeys(layers[keep].tolist()):
         on_layer = keep & (layers == layer)
         # Only within a layer: links drawn assembled have the same pin hole on two layers.
         on_layer &= ~_duplicates(pieces, np.flatnonzero(on_layer & pieces.closed), tolerance, report, fixes)
-        layer_loops = _layer_loops(pieces, on_layer, tolerance, size, report, fixes)
-        _check_disjoint(layer_loops, report)
-        loops += layer_loops
-        outlines += _nest(layer_loops)
-    if not loops:
+        loops, bad = _layer_loops(pieces, on_layer, tolerance, size, report, layer, fixes, problems)
+        bad |= _self_crossing(loops, report, layer, problems)
+        bad |= _crossing(loops, tolerance, report, layer, problems)
+        outlines += _nest(loops, bad, report, layer, problems)
+    if not outlines and not problems:
         raise SketchError("no closed outline: the drawing has no curves that enclose an area")
-    return Contours(tuple(sorted(outlines, key=lambda o: _lower_left(o.shell))), tuple(fixes))
+    return Contours(tuple(sorted(outlines, key=lambda o: _lower_left(o.shell))), tuple(fixes), tuple(problems))
 
 
 def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size: float, report: Report,
-                 fixes: list[str]) -> list[Loop]:
-    """The simple closed loops of the pieces ``keep`` (one layer's), curves drawn twice dropped."""
+                 layer: str | None, fixes: list[str],
+                 problems: list[SketchProblem]) -> tuple[list[Loop], NDArray[np.bool_]]:
+    """The closed loops of the pieces ``keep`` (one layer's), curves drawn twice dropped, open or
+    branched chains left out as problems; and which loops lie inside such a chain (left out too)."""
     ends = Ends.of(pieces, np.flatnonzero(keep & ~pieces.closed))
     branched = ends.branched(tolerance)
     if branched.any():
@@ -116,13 +132,41 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
             keep = keep & ~twice
             ends = Ends.of(pieces, np.flatnonzero(keep & ~pieces.closed))
     rounding = DUPLICATE_VERTEX * size
-    rings = Rings.concatenate(
-        closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance),
-        chain(pieces, ends, tolerance, rounding, report),
-    )
+    chained, open_problems, left_out = chain(pieces, ends, tolerance, rounding, report, layer)
+    problems += open_problems
+    rings = Rings.concatenate(closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance), chained)
     loops = _loops(rings, rounding, report, fixes) if len(rings) else []
-    _check_simple(loops, report)
-    return loops
+    loops = _drop_repeated_loops(loops, tolerance, report, fixes)
+    return loops, _within_open(loops, pieces, left_out, report, layer, problems)
+
+
+def _within_open(loops: list[Loop], pieces: Pieces, left_out: list[NDArray[np.intp]], report: Report,
+                 layer: str | None, problems: list[SketchProblem]) -> NDArray[np.bool_]:
+    """Loops inside the convex hull of a chain left open: they may be its holes, which without it
+    would import as parts of their own (a hole as a solid disc), so they are left out with it."""
+    inside = np.zeros(len(loops), bool)
+    if not loops or not left_out:
+        return inside
+    hulls = shapely.convex_hull(shapely.multipoints([
+        np.concatenate([pieces.vertices(k) for k in chain_pieces]) for chain_pieces in left_out
+    ]))
+    # A straight stray line encloses nothing: only hulls with an area can hold holes.
+    solid = np.flatnonzero(shapely.area(hulls) > 0)
+    probes = shapely.points([loop.xy[0] for loop in loops])
+    loop_at, hull_at = shapely.STRtree(hulls[solid]).query(probes, predicate="within")
+    hull_at = solid[hull_at]
+    inside[loop_at] = True
+    for h in np.unique(hull_at).tolist():
+        swallowed = loop_at[hull_at == h]
+        first = loops[int(swallowed[0])]
+        problems.append(SketchProblem(
+            layer, (float(first.xy[0, 0]), float(first.xy[0, 1])), report.unit,
+            tuple(report.curve(k) for i in swallowed.tolist() for k in loops[i].pieces),
+            f"{len(swallowed)} closed curve(s) inside the open chain through {report.curve(int(left_out[h][0]))} "
+            f"are left out with it, e.g. the one through {report.curve(first.pieces[0])}: they may be its holes",
+            "close that chain (see its problem)",
+        ))
+    return inside
 
 
 # -- clean-up -----------------------------------------------------------------------------------
@@ -133,12 +177,13 @@ def _piece_boxes(pieces: Pieces) -> tuple[NDArray[np.float64], NDArray[np.float6
     return np.minimum.reduceat(pieces.xy, starts), np.maximum.reduceat(pieces.xy, starts)
 
 
-def _small(pieces: Pieces, tolerance: float, report: Report, fixes: list[str]) -> NDArray[np.bool_]:
-    """Pieces whose bounding box is no larger than ``tolerance``."""
+def _small(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, report: Report,
+           fixes: list[str]) -> NDArray[np.bool_]:
+    """Pieces among ``keep`` whose bounding box is no larger than ``tolerance``."""
     if len(pieces) == 0:
         return np.zeros(0, bool)
     lo, hi = _piece_boxes(pieces)
-    small = np.hypot(*(hi - lo).T) <= tolerance
+    small = (np.hypot(*(hi - lo).T) <= tolerance) & keep
     if small.any():
         k = int(np.argmax(small))
         fixes.append(
@@ -150,25 +195,13 @@ def _small(pieces: Pieces, tolerance: float, report: Report, fixes: list[str]) -
 
 def _duplicates(pieces: Pieces, idx: NDArray[np.intp], tolerance: float, report: Report,
                 fixes: list[str]) -> NDArray[np.bool_]:
-    """Among pieces ``idx``, those repeating an earlier one: same ends (either way round) and vertex
-    mean, or for closed pieces the same bounding box and vertex mean, within ``tolerance``."""
+    """Among pieces ``idx``, those repeating an earlier one within ``tolerance``: open pieces with
+    the same ends (either way round) and vertex mean; closed pieces enclosing the same region."""
     twice = np.zeros(len(pieces), bool)
-    if len(idx) < 2:
-        return twice
-    counts = np.diff(pieces.start)[idx]
-    take = np.repeat(pieces.start[idx], counts) + (np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts))
-    xy = pieces.xy[take]
-    mean = np.add.reduceat(xy, np.cumsum(counts) - counts) / counts[:, None]
-    first, last = pieces.xy[pieces.start[idx]], pieces.xy[pieces.start[idx + 1] - 1]
-    swap = (first[:, 0] > last[:, 0]) | ((first[:, 0] == last[:, 0]) & (first[:, 1] > last[:, 1]))
-    a, b = np.where(swap[:, None], last, first), np.where(swap[:, None], first, last)
-    lo, hi = np.minimum.reduceat(xy, np.cumsum(counts) - counts), np.maximum.reduceat(xy, np.cumsum(counts) - counts)
-    signature = np.where(pieces.closed[idx][:, None], np.hstack([lo, hi, mean]), np.hstack([a, b, mean]))
-    pairs = close_pairs(signature, tolerance, "curves")
-    if not len(pairs):
-        return twice
-    pairs = np.sort(idx[pairs], axis=1)
-    pairs = pairs[pieces.closed[pairs[:, 0]] == pieces.closed[pairs[:, 1]]]
+    closed = pieces.closed[idx]
+    pairs = np.concatenate([
+        _same_open(pieces, idx[~closed], tolerance), _same_closed(pieces, idx[closed], tolerance),
+    ])
     if not len(pairs):
         return twice
     twice[pairs[:, 1]] = True
@@ -178,6 +211,62 @@ def _duplicates(pieces: Pieces, idx: NDArray[np.intp], tolerance: float, report:
         f"{report.curve(i)} at {report.at(pieces.xy[pieces.start[i]])}"
     )
     return twice
+
+
+def _same_open(pieces: Pieces, idx: NDArray[np.intp], tolerance: float) -> NDArray[np.intp]:
+    """(M, 2) piece pairs i < j of the open pieces ``idx`` with the same ends and vertex mean."""
+    if len(idx) < 2:
+        return np.zeros((0, 2), np.intp)
+    counts = np.diff(pieces.start)[idx]
+    first_vertex = np.cumsum(counts) - counts
+    take = np.repeat(pieces.start[idx], counts) + (np.arange(int(counts.sum())) - np.repeat(first_vertex, counts))
+    mean = np.add.reduceat(pieces.xy[take], first_vertex) / counts[:, None]
+    first, last = pieces.xy[pieces.start[idx]], pieces.xy[pieces.start[idx + 1] - 1]
+    swap = (first[:, 0] > last[:, 0]) | ((first[:, 0] == last[:, 0]) & (first[:, 1] > last[:, 1]))
+    a, b = np.where(swap[:, None], last, first), np.where(swap[:, None], first, last)
+    pairs = close_pairs(np.hstack([a, b, mean]), tolerance, "curves")
+    return np.sort(idx[pairs], axis=1).reshape(-1, 2)
+
+
+def _same_closed(pieces: Pieces, idx: NDArray[np.intp], tolerance: float) -> NDArray[np.intp]:
+    """(M, 2) piece pairs i < j of the closed pieces ``idx`` that enclose the same region, whatever
+    vertex they start at, whichever way round, repeating the first vertex at the end or not."""
+    idx = idx[np.diff(pieces.start)[idx] >= 3]
+    pairs = _same_regions([Polygon(pieces.vertices(k)) for k in idx.tolist()], tolerance)
+    return np.sort(idx[pairs], axis=1).reshape(-1, 2)
+
+
+def _same_regions(polygons: list[Polygon], tolerance: float) -> NDArray[np.intp]:
+    """(M, 2) index pairs i < j of ``polygons`` enclosing the same region: the area between them at
+    most a band ``tolerance`` wide along the outline. Candidates share their bounding box within
+    ``tolerance``."""
+    if len(polygons) < 2:
+        return np.zeros((0, 2), np.intp)
+    polygons = np.array(polygons, dtype=object)
+    candidates = close_pairs(shapely.bounds(polygons), tolerance, "curves")
+    if not len(candidates):
+        return np.zeros((0, 2), np.intp)
+    used, inverse = np.unique(candidates, return_inverse=True)
+    a, b = shapely.make_valid(polygons[used])[inverse.reshape(-1, 2)].T
+    between = shapely.area(shapely.symmetric_difference(a, b))
+    same = between <= tolerance * np.maximum(shapely.length(a), shapely.length(b))
+    return np.sort(candidates[same], axis=1).reshape(-1, 2)
+
+
+def _drop_repeated_loops(loops: list[Loop], tolerance: float, report: Report, fixes: list[str]) -> list[Loop]:
+    """Loops of one layer enclosing the same region as an earlier one, e.g. an outline drawn as a
+    closed polyline and again as LINEs: all but the first dropped, as a fix."""
+    pairs = _same_regions([loop.polygon for loop in loops], tolerance)
+    if not len(pairs):
+        return loops
+    twice = np.zeros(len(loops), bool)
+    twice[pairs[:, 1]] = True
+    i, j = pairs[0]
+    fixes.append(
+        f"dropped {int(twice.sum())} outline(s) drawn twice, e.g. the one through {report.curve(loops[j].pieces[0])} "
+        f"repeats the one through {report.curve(loops[i].pieces[0])} at {report.at(loops[i].xy[0])}"
+    )
+    return [loop for loop, repeated in zip(loops, twice) if not repeated]
 
 
 def _loops(rings: Rings, eps: float, report: Report, fixes: list[str]) -> list[Loop]:
@@ -221,52 +310,109 @@ def _loops(rings: Rings, eps: float, report: Report, fixes: list[str]) -> list[L
 _WHERE = re.compile(r"\[\s*([-+\d.eE]+)\s+([-+\d.eE]+)\s*\]")
 
 
-def _check_simple(loops: list[Loop], report: Report) -> None:
+def _self_crossing(loops: list[Loop], report: Report, layer: str | None,
+                   problems: list[SketchProblem]) -> NDArray[np.bool_]:
+    """Loops that cross themselves, a problem each."""
     valid = shapely.is_valid([loop.polygon for loop in loops])
-    if valid.all():
-        return
-    k = int(np.argmin(valid))
-    reason = shapely.is_valid_reason(loops[k].polygon)
-    found = _WHERE.search(reason)
-    where = f" at {report.at((float(found[1]), float(found[2])))}" if found else ""
-    raise SketchError(
-        f"the outline through {report.curve(loops[k].pieces[0])} crosses itself{where} "
-        f"({reason.split('[')[0]}); redraw it as a simple closed curve"
-    )
+    for k in np.flatnonzero(~valid).tolist():
+        reason = shapely.is_valid_reason(loops[k].polygon)
+        found = _WHERE.search(reason)
+        at = (float(found[1]), float(found[2])) if found else tuple(loops[k].xy[0])
+        where = f" at {report.at(at)}" if found else ""
+        problems.append(SketchProblem(
+            layer, (float(at[0]), float(at[1])), report.unit, _curves(loops[k], report),
+            f"the outline through {report.curve(loops[k].pieces[0])} crosses itself{where} ({reason.split('[')[0]})",
+            "redraw it as a simple closed curve",
+        ))
+    return ~valid
 
 
-def _check_disjoint(loops: list[Loop], report: Report) -> None:
+def _crossing(loops: list[Loop], tolerance: float, report: Report, layer: str | None,
+              problems: list[SketchProblem]) -> NDArray[np.bool_]:
+    """Loops of one layer that cross, touch or share a cut with another, a problem per pair."""
+    bad = np.zeros(len(loops), bool)
+    if len(loops) < 2:
+        return bad
     rings = [loop.polygon.exterior for loop in loops]
     pairs = shapely.STRtree(rings).query(rings, predicate="intersects")
     pairs = pairs[:, pairs[0] < pairs[1]]
-    if pairs.shape[1] == 0:
-        return
-    i, j = pairs[:, 0]
-    where = rings[i].intersection(rings[j]).representative_point()
-    raise SketchError(
-        f"outlines cross or touch at {report.at((where.x, where.y))}: the one through "
-        f"{report.curve(loops[i].pieces[0])} and the one through {report.curve(loops[j].pieces[0])}; "
-        "outlines and holes must not meet"
-    )
+    for i, j in pairs.T.tolist():
+        bad[[i, j]] = True
+        meet = shapely.get_parts(rings[i].intersection(rings[j]))
+        cuts = [part for part in meet if part.geom_type == "LineString" and part.length > tolerance]
+        first, second = report.curve(loops[i].pieces[0]), report.curve(loops[j].pieces[0])
+        if cuts:
+            cut = shapely.line_merge(shapely.multilinestrings(cuts))
+            longest = max(shapely.get_parts(cut), key=lambda part: part.length)
+            a, b = longest.coords[0], longest.coords[-1]
+            at, problem = a, (
+                f"the outlines of {first} and {second} share the cut from {report.at(a)} to {report.at(b)}"
+            )
+            fix = "draw them apart, or on separate layers"
+        else:
+            where = meet[0].representative_point()
+            at = (where.x, where.y)
+            problem = (
+                f"outlines cross or touch at {report.at(at)}: the one through {first} and the one through {second}"
+            )
+            fix = "outlines and holes must not meet: draw them apart, or on separate layers"
+        problems.append(SketchProblem(
+            layer, (float(at[0]), float(at[1])), report.unit, _curves(loops[i], report) + _curves(loops[j], report),
+            problem, fix,
+        ))
+    return bad
 
 
-def _nest(loops: list[Loop]) -> tuple[Outline, ...]:
-    """Outer boundaries (inside an even number of loops) with their holes, sorted left to right."""
+def _curves(loop: Loop, report: Report) -> tuple[str, ...]:
+    return tuple(report.curve(k) for k in loop.pieces)
+
+
+def _nest(loops: list[Loop], bad: NDArray[np.bool_], report: Report, layer: str | None,
+          problems: list[SketchProblem]) -> list[Outline]:
+    """Outer boundaries (inside an even number of loops) with their holes; one that is ``bad``, has a
+    bad hole or lies inside a bad loop is left out (the bad loops still nest, so their holes stay
+    holes)."""
+    if not loops:
+        return []
     probes = shapely.points([loop.xy[0] for loop in loops])
-    inside, container = shapely.STRtree([loop.polygon for loop in loops]).query(probes, predicate="within")
+    regions = shapely.make_valid(np.array([loop.polygon for loop in loops], dtype=object))
+    inside, container = shapely.STRtree(regions).query(probes, predicate="within")
     depth = np.bincount(inside, minlength=len(loops))
     parent = np.full(len(loops), -1)
     for i, j in zip(inside.tolist(), container.tolist()):
         if parent[i] < 0 or depth[j] > depth[parent[i]]:
             parent[i] = j
-    holes: dict[int, list[Loop]] = {}
+    holes: dict[int, list[int]] = {}
     for i in np.flatnonzero(depth % 2 == 1).tolist():
-        holes.setdefault(int(parent[i]), []).append(loops[i])
-    outlines = [
-        Outline(loops[i], tuple(sorted(holes.get(i, []), key=_lower_left)))
-        for i in np.flatnonzero(depth % 2 == 0).tolist()
-    ]
-    return tuple(sorted(outlines, key=lambda o: _lower_left(o.shell)))
+        holes.setdefault(int(parent[i]), []).append(i)
+    # Inside a bad loop, nesting is no guide (two crossing outlines make their shared pin hole look
+    # like a part drawn in a hole): what lies in one is left out with it.
+    within_bad = np.zeros(len(loops), bool)
+    np.logical_or.at(within_bad, inside, bad[container])
+    outlines = []
+    for i in np.flatnonzero((depth % 2 == 0) & ~bad & within_bad).tolist():
+        container_of = container[inside == i]
+        spoiler = loops[int(container_of[bad[container_of]][0])]
+        problems.append(SketchProblem(
+            layer, (float(loops[i].xy[0, 0]), float(loops[i].xy[0, 1])), report.unit, _curves(loops[i], report),
+            f"the outline through {report.curve(loops[i].pieces[0])} is left out: it lies inside the outline through "
+            f"{report.curve(spoiler.pieces[0])}, which has a problem",
+            "fix that outline",
+        ))
+    for i in np.flatnonzero((depth % 2 == 0) & ~bad & ~within_bad).tolist():
+        mine = holes.get(i, [])
+        spoilt = [h for h in mine if bad[h]]
+        if spoilt:
+            hole = loops[spoilt[0]]
+            problems.append(SketchProblem(
+                layer, (float(loops[i].xy[0, 0]), float(loops[i].xy[0, 1])), report.unit, _curves(loops[i], report),
+                f"the outline through {report.curve(loops[i].pieces[0])} is left out: its hole through "
+                f"{report.curve(hole.pieces[0])} has a problem, and the link must not import without it",
+                "fix that hole",
+            ))
+            continue
+        outlines.append(Outline(loops[i], tuple(sorted((loops[h] for h in mine), key=_lower_left))))
+    return outlines
 
 
 def _lower_left(loop: Loop) -> tuple[float, float]:

@@ -1,15 +1,21 @@
 """A sketch file turned into links: outlines with holes and joints, in metres, sketch frame.
 
-``read_sketch`` reads a DXF or CSV sketch, flattens its curves, chains them into outlines and
-assigns joints: the POINTs inside a link's outer boundary (in material, or at the centre of a
-hole); a link without POINTs takes the centres of its circular holes. Joints are sorted by x, then y.
+``read_sketch`` reads a DXF or CSV sketch (all its layers, or those asked for), flattens its
+curves, chains them into outlines and assigns joints: the POINTs inside a link's outer boundary (in
+material, or at the centre of a hole); a link without POINTs takes the centres of its circular
+holes. Joints are sorted by x, then y.
+
+A dirty sheet keeps its clean links: an open or branched chain, a crossing outline or a POINT off a
+hole's centre is a :class:`SketchProblem` that leaves out only what it names (and the link of a hole
+it names). Only a sheet where no link imports, or a file-level fault (unreadable, no curves, scale,
+reach), raises SketchError.
 """
 
 from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
 from types import MappingProxyType
@@ -27,6 +33,7 @@ from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.ilogic_csv import read_csv
 from linkstress.importers.library_notes import library_notes, noted, with_notes
 from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, with_damage
+from linkstress.importers.problems import SketchProblem, listed
 from linkstress.materials import Material
 from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 
@@ -74,7 +81,8 @@ class Sketch:
 
     ``units``: the drawing's unit name (e.g. "mm") and ``units_source`` where it came from;
     ``ignored``: what was left out, by entity type; ``fixes``: repairs made (gaps closed,
-    duplicates dropped, damage recovered); ``gap_tolerance_m`` and ``format`` as used.
+    duplicates dropped, damage recovered); ``gap_tolerance_m`` and ``format`` as used;
+    ``problems``: what was left out because no clean outline could be made of it.
     """
 
     path: Path
@@ -85,6 +93,7 @@ class Sketch:
     ignored: Mapping[str, int]
     fixes: tuple[str, ...]
     gap_tolerance_m: float
+    problems: tuple[SketchProblem, ...] = ()
 
     @property
     def units_assumed(self) -> bool:
@@ -92,15 +101,27 @@ class Sketch:
         return self.units_source.startswith("assumed")
 
     def link(self, name_or_layer: str | None = None) -> ImportedLink:
-        """The link named ``name_or_layer`` (or the only one on that layer); None: the only link."""
+        """The link named ``name_or_layer`` (or the only one on that layer); None: the only link.
+
+        A layer with a problem, or a sheet with one when no name is given, is refused with the
+        problems: what was left out there may be the link meant.
+        """
         names = ", ".join(repr(link.name) for link in self.links)
         if name_or_layer is None:
-            if len(self.links) == 1:
+            if len(self.links) == 1 and not self.problems:
                 return self.links[0]
+            if self.problems:
+                raise SketchError(
+                    f"{self.path.name} holds {len(self.links)} clean link(s) ({names}) and "
+                    f"{listed(self.problems)}; name a clean link or layer, or fix the drawing"
+                )
             raise SketchError(f"{self.path.name} holds {len(self.links)} links ({names}): say which one")
         for link in self.links:
             if link.name == name_or_layer:
                 return link
+        layer_problems = [p for p in self.problems if p.layer == name_or_layer]
+        if layer_problems:
+            raise SketchError(f"{self.path.name}: layer {name_or_layer!r}: {listed(layer_problems)}")
         on_layer = [link for link in self.links if link.layer == name_or_layer]
         if len(on_layer) == 1:
             return on_layer[0]
@@ -113,13 +134,17 @@ class Sketch:
 
 
 def read_sketch(path: str | Path, units: str | None = None, tolerance: float | None = None,
-                sagitta: float | None = None) -> Sketch:
+                sagitta: float | None = None, layers: Collection[str] | None = None,
+                exclude_layers: Collection[str] = ()) -> Sketch:
     """Read the DXF or CSV sketch at ``path`` (by its suffix .dxf or .csv, else by its content).
 
     ``units``: the unit of a file that does not say (DXF ``$INSUNITS`` 0, CSV without header units);
     ``tolerance``: the endpoint gap tolerance as a fraction of the drawing's size (default 1e-4 for
     DXF and v1 CSV, 1e-2 for the old iLogic CSV); ``sagitta``: the chord tolerance of arcs as a
-    fraction of each arc's radius (default 1e-4). Raises SketchError naming the file.
+    fraction of each arc's radius (default 1e-4); ``layers``: read only these layers (None: all),
+    ``exclude_layers``: leave these out; the drawing's size is that of the curves read. Raises
+    SketchError naming the file when no link imports or the file itself is at fault; problems that
+    leave out only part of the drawing are in ``Sketch.problems``.
     """
     path = Path(path)
     try:
@@ -134,7 +159,7 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     try:
         with library_notes(notes):
             raw = read_dxf(path, data, units) if _is_dxf(path, data) else read_csv(path, data, units)
-            sketch = _build(path, raw, tolerance, sagitta)
+            sketch = _build(path, raw, tolerance, sagitta, layers, exclude_layers)
     except SketchError as error:
         message = str(error) if raw is None else with_damage(str(error), raw.fixes)
         raise SketchError(f"{path.name}: {message}{noted(notes)}") from None
@@ -152,11 +177,17 @@ def _is_dxf(path: Path, data: bytes) -> bool:
     return head.startswith(b"AutoCAD Binary DXF") or first_two == [b"0", b"SECTION"] or first_two[:1] == [b"999"]
 
 
-def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float | None) -> Sketch:
+def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float | None,
+           layers: Collection[str] | None, exclude_layers: Collection[str]) -> Sketch:
     boxes, origins = raw.curves.extents()
-    bounds = box_of(boxes[:raw.curves.curve_count()])
+    ignored = Counter(raw.ignored)
+    use = _on_layers(origins, layers, exclude_layers, ignored)
+    curves = raw.curves.curve_count()
+    boxes, origins = boxes[use], [o for o, u in zip(origins, use) if u]
+    bounds = box_of(boxes[:int(use[:curves].sum())])
     if bounds is None:
-        raise SketchError(f"no outline: the drawing has no curves{_ignored_note(raw.ignored)}")
+        kept = " on the layers read" if layers is not None or exclude_layers else ""
+        raise SketchError(f"no outline: the drawing has no curves{kept}{_ignored_note(raw.ignored)}")
     _check_reach(raw, boxes, origins)
     size = math.hypot(bounds[2] - bounds[0], bounds[3] - bounds[1])
     if not size > 0:
@@ -170,20 +201,36 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
         )
     unit = raw.unit.name
     pieces = flatten(raw.curves, Tolerance.for_size(size, sagitta))
-    contours = build_contours(pieces, raw.curves.curve_origins(), gap * size, size, unit)
-    ignored = Counter(raw.ignored)
+    contours = build_contours(pieces, raw.curves.curve_origins(), gap * size, size, unit, use[:curves])
     fixes = list(raw.fixes) + list(contours.fixes)
-    links = _links(path, raw, contours.outlines, gap * size, ignored, fixes)
-    for link, outline in zip(links, contours.outlines):
-        loops = [outline.shell, *outline.holes]
-        count = sum(loop.gaps for loop in loops)
-        if count:
-            g, at = outline.largest_gap
-            fixes.append(
-                f"link {link.name!r}: closed {count} gap(s), the largest {g:.3g} {unit} at ({at[0]:.6g}, {at[1]:.6g}) {unit}"
-            )
+    problems = list(contours.problems)
+    links = _links(path, raw, contours.outlines, use[curves:], gap * size, ignored, fixes, problems)
+    if not links:
+        raise SketchError(listed(problems) if len(problems) == 1 else f"no link imports, {listed(problems)}")
     return Sketch(path, raw.format, unit, raw.units_source, tuple(links), MappingProxyType(dict(ignored)),
-                  tuple(fixes), gap * size / raw.unit.per_metre)
+                  tuple(fixes), gap * size / raw.unit.per_metre, tuple(problems))
+
+
+def _on_layers(origins: list[Origin], layers: Collection[str] | None, exclude: Collection[str],
+               ignored: Counter) -> NDArray[np.bool_]:
+    """Which curves and POINTs (``origins``) lie on the layers read, counting the rest in ``ignored``;
+    a layer name the drawing lacks is refused, naming the layers it has."""
+    on = np.array([origin[2] for origin in origins], dtype=object)
+    if layers is None and not exclude:
+        return np.ones(len(origins), bool)
+    present = sorted({layer for layer in on.tolist() if layer is not None})
+    unknown = sorted((set(layers or ()) | set(exclude)) - set(present))
+    if unknown:
+        has = f"its layers are {', '.join(repr(n) for n in present)}" if present else "it has no layers"
+        raise SketchError(
+            f"no layer {', '.join(repr(n) for n in unknown)} in the drawing ({has}); check --layers and "
+            "--exclude-layers"
+        )
+    use = np.ones(len(origins), bool) if layers is None else np.isin(on, list(layers))
+    use &= ~np.isin(on, list(exclude))
+    if not use.all():
+        ignored["curve or POINT (on a layer left out)"] += int((~use).sum())
+    return use
 
 
 def _check_reach(raw: RawSketch, boxes: NDArray[np.float64], origins: list[Origin]) -> None:
@@ -224,18 +271,20 @@ def _ignored_note(ignored: Mapping[str, int]) -> str:
     return f" it reads (only {listed} were found, which are not outline geometry)"
 
 
-def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], tolerance: float, ignored: Counter,
-           fixes: list[str]) -> list[ImportedLink]:
-    """Links in metres from the outlines (drawing units), with their joints.
+def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], use_points: NDArray[np.bool_],
+           tolerance: float, ignored: Counter, fixes: list[str], problems: list[SketchProblem]) -> list[ImportedLink]:
+    """Links in metres from the outlines (drawing units), with their joints (the POINTs ``use_points``).
 
     The contours are simple, disjoint and nested, and each POINT is checked to lie in material or
-    at a hole's centre, so every link makes a valid LinkProfile.
+    at a hole's centre, so every link makes a valid LinkProfile; a link with a POINT in a hole off
+    its centre is left out as a problem.
     """
-    names, layers = _names(path, outlines, raw.curves.curve_origins())
-    points = raw.curves.point_array()
-    point_origins = raw.curves.origins["points"]
+    curve_origins = raw.curves.curve_origins()
+    names, layers = _names(path, outlines, curve_origins)
+    points = raw.curves.point_array()[use_points]
+    point_origins = [o for o, u in zip(raw.curves.origins["points"], use_points) if u]
     point_layers = [origin[2] for origin in point_origins]
-    owner = _owners([o.shell.polygon for o in outlines], points, _shell_layers(outlines, raw.curves.curve_origins()), point_layers)
+    owner = _owners([o.shell.polygon for o in outlines], points, _shell_layers(outlines, curve_origins), point_layers)
     if (owner < 0).any():
         ignored["POINT (outside every outline)"] += int((owner < 0).sum())
     per_metre = raw.unit.per_metre
@@ -244,7 +293,11 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], tolerance:
         mine = np.flatnonzero(owner == k)
         mine = mine[_unique(points[mine], tolerance, [point_origins[i] for i in mine], names[k], fixes)]
         polygon = outline.polygon
-        _check_joints(polygon, points[mine], [point_origins[i] for i in mine], names[k], raw.unit.name)
+        off_centre = _off_centre(polygon, points[mine], [point_origins[i] for i in mine], names[k],
+                                 curve_origins[outline.shell.pieces[0]][2], raw.unit.name)
+        if off_centre is not None:
+            problems.append(off_centre)
+            continue
         if len(mine):
             joints, rule = points[mine], POINT_RULE
         else:
@@ -259,6 +312,13 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], tolerance:
             tuple(2 * h.circle[2] / per_metre if h.circle is not None else None for h in outline.holes),
             outline.largest_gap[0] / per_metre,
         ))
+        count = sum(loop.gaps for loop in [outline.shell, *outline.holes])
+        if count:
+            g, at = outline.largest_gap
+            fixes.append(
+                f"link {names[k]!r}: closed {count} gap(s), the largest {g:.3g} {raw.unit.name} at "
+                f"({at[0]:.6g}, {at[1]:.6g}) {raw.unit.name}"
+            )
     return links
 
 
@@ -332,10 +392,12 @@ def _unique(points, tolerance, origins, name, fixes: list[str]) -> NDArray[np.bo
     return keep
 
 
-def _check_joints(polygon: Polygon, points: NDArray[np.float64], origins, name: str, unit: str) -> None:
-    """A POINT in a hole must be at its centre (LinkProfile's rule); the message names the POINT."""
+def _off_centre(polygon: Polygon, points: NDArray[np.float64], origins, name: str, layer: str | None,
+                unit: str) -> SketchProblem | None:
+    """A POINT in a hole must be at its centre (LinkProfile's rule): the first that is not, as a
+    problem naming it, else None."""
     if not len(points):
-        return
+        return None
     in_hole = ~shapely.covers(polygon, shapely.points(points))
     for p, origin in zip(points[in_hole], [o for o, h in zip(origins, in_hole) if h]):
         point = Point(p)
@@ -344,8 +406,10 @@ def _check_joints(polygon: Polygon, points: NDArray[np.float64], origins, name: 
         radius = math.sqrt(hole.area / math.pi)
         if point.distance(c) > HOLE_CENTRE_TOLERANCE * radius:
             cx, cy = (v if abs(v) > 1e-12 * radius else 0.0 for v in (c.x, c.y))
-            raise SketchError(
+            return SketchProblem(
+                layer, (float(p[0]), float(p[1])), unit, (describe(origin),),
                 f"{describe(origin)} at ({p[0]:.6g}, {p[1]:.6g}) {unit} lies in a hole of link {name!r} "
-                f"but not at its centre ({cx:.6g}, {cy:.6g}) {unit}; a joint in a hole is the pin's "
-                "centre: move the POINT there or delete it"
+                f"but not at its centre ({cx:.6g}, {cy:.6g}) {unit}",
+                "a joint in a hole is the pin's centre: move the POINT there or delete it",
             )
+    return None

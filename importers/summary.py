@@ -14,6 +14,9 @@ from shapely.geometry import Polygon
 from linkstress.importers.sketch import ImportedLink, Sketch
 from linkstress.tables import format_table
 
+MAX_PRINTED_PROBLEMS = 20
+"""Problems the text lists one per line; the rest are counted (all are in the JSON)."""
+
 NO_PROFILE = "a profile U(x), L(x) needs a member frame, which needs two joints; this link has {n}"
 
 
@@ -53,7 +56,8 @@ def link_json(link: ImportedLink) -> dict:
 
 
 def sketch_json(sketch: Sketch) -> dict:
-    """``{"links": [...]}`` of docs/design.md, with what was read, assumed, ignored and fixed."""
+    """``{"links": [...]}`` of docs/design.md, with what was read, assumed, ignored, fixed and left out
+    (``problems``: layer, ``at`` in drawing units, entities, problem, fix)."""
     return {
         "sketch": str(sketch.path),
         "format": sketch.format,
@@ -63,11 +67,13 @@ def sketch_json(sketch: Sketch) -> dict:
         "links": [link_json(link) for link in sketch.links],
         "ignored": dict(sketch.ignored),
         "fixes": list(sketch.fixes),
+        "problems": [problem.json() for problem in sketch.problems],
     }
 
 
 def sketch_text(sketch: Sketch) -> str:
-    """A table per link (area, centroid, polar moment, joints and their rule, holes, largest gap)."""
+    """A table per link (area, centroid, polar moment, joints and their rule, holes, largest gap), then
+    what was ignored, fixed and left out as a problem."""
     units = f"units {sketch.units} ({sketch.units_source})"
     parts = [f"{sketch.path.name}: {sketch.format}, {units}, {len(sketch.links)} link(s)"]
     for link in sketch.links:
@@ -88,6 +94,12 @@ def sketch_text(sketch: Sketch) -> str:
         parts.append("ignored: " + ", ".join(f"{n} {kind}" for kind, n in sorted(sketch.ignored.items())))
     if sketch.fixes:
         parts.append("fixed:\n" + "\n".join(f"- {fix}" for fix in sketch.fixes))
+    if sketch.problems:
+        shown = sketch.problems[:MAX_PRINTED_PROBLEMS]
+        lines = [f"- {problem.text}" for problem in shown]
+        if len(sketch.problems) > len(shown):
+            lines.append(f"- and {len(sketch.problems) - len(shown)} more (all in --json)")
+        parts.append(f"problems ({len(sketch.problems)}, left out of the links above):\n" + "\n".join(lines))
     return "\n\n".join(parts)
 
 

@@ -74,7 +74,7 @@ def test_bad_input_exits_2_with_one_message_and_writes_nothing(tmp_path, case):
         draw(doc.modelspace(), [r for r in plate_entities() if r[0] != "line"])
         doc.modelspace().add_line((0, 0), (99.5, 0))
         sketch = save(doc, tmp_path)
-        expected = "linkstress: error: sketch.dxf: open outline: the end of LINE"
+        expected = "linkstress: error: sketch.dxf: no link imports, 2 problems: (1) open outline: the end of LINE"
     elif case == "not dxf":
         sketch = tmp_path / "sketch.dxf"
         sketch.write_text("hello\nworld\n")

@@ -28,11 +28,14 @@ def test_an_open_outline_reports_the_gap_size_and_position(tmp_path):
     with pytest.raises(SketchError) as error:
         read_sketch(save(doc, tmp_path))
     message = str(error.value)
-    assert message.startswith("sketch.dxf: open outline: the end of LINE (handle ")
+    # Nothing imports: the open outline, and its holes left out with it (else they would be discs).
+    assert message.startswith("sketch.dxf: no link imports, 2 problems: (1) open outline: the end of LINE (handle ")
     assert "at (99.5, 0) mm is 0.5 mm from the nearest curve end (ARC (handle" in message
-    # The drawing spans 150 x 50 mm: size 158.1 mm, gap tolerance 1e-4 of it; 0.5 mm is 0.0032 of it.
+    # The drawing spans 150 x 50 mm: size 158.1 mm, gap tolerance 1e-4 of it; 0.5 mm is 0.00316 of it,
+    # a quarter more is 0.00395, rounded up to two digits 0.004.
     assert "at (100, 0) mm), more than the gap tolerance 0.0158 mm" in message
-    assert "raise the gap tolerance (--tolerance, a fraction of the drawing size) above 0.0032" in message
+    assert "raise the gap tolerance to --tolerance 0.004;" in message
+    assert "(2) 4 closed curve(s) inside the open chain through LINE (handle " in message
 
 
 def test_a_gap_within_a_raised_tolerance_is_closed_and_reported(tmp_path):

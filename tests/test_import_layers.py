@@ -35,11 +35,11 @@ def test_two_links_overlapping_at_their_shared_pin_on_their_own_layers_import_as
     assert sketch.link("crank").outline.intersects(sketch.link("coupler").outline)
 
 
-def test_the_same_overlap_on_one_layer_is_still_refused(tmp_path):
+def test_the_same_overlap_on_one_layer_is_refused_with_the_pin_hole_they_share_left_out_not_taken_for_a_part(tmp_path):
     doc = ezdxf.new("R2013", units=4)
     msp = doc.modelspace()
     bar(msp, "links", 0.0, 0.0, 100.0)
     bar(msp, "links", 100.0, 0.0, 250.0)
     doc.saveas(tmp_path / "pair.dxf")
-    with pytest.raises(SketchError, match=r"pair.dxf: outlines cross or touch"):
+    with pytest.raises(SketchError, match=r"pair.dxf: no link imports, 2 problems: \(1\) outlines cross or touch at \(100, 10\) mm.* \(2\) the outline through CIRCLE .* is left out: it lies inside the outline through LWPOLYLINE"):
         read_sketch(tmp_path / "pair.dxf")
