@@ -72,18 +72,19 @@ def insunits_label(code: int) -> str:
 
 
 def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | None,
-                default: tuple[DrawingUnit, str] | None) -> tuple[DrawingUnit, str]:
-    """The unit of a sketch file and where it came from: the file's own (``declared``, found in
-    ``declared_by``) unless absent, then the caller's ``given`` name, then ``default`` (unit, reason).
+                default: tuple[DrawingUnit, str] | None, unsaid: str | None = None) -> tuple[DrawingUnit, str]:
+    """The unit of a sketch file and where it came from: the caller's ``given`` name (``--units`` or
+    the scene's ``units``), else the file's own (``declared``, found in ``declared_by``), else
+    ``default`` (unit, reason); ``unsaid`` says why the file declares none (default: ``declared_by``
+    is unitless).
 
-    A file that declares a unit other than the one given is an error: one of them is wrong.
+    A given unit overrides a declared one (a drawing saved with the wrong $INSUNITS is common), and
+    the source says so: "--units mm, overriding the file's $INSUNITS inches".
     """
     chosen = unit_named(given, "units") if given is not None else None
-    if declared is not None and chosen is not None and declared.code != chosen.code:
-        raise SketchError(
-            f"the file declares its units as {declared.name} ({declared_by}) but units {given!r} were given; "
-            "drop the units option or fix the drawing's units"
-        )
+    if chosen is not None and declared is not None and declared.code != chosen.code:
+        label = insunits_label(declared.code).lower()
+        return chosen, f"--units {chosen.name}, overriding the file's {declared_by.removeprefix('the ')} {label}"
     if declared is not None:
         return declared, declared_by
     if chosen is not None:
@@ -91,6 +92,6 @@ def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | Non
     if default is not None:
         return default
     raise SketchError(
-        f"the file does not say its units ({declared_by} is unitless): pass --units (mm, cm, m, in or ft), "
-        "or set the scene's units"
+        f"the file does not say its units ({unsaid or declared_by + ' is unitless'}): pass its unit, e.g. "
+        "--units mm (mm, cm, m, in or ft), or set the scene's units"
     )
