@@ -27,6 +27,7 @@ from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
 from linkstress.errors import SketchError
+from linkstress.importers.circles import with_circle
 from linkstress.importers.chaining import Ends, Report, Rings, chain, close_pairs, closed_rings
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.primitives import Origin
@@ -41,7 +42,8 @@ class Loop:
 
     ``pieces``: indices of the curves it is made of; ``gap``: the largest gap closed in it and
     ``gap_at`` where (None if none); ``gaps``: how many gaps above rounding were closed;
-    ``circle``: (cx, cy, r) when every piece is an arc of one circle, else None.
+    ``circle``: (cx, cy, r) when every piece is an arc of one circle, else None; ``circle_rule``:
+    the rule that found it (:mod:`.circles`, which may also find a circle the pieces do not carry).
     """
 
     xy: NDArray[np.float64]
@@ -51,6 +53,7 @@ class Loop:
     gap_at: tuple[float, float] | None
     gaps: int
     circle: tuple[float, float, float] | None
+    circle_rule: str | None = None
 
 
 @dataclass(frozen=True)
@@ -119,7 +122,7 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
         closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance),
         chain(pieces, ends, tolerance, rounding, report),
     )
-    loops = _loops(rings, rounding, report, fixes) if len(rings) else []
+    loops = [with_circle(loop, pieces) for loop in _loops(rings, rounding, report, fixes)] if len(rings) else []
     _check_simple(loops, report)
     return loops
 

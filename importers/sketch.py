@@ -52,7 +52,8 @@ class ImportedLink:
     ``outline``: shapely Polygon (shell counter-clockwise, holes clockwise); ``joints`` (n, 2) sorted
     by x then y, each found by the rule in ``joint_rules`` ("point" or "hole centre");
     ``hole_diameters_m``: per hole of ``outline.interiors``, its diameter when it is a circle, else
-    None; ``largest_gap_m``: the largest gap closed while chaining its curves.
+    None, and ``hole_rules`` the rule that found it a circle (:mod:`.circles`); ``largest_gap_m``: the
+    largest gap closed while chaining its curves.
     """
 
     name: str
@@ -62,6 +63,7 @@ class ImportedLink:
     joint_rules: tuple[str, ...]
     hole_diameters_m: tuple[float | None, ...]
     largest_gap_m: float
+    hole_rules: tuple[str | None, ...]
 
     def profile(self, thickness: float, material: Material | None = None, name: str | None = None) -> LinkProfile:
         """The link as a plate of ``thickness`` [m] of ``material``."""
@@ -256,7 +258,7 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], tolerance:
             names[k], layers[k], shapely.transform(polygon, lambda xy: xy / per_metre), joints_m,
             (rule,) * len(joints_m),
             tuple(2 * h.circle[2] / per_metre if h.circle is not None else None for h in outline.holes),
-            outline.largest_gap[0] / per_metre,
+            outline.largest_gap[0] / per_metre, tuple(h.circle_rule for h in outline.holes),
         ))
     return links
 

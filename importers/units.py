@@ -92,6 +92,6 @@ def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | Non
     if default is not None:
         return default
     raise SketchError(
-        f"the file does not say its units ({unsaid or declared_by + ' is unitless'}): pass its unit, e.g. "
+        f"the file does not say its units ({unsaid or declared_by + ' is unitless'}): pass --units with the drawing's unit, e.g. "
         "--units mm (mm, cm, m, in or ft), or set the scene's units"
     )

@@ -47,9 +47,9 @@ def test_an_arc_keeps_its_ends_its_sector_area_and_the_chord_tolerance(radius, s
 
 def test_the_default_tolerance_gives_223_vertices_per_turn():
     # s = 1e-4 r: 2 acos(1 - 1e-4) = 0.028285 rad per step, so ceil(2 pi / 0.028285) = 223.
-    assert segment_counts(np.array([0.01, 1.0, 100.0]), np.full(3, 2 * math.pi), Tolerance(1e-4, 1.0, 1.0)).tolist() == [223, 223, 223]
+    assert segment_counts(np.array([0.01, 1.0, 100.0]), np.full(3, 2 * math.pi), Tolerance(1e-4, 1.0)).tolist() == [223, 223, 223]
     # A drawing-size cap binds for flat arcs: s = min(1e-4 x 100, 1e-3) = 1e-3 -> 703 per turn.
-    assert segment_counts(np.array([100.0]), np.array([2 * math.pi]), Tolerance(1e-4, 1e-3, 1.0)).tolist() == [703]
+    assert segment_counts(np.array([100.0]), np.array([2 * math.pi]), Tolerance(1e-4, 1e-3)).tolist() == [703]
 
 
 def test_a_circle_is_an_inflated_regular_polygon_with_its_area_and_centroid():
