@@ -103,8 +103,8 @@ def _holes(link: ImportedLink) -> str:
     circular = [(d, rule) for d, rule in zip(link.hole_diameters_m, link.hole_rules) if d is not None]
     text = f"{n}"
     if circular:
-        listed = ", ".join(f"{d:.6g} ({rule})" for d, rule in circular)
-        text += f" ({len(circular)} circular, diameter {listed} m)"
+        listed = ", ".join(f"{d:.6g} m ({rule})" for d, rule in circular)
+        text += f" ({len(circular)} circular, diameter {listed})"
     return text
 
 
