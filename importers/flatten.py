@@ -20,11 +20,13 @@ has its centroid and polar moment within 5e-7 relative, where an inscribed polyg
 affine image of its major circle (scaling the minor direction by b/a <= 1), so the same rule with
 r = a keeps it within s and preserves its area too.
 
-Splines have no closed-form area: they are flattened by ezdxf's adaptive B-spline subdivision
-(``BSpline.flattening``, evaluating the spline itself, weights included) to a chord distance of the
-relative tolerance x the spline's own size (the diagonal of its control points' box), capped like
-arcs. A tolerance of the drawing's size instead made a sheet of many small parts cost millions of
-vertices (1,176 splines: 148 s and 545 MB, only to be refused at ``MAX_SPLINE_VERTICES``).
+Splines are evaluated from the B-spline itself (weights included) with scipy, vectorised: each knot
+span takes equal parameter steps, as many as bring the chords' sagittas within the relative tolerance
+x the spline's own size (the diagonal of its control points' box), capped like arcs; the interior
+vertices then move off the curve by 2/3 of their chords' sagittas so that the polygon keeps the
+curve's area as arcs do (a parabolic segment holds 2/3 of chord x sagitta). A tolerance of 1e-7 of the
+drawing's size instead, flattened by ezdxf in Python, made a sheet of 1,176 small splines take 148 s
+and 545 MB, only to be refused at ``MAX_SPLINE_VERTICES``.
 
 Each piece also says what it is as far as circles go (:mod:`.circles`): straight, an arc or a
 circle, an ellipse with equal axes, a closed spline on a circle, or another curve.
@@ -56,8 +58,8 @@ MAX_VERTICES = 5_000_000
 estimated from the chord tolerance and the arcs before any is made, and a setting asking for more is refused."""
 
 MAX_SPLINE_VERTICES = 200_000
-"""The most vertices all splines together may flatten to: ezdxf subdivides them in Python, about
-25 us a vertex, so this bounds their time to about 5 s (a circle-like spline needs about 150 at the default tolerance)."""
+"""The most vertices all splines together may flatten to (a circle-like spline needs about 140 at the
+default tolerance; the 1,170 splines of ``validation.bench_import``'s sheet about 55,000)."""
 
 
 @dataclass(frozen=True)

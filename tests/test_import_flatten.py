@@ -131,3 +131,25 @@ def test_a_spline_takes_a_few_hundred_vertices_within_its_chord_tolerance_of_the
         assert np.array_equal(xy[0], xy[-1])
     else:
         assert np.abs(xy[[0, -1]] - exact[[0, -1]]).max() <= 1e-9 * chord
+
+
+def test_the_benchmarks_spline_sheet_reads_each_part_keeping_the_splines_area(tmp_path):
+    import ezdxf
+
+    from linkstress.importers import HOLE_RULE, read_sketch
+    from linkstress.validation.bench_import import spline_sheet
+
+    assert spline_sheet(tmp_path / "sheet.dxf", parts=4) == 52
+    sketch = read_sketch(tmp_path / "sheet.dxf")
+    assert [link.name for link in sketch.links] == ["part0", "part1", "part2", "part3"]
+    msp = ezdxf.readfile(tmp_path / "sheet.dxf").modelspace()
+    for k, link in enumerate(sketch.links):
+        # The part's exact outline: its 13 splines evaluated by ezdxf at 20,000 steps each (their chords
+        # lose about 1e-9 of the area), less the 20 mm hole.
+        tools = [e.construction_tool() for e in msp.query(f'SPLINE[layer=="part{k}"]')]
+        exact = np.concatenate([[(p.x, p.y) for p in t.points(np.linspace(0, t.max_t, 20_001))][:-1] for t in tools])
+        area = Polygon(exact).area - math.pi * 100
+        assert link.outline.area == pytest.approx(area * 1e-6, rel=1e-6)
+        assert link.joint_rules == (HOLE_RULE,)
+        assert np.abs(link.joints - [[0.150 * k, 0.0]]).max() <= 1e-12
+        assert len(link.outline.exterior.coords) <= 13 * 300
