@@ -115,10 +115,12 @@ class Sketch:
 
 
 def read_sketch(path: str | Path, units: str | None = None, tolerance: float | None = None,
-                sagitta: float | None = None) -> Sketch:
+                sagitta: float | None = None, override_units: bool = True) -> Sketch:
     """Read the DXF or CSV sketch at ``path`` (by its suffix .dxf or .csv, else by its content).
 
-    ``units``: the unit of a file that does not say (DXF ``$INSUNITS`` 0, CSV without header units);
+    ``units``: the unit of a file that does not say (DXF ``$INSUNITS`` 0 or no HEADER, CSV without
+    header units), overriding one that does (``--units``) unless ``override_units`` is False (a
+    scene's ``units``: then a disagreement is refused);
     ``tolerance``: the endpoint gap tolerance as a fraction of the drawing's size (default 1e-4 for
     DXF and v1 CSV, 1e-2 for the old iLogic CSV); ``sagitta``: the chord tolerance of arcs as a
     fraction of each arc's radius (default 1e-4). Raises SketchError naming the file.
@@ -135,7 +137,8 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     notes: list[str] = []
     try:
         with library_notes(notes):
-            raw = read_dxf(path, data, units) if _is_dxf(path, data) else read_csv(path, data, units)
+            read = read_dxf if _is_dxf(path, data) else read_csv
+            raw = read(path, data, units, override_units)
             sketch = _build(path, raw, tolerance, sagitta)
     except SketchError as error:
         message = str(error) if raw is None else with_damage(str(error), raw.fixes)

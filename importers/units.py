@@ -72,17 +72,24 @@ def insunits_label(code: int) -> str:
 
 
 def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | None,
-                default: tuple[DrawingUnit, str] | None, unsaid: str | None = None) -> tuple[DrawingUnit, str]:
-    """The unit of a sketch file and where it came from: the caller's ``given`` name (``--units`` or
-    the scene's ``units``), else the file's own (``declared``, found in ``declared_by``), else
-    ``default`` (unit, reason); ``unsaid`` says why the file declares none (default: ``declared_by``
-    is unitless).
+                default: tuple[DrawingUnit, str] | None, unsaid: str | None = None,
+                override: bool = True) -> tuple[DrawingUnit, str]:
+    """The unit of a sketch file and where it came from: the caller's ``given`` name, else the file's
+    own (``declared``, found in ``declared_by``), else ``default`` (unit, reason); ``unsaid`` says why
+    the file declares none (default: ``declared_by`` is unitless).
 
-    A given unit overrides a declared one (a drawing saved with the wrong $INSUNITS is common), and
-    the source says so: "--units mm, overriding the file's $INSUNITS inches".
+    With ``override`` (``--units``) a given unit overrides a declared one (a drawing saved with the
+    wrong $INSUNITS is common) and the source says so: "--units mm, overriding the file's $INSUNITS
+    inches". Without (a scene's ``units``, meant for unitless sketches) a disagreement is an error:
+    one of them is wrong.
     """
     chosen = unit_named(given, "units") if given is not None else None
     if chosen is not None and declared is not None and declared.code != chosen.code:
+        if not override:
+            raise SketchError(
+                f"the file declares its units as {declared.name} ({declared_by}) but units {given!r} were "
+                "given; drop the units or fix the drawing's units"
+            )
         label = insunits_label(declared.code).lower()
         return chosen, f"--units {chosen.name}, overriding the file's {declared_by.removeprefix('the ')} {label}"
     if declared is not None:

@@ -20,7 +20,7 @@ from linkstress.importers import HOLE_RULE, read_sketch
 from linkstress.importers.circles import CIRCLE_FIT, circle_of, regular_polygon
 from linkstress.importers.summary import sketch_json, sketch_text
 from linkstress.scene import load_scene
-from test_scene_errors import BASE
+from test_scene_errors import BASE, write_crank_sketch
 
 
 def polygon(cx: float, cy: float, r: float, n: int, turn: float = 0.0) -> list[tuple[float, float]]:
@@ -95,6 +95,28 @@ def test_a_scene_reads_a_unitless_sketch_with_the_links_or_the_scenes_units(tmp_
         scene_path.write_text(textwrap.dedent(text))
         crank = load_scene(scene_path).links["crank"]
         assert np.abs(crank.joints - [[0.0, 0.0], [0.02, 0.0]]).max() <= 1e-9
+
+
+def test_a_scenes_units_fill_in_unitless_sketches_but_never_override_a_declared_unit(tmp_path):
+    # --units overrides $INSUNITS (the report says so); a scene's units are for unitless sketches,
+    # so one disagreeing with the sketch's $INSUNITS (mm) is refused, not applied.
+    write_crank_sketch(tmp_path / "crank.dxf")
+    text = 'units = "in"\n' + BASE.replace(
+        "[links.crank]\njoints = [[0.0, 0.0], [0.02, 0.0]]", '[links.crank]\nsketch = "crank.dxf"\nlayer = "crank"')
+    (tmp_path / "scene.toml").write_text(textwrap.dedent(text))
+    with pytest.raises(SceneError, match=r"crank.dxf: the file declares its units as mm \(\$INSUNITS\) but units 'in'"):
+        load_scene(tmp_path / "scene.toml")
+    assert read_sketch(tmp_path / "crank.dxf", units="in").units_source == (
+        "--units in, overriding the file's $INSUNITS millimeters")
+
+
+def test_units_given_override_a_csv_headers_units_and_say_so(tmp_path):
+    rows = ["# linkstress-sketch v1 units=cm"] + [f"line, {a}, {b}, {c}, {d}" for a, b, c, d in
+                                                   ((0, 0, 2, 0), (2, 0, 2, 1), (2, 1, 0, 1), (0, 1, 0, 0))]
+    (tmp_path / "bar.csv").write_text("\n".join(rows) + "\n")
+    sketch = read_sketch(tmp_path / "bar.csv", units="mm")
+    assert sketch.units_source == "--units mm, overriding the file's header's units= centimeters"
+    assert sketch.link().outline.area == pytest.approx(2e-6, rel=1e-12)
 
 
 # -- the regular polygon rule --------------------------------------------------------------------------
