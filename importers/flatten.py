@@ -402,9 +402,8 @@ def spline_curve(spline) -> tuple[BSpline, float, float]:
     return BSpline(knots, np.column_stack([xy * w[:, None], w]), degree), float(knots[degree]), float(knots[len(xy)])
 
 
-def _evaluate(curve: BSpline, t: NDArray[np.float64]) -> NDArray[np.float64]:
-    h = curve(t)
-    return h[:, :2] / h[:, 2:3]
+_PROBE = 8
+"""Parameter steps per knot span at which the chords' sagittas are probed."""
 
 
 def _spline_vertices(spline, distance: float, limit: int,
@@ -414,22 +413,37 @@ def _spline_vertices(spline, distance: float, limit: int,
 
     Each knot span takes n equal parameter steps: the chords' sagittas (midpoint distances) at
     ``_PROBE`` steps, shrinking as 1 / n^2, give the n that brings the largest within ``distance``."""
-    curve, lo, hi = spline_curve(spline)
+    try:
+        curve, lo, hi = spline_curve(spline)
+    except ValueError as error:  # scipy refuses knots that decrease or do not fit the control points
+        raise SketchError(f"{describe(origin)} cannot be evaluated ({error}); redraw it or convert it to a polyline") from None
     breaks = np.unique(np.asarray(spline.knots(), float).clip(lo, hi))
     if len(breaks) < 2:
         return _evaluate(curve, np.array([lo])), np.empty(0)
-    probe = _parameters(breaks, np.full(len(breaks) - 1, _PROBE))
-    sagitta, _ = _sagittas(curve, probe)
+    if len(breaks) > limit:
+        raise _too_many(origin, distance)
+    sagitta, _ = _sagittas(curve, _parameters(breaks, np.full(len(breaks) - 1, _PROBE)))
+    if not np.isfinite(sagitta).all():
+        raise SketchError(f"{describe(origin)} cannot be evaluated (a weight of zero?); redraw it or convert it to a polyline")
     largest = np.abs(sagitta).reshape(-1, _PROBE).max(axis=1)
-    steps = np.maximum(np.ceil(_PROBE * np.sqrt(largest / distance)), 1).astype(np.intp)
-    if int(steps.sum()) + 1 > limit:
-        raise SketchError(
-            f"the splines up to {describe(origin)} need more than the {MAX_SPLINE_VERTICES:,} vertices all "
-            f"splines may take (chord tolerance {distance:.3g} drawing units); simplify them in CAD or convert "
-            "them to polylines"
-        )
-    sagitta, xy = _sagittas(curve, _parameters(breaks, steps))
+    steps = np.maximum(np.ceil(_PROBE * np.sqrt(largest / distance)), 1)
+    if steps.sum() + 1 > limit:
+        raise _too_many(origin, distance)
+    sagitta, xy = _sagittas(curve, _parameters(breaks, steps.astype(np.intp)))
     return xy, sagitta
+
+
+def _too_many(origin: Origin, distance: float) -> SketchError:
+    return SketchError(
+        f"the splines up to {describe(origin)} need more than the {MAX_SPLINE_VERTICES:,} vertices all "
+        f"splines may take (chord tolerance {distance:.3g} drawing units); simplify them in CAD or convert "
+        "them to polylines"
+    )
+
+
+def _evaluate(curve: BSpline, t: NDArray[np.float64]) -> NDArray[np.float64]:
+    h = curve(t)
+    return h[:, :2] / h[:, 2:3]
 
 
 def _parameters(breaks: NDArray[np.float64], steps: NDArray[np.intp]) -> NDArray[np.float64]:
@@ -440,19 +454,20 @@ def _parameters(breaks: NDArray[np.float64], steps: NDArray[np.intp]) -> NDArray
     return np.append(breaks[span] + width[span] * k / steps[span], breaks[-1])
 
 
-_PROBE = 8
-"""Parameter steps per knot span at which the chords' sagittas are probed."""
-
-
 def _sagittas(curve: BSpline, t: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """For the chords between the curve's points at ``t``: their signed sagittas (the curve's point
     at the middle parameter from the chord's midpoint, along its left normal); and the points."""
     xy = _evaluate(curve, t)
     middle = _evaluate(curve, (t[:-1] + t[1:]) / 2)
-    chord = xy[1:] - xy[:-1]
-    length = np.hypot(*chord.T)
-    normal = np.column_stack([-chord[:, 1], chord[:, 0]]) / np.where(length > 0, length, 1.0)[:, None]
+    _, normal = _chords(xy)
     return np.einsum("ij,ij->i", middle - (xy[1:] + xy[:-1]) / 2, normal), xy
+
+
+def _chords(xy: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Lengths and unit left normals of the chords between consecutive points (zero for a zero chord)."""
+    chord = np.diff(xy, axis=0)
+    length = np.hypot(*chord.T)
+    return length, np.column_stack([-chord[:, 1], chord[:, 0]]) / np.where(length > 0, length, 1.0)[:, None]
 
 
 def keep_area(xy: NDArray[np.float64], sagitta: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -461,11 +476,9 @@ def keep_area(xy: NDArray[np.float64], sagitta: NDArray[np.float64]) -> NDArray[
     interior vertex k moves along its two chords' mean normal by 2/3 of their sagittas' mean, weighted
     by length (a closed curve's first and last point, one vertex, alike; open ends stay on the curve).
     Every vertex stays within 2/3 of the largest sagitta of the curve."""
-    chord = np.diff(xy, axis=0)
-    length = np.hypot(*chord.T)
-    normal = np.column_stack([-chord[:, 1], chord[:, 0]]) / np.where(length > 0, length, 1.0)[:, None]
+    length, normal = _chords(xy)
     closed = len(xy) > 3 and np.array_equal(xy[0], xy[-1])
-    before = np.arange(-1, len(chord) - 1) if closed else np.arange(len(chord) - 1)
+    before = np.arange(-1, len(length) - 1) if closed else np.arange(len(length) - 1)
     after = before + 1
     mean = normal[before] + normal[after]
     size = np.hypot(*mean.T)
