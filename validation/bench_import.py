@@ -97,17 +97,19 @@ def spline_sheet(path: Path, parts: int = 90, edges: int = 13) -> int:
 
 
 SPLINE_CHILD = """
-import json, resource, sys, time
+import json, re, sys, time
 from linkstress.importers import read_sketch
 start = time.perf_counter()
 sketch = read_sketch(sys.argv[1])
 seconds = time.perf_counter() - start
 vertices = sum(len(l.outline.exterior.coords) + sum(len(r.coords) for r in l.outline.interiors) for l in sketch.links)
-peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+with open("/proc/self/status") as status:
+    peak = 1024 * int(re.search(r"VmHWM:\\s*(\\d+) kB", status.read())[1])
 print(json.dumps({"seconds": seconds, "peak_bytes": peak, "links": len(sketch.links), "vertices": vertices}))
 """
-"""The child: ``read_sketch`` of the sheet, timed without the interpreter's start and imports; ru_maxrss
-is in kB on Linux and counts the whole child (imports included)."""
+"""The child: ``read_sketch`` of the sheet, timed without the interpreter's start and imports; its peak
+resident memory is the kernel's high-water mark of its own address space (``VmHWM``, Linux), imports
+included. ``ru_maxrss`` would not do: Linux carries the parent's peak across ``exec`` into it."""
 
 
 def spline_sheet_run(path: Path) -> dict:
