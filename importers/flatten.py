@@ -167,11 +167,8 @@ def _lines(curves: CurveSet) -> Block:
         return _empty_block()
     ends = np.concatenate(curves.lines)
     n = len(ends)
-    return ends.reshape(-1, 2), np.full(n, 2, np.intp), np.zeros(n, bool), np.full((n, 3), np.nan), _shapes(n, circles.STRAIGHT)
-
-
-def _shapes(n: int, shape: str) -> NDArray[np.object_]:
-    return np.full(n, shape, dtype=object)
+    straight = np.full(n, circles.STRAIGHT, dtype=object)
+    return ends.reshape(-1, 2), np.full(n, 2, np.intp), np.zeros(n, bool), np.full((n, 3), np.nan), straight
 
 
 # -- conic arcs ------------------------------------------------------------------------------
@@ -237,7 +234,8 @@ def _circle_metadata(centre, major, minor, closed) -> tuple[NDArray[np.float64],
     skew = np.abs(np.einsum("ij,ij->i", major, minor)) / (a * b)
     unequal = np.maximum(np.abs(a - b) / np.maximum(a, b), skew)
     exact, equal = unequal <= 1e-12, unequal <= circles.EQUAL_AXES
-    shape = np.where(~equal, circles.CURVE, np.where(~closed, circles.ARC, np.where(exact, circles.CIRCLE, circles.ELLIPSE)))
+    full = np.where(exact, circles.CIRCLE, circles.ELLIPSE)
+    shape = np.where(~equal, circles.CURVE, np.where(closed, full, circles.ARC))
     return np.where(equal[:, None], np.column_stack([centre, (a + b) / 2]), np.nan), shape.astype(object)
 
 
@@ -416,7 +414,8 @@ def _spline_vertices(spline, distance: float, limit: int,
     try:
         curve, lo, hi = spline_curve(spline)
     except ValueError as error:  # scipy refuses knots that decrease or do not fit the control points
-        raise SketchError(f"{describe(origin)} cannot be evaluated ({error}); redraw it or convert it to a polyline") from None
+        raise SketchError(
+            f"{describe(origin)} cannot be evaluated ({error}); redraw it or convert it to a polyline") from None
     breaks = np.unique(np.asarray(spline.knots(), float).clip(lo, hi))
     if len(breaks) < 2:
         return _evaluate(curve, np.array([lo])), np.empty(0)
@@ -424,7 +423,8 @@ def _spline_vertices(spline, distance: float, limit: int,
         raise _too_many(origin, distance)
     sagitta, _ = _sagittas(curve, _parameters(breaks, np.full(len(breaks) - 1, _PROBE)))
     if not np.isfinite(sagitta).all():
-        raise SketchError(f"{describe(origin)} cannot be evaluated (a weight of zero?); redraw it or convert it to a polyline")
+        raise SketchError(
+            f"{describe(origin)} cannot be evaluated (a weight of zero?); redraw it or convert it to a polyline")
     largest = np.abs(sagitta).reshape(-1, _PROBE).max(axis=1)
     steps = np.maximum(np.ceil(_PROBE * np.sqrt(largest / distance)), 1)
     if steps.sum() + 1 > limit:
@@ -483,7 +483,8 @@ def keep_area(xy: NDArray[np.float64], sagitta: NDArray[np.float64]) -> NDArray[
     mean = normal[before] + normal[after]
     size = np.hypot(*mean.T)
     weight = length[before] + length[after]
-    shift = (2 / 3) * (length[before] * sagitta[before] + length[after] * sagitta[after]) / np.where(weight > 0, weight, 1.0)
+    weighted = length[before] * sagitta[before] + length[after] * sagitta[after]
+    shift = (2 / 3) * weighted / np.where(weight > 0, weight, 1.0)
     move = np.where(size[:, None] > 0, mean / np.where(size > 0, size, 1.0)[:, None], 0.0) * shift[:, None]
     out = xy.copy()
     if closed:

@@ -98,7 +98,8 @@ def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | Non
         return chosen, "given by the caller (--units or the scene's units)"
     if default is not None:
         return default
+    why = unsaid or f"{declared_by} is unitless"
     raise SketchError(
-        f"the file does not say its units ({unsaid or declared_by + ' is unitless'}): pass --units with the drawing's unit, e.g. "
-        "--units mm (mm, cm, m, in or ft), or set the scene's units"
+        f"the file does not say its units ({why}): pass --units with the drawing's unit, e.g. --units mm "
+        "(mm, cm, m, in or ft), or set the scene's units"
     )
