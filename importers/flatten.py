@@ -59,7 +59,7 @@ estimated from the chord tolerance and the arcs before any is made, and a settin
 
 MAX_SPLINE_VERTICES = 200_000
 """The most vertices all splines together may flatten to (a circle-like spline needs about 140 at the
-default tolerance; the 1,170 splines of ``validation.bench_import``'s sheet about 55,000)."""
+default tolerance; the 1,170 splines of ``validation.bench_import``'s sheet about 47,000)."""
 
 
 @dataclass(frozen=True)
@@ -87,7 +87,7 @@ class Pieces:
 
 @dataclass(frozen=True)
 class Tolerance:
-    """Chord tolerances: ``relative`` x each arc's radius (each spline's size), capped at ``cap`` [drawing units]."""
+    """Chord tolerances: ``relative`` x each arc's radius (x each spline's size), at most ``cap`` [drawing units]."""
 
     relative: float
     cap: float
