@@ -33,6 +33,7 @@ from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
 from linkstress.errors import SketchError
+from linkstress.importers.circles import with_circle
 from linkstress.importers.chaining import Ends, Report, Rings, chain, close_pairs, closed_rings
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.primitives import Origin
@@ -48,7 +49,8 @@ class Loop:
 
     ``pieces``: indices of the curves it is made of; ``gap``: the largest gap closed in it and
     ``gap_at`` where (None if none); ``gaps``: how many gaps above rounding were closed;
-    ``circle``: (cx, cy, r) when every piece is an arc of one circle, else None.
+    ``circle``: (cx, cy, r) when every piece is an arc of one circle, else None; ``circle_rule``:
+    the rule that found it (:mod:`.circles`, which may also find a circle the pieces do not carry).
     """
 
     xy: NDArray[np.float64]
@@ -58,6 +60,7 @@ class Loop:
     gap_at: tuple[float, float] | None
     gaps: int
     circle: tuple[float, float, float] | None
+    circle_rule: str | None = None
 
 
 @dataclass(frozen=True)
@@ -135,7 +138,7 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
     chained, open_problems, left_out = chain(pieces, ends, tolerance, rounding, report, layer)
     problems += open_problems
     rings = Rings.concatenate(closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance), chained)
-    loops = _loops(rings, rounding, report, fixes) if len(rings) else []
+    loops = [with_circle(loop, pieces) for loop in _loops(rings, rounding, report, fixes)] if len(rings) else []
     loops = _drop_repeated_loops(loops, tolerance, report, fixes)
     return loops, _within_open(loops, pieces, left_out, report, layer, problems)
 

@@ -41,8 +41,9 @@ _VERTEX_SPLINE_FRAME = 16
 _SUPPORTED = {"LINE", "POINT", "CIRCLE", "ARC", "ELLIPSE", "LWPOLYLINE", "POLYLINE", "SPLINE", "INSERT"}
 
 
-def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
-    """The curves and points of the DXF file ``path`` (its bytes ``data``); ``units`` for a unitless file."""
+def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = True) -> RawSketch:
+    """The curves and points of the DXF file ``path`` (its bytes ``data``) in ``units`` if given, else
+    in $INSUNITS; ``override_units`` False refuses ``units`` that disagree with $INSUNITS instead."""
     fixes: list[str] = []
     if data.startswith(_BINARY):
         doc, simple = _ezdxf_only(path, fixes, lambda: ezdxf.readfile(path))
@@ -54,7 +55,7 @@ def read_dxf(path: Path, data: bytes, units: str | None) -> RawSketch:
     else:
         doc, simple = _read_text(path, data, fixes)
     try:
-        unit, source = _unit(doc if _has_header(data) else None, units)
+        unit, source = _unit(doc, _has_header(data), units, override_units)
         curves = CurveSet()
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
@@ -73,16 +74,19 @@ def _has_header(data: bytes) -> bool:
     return re.search(rb"(?:^|\n)[ \t]*2[ \t]*\r?\n[ \t]*HEADER[ \t]*\r?\n", data) is not None
 
 
-def _unit(doc, units: str | None):
-    """The drawing's unit: $INSUNITS of ``doc``'s header (None: the file has none), else ``units``."""
-    code = 0 if doc is None else _insunits(doc)
+def _unit(doc, has_header: bool, units: str | None, override: bool):
+    """The drawing's unit and where it came from: ``units`` if given, else $INSUNITS of ``doc``'s
+    header. A file without a HEADER section (OpenSCAD's exports) is unitless: ezdxf would fill in
+    its default, metres, which the file never said."""
+    code = _insunits(doc) if has_header else 0
     declared = unit_from_insunits(code)
-    if code and declared is None:
+    if code and declared is None and units is None:
         raise SketchError(
             f"$INSUNITS = {code} ({insunits_label(code)}) has no conversion to metres; "
-            "save the drawing in mm, cm, m, in or ft"
+            "save the drawing in mm, cm, m, in or ft, or pass its unit, e.g. --units mm"
         )
-    return choose_unit(declared, "$INSUNITS", units, default=None)
+    unsaid = None if has_header else "it has no HEADER section, so no $INSUNITS"
+    return choose_unit(declared, "$INSUNITS", units, default=None, unsaid=unsaid, override=override)
 
 
 def _recover(path: Path, fixes: list[str]):

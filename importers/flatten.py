@@ -20,22 +20,30 @@ has its centroid and polar moment within 5e-7 relative, where an inscribed polyg
 affine image of its major circle (scaling the minor direction by b/a <= 1), so the same rule with
 r = a keeps it within s and preserves its area too.
 
-Splines have no closed-form area: they are flattened by ezdxf's adaptive B-spline subdivision
-(``BSpline.flattening``, evaluating the spline itself, weights included) to a chord distance of
-``SPLINE_SAGITTA`` x the drawing's size.
+Splines are evaluated from the B-spline itself (weights included) with scipy, vectorised: each knot
+span takes equal parameter steps, as many as bring the chords' sagittas within the relative tolerance
+x the spline's own size (the diagonal of its control points' box), capped like arcs; the interior
+vertices then move off the curve by 2/3 of their chords' sagittas so that the polygon keeps the
+curve's area as arcs do (a parabolic segment holds 2/3 of chord x sagitta). A tolerance of 1e-7 of the
+drawing's size instead, flattened by ezdxf in Python, made a sheet of 1,176 small splines take 148 s
+and 545 MB, only to be refused at ``MAX_SPLINE_VERTICES``.
+
+Each piece also says what it is as far as circles go (:mod:`.circles`): straight, an arc or a
+circle, an ellipse with equal axes, a closed spline on a circle, or another curve.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.interpolate import BSpline
 
 from linkstress.curves import MIN_SEGMENTS_PER_TURN
 from linkstress.errors import SketchError
+from linkstress.importers import circles
 from linkstress.importers.primitives import CurveSet, Origin, Polyline, bulge_arcs, describe
 
 RELATIVE_SAGITTA = 1e-4
@@ -45,16 +53,13 @@ DRAWING_SAGITTA = 1e-5
 """Cap on any arc's chord tolerance, as a fraction of the drawing's size (bounding-box diagonal):
 it only binds for arcs flatter than a tenth of the drawing, which would otherwise stray from the curve."""
 
-SPLINE_SAGITTA = 1e-7
-"""Chord tolerance of splines, as a fraction of the drawing's size."""
-
 MAX_VERTICES = 5_000_000
 """The most vertices a sketch may flatten to (80 MB of coordinates, seconds to chain): the count is
 estimated from the chord tolerance and the arcs before any is made, and a setting asking for more is refused."""
 
 MAX_SPLINE_VERTICES = 200_000
-"""The most vertices all splines together may flatten to: ezdxf subdivides them in Python, about
-25 us a vertex, so this bounds their time to about 5 s (a circle-like spline needs about 6,000)."""
+"""The most vertices all splines together may flatten to (a circle-like spline needs about 140 at the
+default tolerance; the 1,170 splines of ``validation.bench_import``'s sheet about 47,000)."""
 
 
 @dataclass(frozen=True)
@@ -62,13 +67,16 @@ class Pieces:
     """Flattened curves, one piece per curve, in :meth:`CurveSet.curve_origins` order (drawing units).
 
     Piece k's vertices are ``xy[start[k]:start[k + 1]]``; a closed piece does not repeat its first
-    vertex. ``circle[k]`` is (cx, cy, r) when the piece is a circle or an arc of one, else NaN.
+    vertex. ``circle[k]`` is (cx, cy, r) when the piece is a circle or an arc of one (an ellipse with
+    equal axes, a closed spline on a circle), else NaN; ``shape[k]`` is one of :mod:`.circles`'
+    piece shapes (``STRAIGHT``, ``ARC``, ``CIRCLE``, ``ELLIPSE``, ``SPLINE``, ``CURVE``).
     """
 
     xy: NDArray[np.float64]
     start: NDArray[np.intp]
     closed: NDArray[np.bool_]
     circle: NDArray[np.float64]
+    shape: NDArray[np.object_]
 
     def __len__(self) -> int:
         return len(self.closed)
@@ -79,18 +87,17 @@ class Pieces:
 
 @dataclass(frozen=True)
 class Tolerance:
-    """Chord tolerances: ``relative`` x each arc's radius, capped at ``cap`` [drawing units]; splines ``spline``."""
+    """Chord tolerances: ``relative`` x each arc's radius (x each spline's size), at most ``cap`` [drawing units]."""
 
     relative: float
     cap: float
-    spline: float
 
     @classmethod
     def for_size(cls, size: float, relative: float | None = None) -> "Tolerance":
         rel = RELATIVE_SAGITTA if relative is None else relative
         if not (math.isfinite(rel) and 0 < rel < 0.5):
             raise SketchError(f"the chord tolerance (--sagitta) must be a fraction of the radius in (0, 0.5), got {rel!r}")
-        return cls(rel, DRAWING_SAGITTA * size, SPLINE_SAGITTA * size)
+        return cls(rel, DRAWING_SAGITTA * size)
 
 
 def flatten(curves: CurveSet, tolerance: Tolerance) -> Pieces:
@@ -117,6 +124,7 @@ def flatten(curves: CurveSet, tolerance: Tolerance) -> Pieces:
         np.concatenate([[0], np.cumsum(counts)]).astype(np.intp),
         np.concatenate([b[2] for b in blocks]).astype(bool),
         np.concatenate([b[3] for b in blocks]).reshape(-1, 3),
+        np.concatenate([b[4] for b in blocks]).astype(object),
     )
 
 
@@ -146,11 +154,12 @@ def _round_up(value: float) -> float:
     return math.ceil(value / scale) * scale
 
 
-Block = tuple[NDArray[np.float64], NDArray[np.intp], NDArray[np.bool_], NDArray[np.float64]]
+Block = tuple[NDArray[np.float64], NDArray[np.intp], NDArray[np.bool_], NDArray[np.float64], NDArray[np.object_]]
+"""Vertices, vertex count per piece, closed, circle and shape per piece (:class:`Pieces`' columns)."""
 
 
 def _empty_block() -> Block:
-    return np.empty((0, 2)), np.empty(0, np.intp), np.empty(0, bool), np.empty((0, 3))
+    return np.empty((0, 2)), np.empty(0, np.intp), np.empty(0, bool), np.empty((0, 3)), np.empty(0, object)
 
 
 def _lines(curves: CurveSet) -> Block:
@@ -158,7 +167,8 @@ def _lines(curves: CurveSet) -> Block:
         return _empty_block()
     ends = np.concatenate(curves.lines)
     n = len(ends)
-    return ends.reshape(-1, 2), np.full(n, 2, np.intp), np.zeros(n, bool), np.full((n, 3), np.nan)
+    straight = np.full(n, circles.STRAIGHT, dtype=object)
+    return ends.reshape(-1, 2), np.full(n, 2, np.intp), np.zeros(n, bool), np.full((n, 3), np.nan), straight
 
 
 # -- conic arcs ------------------------------------------------------------------------------
@@ -217,11 +227,16 @@ def _on_conic(centre, major, minor, t, scale) -> NDArray[np.float64]:
     return centre + scale * (c[:, None] * major + s[:, None] * minor)
 
 
-def _circle_metadata(centre, major, minor) -> NDArray[np.float64]:
-    radius = np.hypot(*major.T)
-    circular = (np.abs(np.hypot(*minor.T) - radius) <= 1e-12 * radius) & (
-        np.abs(np.einsum("ij,ij->i", major, minor)) <= 1e-12 * radius * radius)
-    return np.where(circular[:, None], np.column_stack([centre, radius]), np.nan)
+def _circle_metadata(centre, major, minor, closed) -> tuple[NDArray[np.float64], NDArray[np.object_]]:
+    """Circles (cx, cy, r) and shapes of conics: a circle when its axes are perpendicular and of equal
+    length to rounding (1e-12), an ellipse with equal axes when within ``circles.EQUAL_AXES``."""
+    a, b = np.hypot(*major.T), np.hypot(*minor.T)
+    skew = np.abs(np.einsum("ij,ij->i", major, minor)) / (a * b)
+    unequal = np.maximum(np.abs(a - b) / np.maximum(a, b), skew)
+    exact, equal = unequal <= 1e-12, unequal <= circles.EQUAL_AXES
+    full = np.where(exact, circles.CIRCLE, circles.ELLIPSE)
+    shape = np.where(~equal, circles.CURVE, np.where(closed, full, circles.ARC))
+    return np.where(equal[:, None], np.column_stack([centre, (a + b) / 2]), np.nan), shape.astype(object)
 
 
 def _conics(rows: NDArray[np.float64], n: NDArray[np.intp]) -> Block:
@@ -246,7 +261,7 @@ def _conics(rows: NDArray[np.float64], n: NDArray[np.intp]) -> Block:
         m = n[closed]
         slots = np.repeat(first[closed], m) + (np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m))
         out[slots] = closed_vertices(centre[closed], major[closed], minor[closed], start[closed], sweep[closed], m)
-    return out, counts, closed, _circle_metadata(centre, major, minor)
+    return out, counts, closed, *_circle_metadata(centre, major, minor, closed)
 
 
 # -- polylines with bulges ---------------------------------------------------------------------
@@ -317,7 +332,9 @@ def _polylines(polys: list[Polyline], segments: _Segments, steps: NDArray[np.int
     last_vertex = np.array([p.vertices[-1] for p in polys])
     out[(poly_first + counts - 1)[~closed]] = last_vertex[~closed]
     circle = np.array([_polyline_circle(p) for p in polys]).reshape(-1, 3)
-    return out, counts, closed, circle
+    straight = np.array([not p.bulges.any() and p.circle is None for p in polys])
+    shape = np.where(straight, circles.STRAIGHT, np.where(np.isnan(circle[:, 2]), circles.CURVE, circles.CIRCLE))
+    return out, counts, closed, circle, shape.astype(object)
 
 
 def _polyline_circle(p: Polyline) -> tuple[float, float, float]:
@@ -337,29 +354,142 @@ def _polyline_circle(p: Polyline) -> tuple[float, float, float]:
 
 
 def _splines(curves: CurveSet, tolerance: Tolerance) -> Block:
+    """Splines flattened within ``tolerance.relative`` x their own size (capped at ``tolerance.cap``);
+    a closed one whose points lie on a circle (:func:`circles.on_circle`) carries it."""
     if not curves.splines:
         return _empty_block()
-    parts = []
+    parts, found = [], []
     left = MAX_SPLINE_VERTICES
     for spline, origin in zip(curves.splines, curves.origins["splines"]):
-        parts.append(_spline_vertices(spline, tolerance.spline, left, origin))
-        left -= len(parts[-1])
+        xy, sagitta = _spline_vertices(spline, spline_chord(spline, tolerance), left, origin)
+        left -= len(xy)
+        found.append(_spline_circle(xy))
+        parts.append(keep_area(xy, sagitta))
     counts = np.array([len(p) for p in parts], np.intp)
-    n = len(parts)
-    return np.concatenate(parts), counts, np.zeros(n, bool), np.full((n, 3), np.nan)
+    circle = np.array([(np.nan,) * 3 if c is None else c for c in found], float).reshape(-1, 3)
+    shape = np.array([circles.CURVE if c is None else circles.SPLINE for c in found], dtype=object)
+    return np.concatenate(parts), counts, np.zeros(len(parts), bool), circle, shape
 
 
-def _spline_vertices(spline, distance: float, limit: int, origin: Origin) -> NDArray[np.float64]:
-    """ezdxf's adaptive flattening of ``spline`` to chord ``distance``, refused beyond ``limit`` vertices.
+def spline_chord(spline, tolerance: Tolerance) -> float:
+    """The chord tolerance of ``spline`` [drawing units]: ``tolerance.relative`` x the diagonal of its
+    control points' box (the curve lies in their convex hull), at most ``tolerance.cap``."""
+    xy = np.array([(p[0], p[1]) for p in spline.control_points], float).reshape(-1, 2)
+    size = float(np.hypot(*np.ptp(xy, axis=0)))
+    return min(tolerance.relative * size, tolerance.cap) if size > 0 else tolerance.cap
 
-    ezdxf subdivides until every chord is within ``distance``, with no bound on the count: the
-    vertices are taken lazily and counted, so a spline that needs too many costs at most ``limit``."""
-    points = spline.flattening(distance, segments=4 * max(spline.count, 1))
-    taken = [(p.x, p.y) for p in itertools.islice(points, limit + 1)]
-    if len(taken) > limit:
+
+def _spline_circle(xy: NDArray[np.float64]) -> tuple[float, float, float] | None:
+    """The circle of a flattened spline whose ends meet and whose points go once around a circle."""
+    if len(xy) < 4:
+        return None
+    ring = xy[:-1]
+    circle = circles.on_circle(ring)
+    if circle is None or np.hypot(*(xy[-1] - xy[0])) > circles.CIRCLE_FIT * circle[2]:
+        return None
+    return circle
+
+
+def spline_curve(spline) -> tuple[BSpline, float, float]:
+    """``spline`` (ezdxf's ``BSpline``) as scipy's B-spline of homogeneous points (w x, w y, w),
+    weights included, and its parameter range (the knots at degree and at the control point count)."""
+    knots = np.asarray(spline.knots(), float)
+    xy = np.array([(p[0], p[1]) for p in spline.control_points], float).reshape(-1, 2)
+    w = np.asarray(spline.weights(), float) if spline.is_rational else np.ones(len(xy))
+    degree = spline.degree
+    return BSpline(knots, np.column_stack([xy * w[:, None], w]), degree), float(knots[degree]), float(knots[len(xy)])
+
+
+_PROBE = 8
+"""Parameter steps per knot span at which the chords' sagittas are probed."""
+
+
+def _spline_vertices(spline, distance: float, limit: int,
+                     origin: Origin) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Points on ``spline`` whose chords lie within ``distance`` [drawing units] of it, and the chords'
+    sagittas; refused beyond ``limit`` points.
+
+    Each knot span takes n equal parameter steps: the chords' sagittas (midpoint distances) at
+    ``_PROBE`` steps, shrinking as 1 / n^2, give the n that brings the largest within ``distance``."""
+    try:
+        curve, lo, hi = spline_curve(spline)
+    except ValueError as error:  # scipy refuses knots that decrease or do not fit the control points
         raise SketchError(
-            f"the splines up to {describe(origin)} need more than the {MAX_SPLINE_VERTICES:,} vertices all "
-            f"splines may take (chord tolerance {distance:.3g} drawing units); simplify them in CAD or convert "
-            "them to polylines"
-        )
-    return np.array(taken, float).reshape(-1, 2)
+            f"{describe(origin)} cannot be evaluated ({error}); redraw it or convert it to a polyline") from None
+    breaks = np.unique(np.asarray(spline.knots(), float).clip(lo, hi))
+    if len(breaks) < 2:
+        return _evaluate(curve, np.array([lo])), np.empty(0)
+    if len(breaks) > limit:
+        raise _too_many(origin, distance)
+    sagitta, _ = _sagittas(curve, _parameters(breaks, np.full(len(breaks) - 1, _PROBE)))
+    if not np.isfinite(sagitta).all():
+        raise SketchError(
+            f"{describe(origin)} cannot be evaluated (a weight of zero?); redraw it or convert it to a polyline")
+    largest = np.abs(sagitta).reshape(-1, _PROBE).max(axis=1)
+    steps = np.maximum(np.ceil(_PROBE * np.sqrt(largest / distance)), 1)
+    if steps.sum() + 1 > limit:
+        raise _too_many(origin, distance)
+    sagitta, xy = _sagittas(curve, _parameters(breaks, steps.astype(np.intp)))
+    return xy, sagitta
+
+
+def _too_many(origin: Origin, distance: float) -> SketchError:
+    return SketchError(
+        f"the splines up to {describe(origin)} need more than the {MAX_SPLINE_VERTICES:,} vertices all "
+        f"splines may take (chord tolerance {distance:.3g} drawing units); simplify them in CAD or convert "
+        "them to polylines"
+    )
+
+
+def _evaluate(curve: BSpline, t: NDArray[np.float64]) -> NDArray[np.float64]:
+    h = curve(t)
+    return h[:, :2] / h[:, 2:3]
+
+
+def _parameters(breaks: NDArray[np.float64], steps: NDArray[np.intp]) -> NDArray[np.float64]:
+    """Parameters splitting span i (``breaks[i]`` to ``breaks[i + 1]``) into ``steps[i]`` equal steps."""
+    width = np.diff(breaks)
+    span = np.repeat(np.arange(len(width)), steps)
+    k = np.arange(len(span)) - np.repeat(np.cumsum(steps) - steps, steps)
+    return np.append(breaks[span] + width[span] * k / steps[span], breaks[-1])
+
+
+def _sagittas(curve: BSpline, t: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """For the chords between the curve's points at ``t``: their signed sagittas (the curve's point
+    at the middle parameter from the chord's midpoint, along its left normal); and the points."""
+    xy = _evaluate(curve, t)
+    middle = _evaluate(curve, (t[:-1] + t[1:]) / 2)
+    _, normal = _chords(xy)
+    return np.einsum("ij,ij->i", middle - (xy[1:] + xy[:-1]) / 2, normal), xy
+
+
+def _chords(xy: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Lengths and unit left normals of the chords between consecutive points (zero for a zero chord)."""
+    chord = np.diff(xy, axis=0)
+    length = np.hypot(*chord.T)
+    return length, np.column_stack([-chord[:, 1], chord[:, 0]]) / np.where(length > 0, length, 1.0)[:, None]
+
+
+def keep_area(xy: NDArray[np.float64], sagitta: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Points ``xy`` on a curve, whose chords have signed ``sagitta`` (one fewer), moved so that the
+    polygon keeps the curve's area, as arcs do: a parabolic segment holds 2/3 of chord x sagitta, so
+    interior vertex k moves along its two chords' mean normal by 2/3 of their sagittas' mean, weighted
+    by length (a closed curve's first and last point, one vertex, alike; open ends stay on the curve).
+    Every vertex stays within 2/3 of the largest sagitta of the curve."""
+    length, normal = _chords(xy)
+    closed = len(xy) > 3 and np.array_equal(xy[0], xy[-1])
+    before = np.arange(-1, len(length) - 1) if closed else np.arange(len(length) - 1)
+    after = before + 1
+    mean = normal[before] + normal[after]
+    size = np.hypot(*mean.T)
+    weight = length[before] + length[after]
+    weighted = length[before] * sagitta[before] + length[after] * sagitta[after]
+    shift = (2 / 3) * weighted / np.where(weight > 0, weight, 1.0)
+    move = np.where(size[:, None] > 0, mean / np.where(size > 0, size, 1.0)[:, None], 0.0) * shift[:, None]
+    out = xy.copy()
+    if closed:
+        out[:-1] += move
+        out[-1] = out[0]
+    else:
+        out[1:-1] += move
+    return out

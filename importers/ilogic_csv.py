@@ -48,13 +48,14 @@ _POINT = re.compile(r"point(?:$|[\s_\-].*)", re.IGNORECASE)
 _V1_FIELDS = {"line": 4, "arc": 5, "circle": 3, "ellipse": 7, "point": 2}
 
 
-def read_csv(path: Path, data: bytes, units: str | None) -> RawSketch:
-    """The curves and points of an iLogic CSV sketch (either format); ``units`` if the file has none."""
+def read_csv(path: Path, data: bytes, units: str | None, override_units: bool = True) -> RawSketch:
+    """The curves and points of an iLogic CSV sketch (either format) in ``units`` if given, else its
+    own; ``override_units`` False refuses ``units`` that disagree with the header's instead."""
     lines = _decode(data).replace("\r\n", "\n").replace("\r", "\n").split("\n")
     separator = ";" if any(";" in line for line in lines[1:]) else ","
     header = _HEADER.match(lines[0].strip())
     if header:
-        return _read_v1(lines, header, separator, units)
+        return _read_v1(lines, header, separator, units, override_units)
     return _read_old(lines, separator, units)
 
 
@@ -194,7 +195,7 @@ def _fit_circle(xy: np.ndarray) -> tuple[float, float, float] | None:
 # -- linkstress-sketch v1 ---------------------------------------------------------------------------
 
 
-def _read_v1(lines: list[str], header: re.Match, separator: str, units: str | None) -> RawSketch:
+def _read_v1(lines: list[str], header: re.Match, separator: str, units: str | None, override_units: bool) -> RawSketch:
     if header[1] != "1":
         raise SketchError(f"line 1: linkstress-sketch v{header[1]} is not a version this linkstress reads (v1)")
     declared = None
@@ -235,7 +236,7 @@ def _read_v1(lines: list[str], header: re.Match, separator: str, units: str | No
         found[kind].append(values)
         where[kind].append((kind, None, None, line))
     _add_v1(curves, found, where)
-    unit, source = choose_unit(declared, "the header's units=", units, default=None)
+    unit, source = choose_unit(declared, "the header's units=", units, default=None, override=override_units)
     return RawSketch(curves, unit, source, "linkstress-sketch v1 CSV", {}, (), V1_GAP_TOLERANCE)
 
 

@@ -127,11 +127,11 @@ class CurveSet:
 
     def extents(self) -> tuple[NDArray[np.float64], list[Origin]]:
         """A box (minx, miny, maxx, maxy) per curve, in :meth:`curve_origins` order, then one per point,
-        with their origins; conics and splines conservatively (the box of the axes, the control points)."""
+        with their origins. Arcs and bulges by their own extent (ends and the axis extremes they pass),
+        so a flat arc of a large circle counts only as long as it is; splines by their control points
+        (the curve lies in their convex hull)."""
         boxes = [np.hstack([np.minimum(c[:, 0:2], c[:, 2:4]), np.maximum(c[:, 0:2], c[:, 2:4])]) for c in self.lines]
-        for c in self.conics:
-            half = np.hypot(c[:, 2:4], c[:, 4:6])  # (|major_x, minor_x|, |major_y, minor_y|)
-            boxes.append(np.hstack([c[:, :2] - half, c[:, :2] + half]))
+        boxes += [arc_boxes(c[:, 0:2], c[:, 2:4], c[:, 4:6], c[:, 6], c[:, 7]) for c in self.conics]
         shapes = [np.vstack([p.vertices, _bulge_extent(p)]) if p.bulges.any() else p.vertices for p in self.polylines]
         shapes += [np.asarray([(v[0], v[1]) for v in s.control_points], float).reshape(-1, 2) for s in self.splines]
         if shapes:
@@ -142,7 +142,7 @@ class CurveSet:
         return np.concatenate(boxes or [np.empty((0, 4))]).reshape(-1, 4), self.curve_origins() + self.origins["points"]
 
     def bounds(self) -> tuple[float, float, float, float] | None:
-        """A box (minx, miny, maxx, maxy) holding every curve (conics and splines conservatively); None if none."""
+        """A box (minx, miny, maxx, maxy) holding every curve (splines conservatively); None if none."""
         return box_of(self.extents()[0][:self.curve_count()])
 
 
@@ -174,8 +174,26 @@ def bulge_arcs(p0: NDArray[np.float64], p1: NDArray[np.float64], bulge: NDArray[
     return centre, radius, start, sweep
 
 
+def arc_boxes(centre: NDArray[np.float64], major: NDArray[np.float64], minor: NDArray[np.float64],
+              start: NDArray[np.float64], sweep: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Boxes (minx, miny, maxx, maxy) of conic arcs centre + cos t major + sin t minor, t from
+    ``start`` through signed ``sweep`` [rad]: their ends and the extremes of x and y they pass.
+
+    x(t) is extreme where its derivative -major_x sin t + minor_x cos t vanishes, at
+    t = atan2(minor_x, major_x) and that plus pi; likewise y."""
+    tx, ty = np.arctan2(minor[:, 0], major[:, 0]), np.arctan2(minor[:, 1], major[:, 1])
+    t = np.column_stack([tx, tx + math.pi, ty, ty + math.pi, start, start + sweep])
+    ahead = np.where(sweep[:, None] >= 0, np.mod(t - start[:, None], 2 * math.pi),
+                     np.mod(start[:, None] - t, 2 * math.pi))
+    passed = ahead <= np.abs(sweep)[:, None]
+    passed[:, 4:] = True
+    xy = centre[:, None, :] + np.cos(t)[:, :, None] * major[:, None, :] + np.sin(t)[:, :, None] * minor[:, None, :]
+    xy = np.where(passed[:, :, None], xy, xy[:, 4:5, :])  # an extreme not passed: the start instead
+    return np.hstack([xy.min(axis=1), xy.max(axis=1)])
+
+
 def _bulge_extent(p: Polyline) -> NDArray[np.float64]:
-    """Corners of boxes around the polyline's bulged segments (centre +- radius)."""
+    """Corners of the boxes of the polyline's bulged segments (:func:`arc_boxes`)."""
     v = p.vertices
     nxt = np.roll(v, -1, axis=0)
     curved = (p.bulges != 0) & np.any(v != nxt, axis=1)
@@ -183,8 +201,10 @@ def _bulge_extent(p: Polyline) -> NDArray[np.float64]:
         curved[-1] = False
     if not curved.any():
         return np.empty((0, 2))
-    centre, radius, _, _ = bulge_arcs(v[curved], nxt[curved], p.bulges[curved])
-    return np.concatenate([centre - radius[:, None], centre + radius[:, None]])
+    centre, radius, start, sweep = bulge_arcs(v[curved], nxt[curved], p.bulges[curved])
+    zeros = np.zeros_like(radius)
+    box = arc_boxes(centre, np.column_stack([radius, zeros]), np.column_stack([zeros, radius]), start, sweep)
+    return np.concatenate([box[:, :2], box[:, 2:]])
 
 
 def _finite(values: ArrayLike, width: int | None, origins: list[Origin]) -> NDArray[np.float64]:

@@ -59,7 +59,8 @@ class ImportedLink:
     ``outline``: shapely Polygon (shell counter-clockwise, holes clockwise); ``joints`` (n, 2) sorted
     by x then y, each found by the rule in ``joint_rules`` ("point" or "hole centre");
     ``hole_diameters_m``: per hole of ``outline.interiors``, its diameter when it is a circle, else
-    None; ``largest_gap_m``: the largest gap closed while chaining its curves.
+    None, and ``hole_rules`` the rule that found it a circle (:mod:`.circles`); ``largest_gap_m``: the
+    largest gap closed while chaining its curves.
     """
 
     name: str
@@ -69,6 +70,7 @@ class ImportedLink:
     joint_rules: tuple[str, ...]
     hole_diameters_m: tuple[float | None, ...]
     largest_gap_m: float
+    hole_rules: tuple[str | None, ...]
 
     def profile(self, thickness: float, material: Material | None = None, name: str | None = None) -> LinkProfile:
         """The link as a plate of ``thickness`` [m] of ``material``."""
@@ -135,10 +137,12 @@ class Sketch:
 
 def read_sketch(path: str | Path, units: str | None = None, tolerance: float | None = None,
                 sagitta: float | None = None, layers: Collection[str] | None = None,
-                exclude_layers: Collection[str] = ()) -> Sketch:
+                exclude_layers: Collection[str] = (), override_units: bool = True) -> Sketch:
     """Read the DXF or CSV sketch at ``path`` (by its suffix .dxf or .csv, else by its content).
 
-    ``units``: the unit of a file that does not say (DXF ``$INSUNITS`` 0, CSV without header units);
+    ``units``: the unit of a file that does not say (DXF ``$INSUNITS`` 0 or no HEADER, CSV without
+    header units), overriding one that does (``--units``) unless ``override_units`` is False (a
+    scene's ``units``: then a disagreement is refused);
     ``tolerance``: the endpoint gap tolerance as a fraction of the drawing's size (default 1e-4 for
     DXF and v1 CSV, 1e-2 for the old iLogic CSV); ``sagitta``: the chord tolerance of arcs as a
     fraction of each arc's radius (default 1e-4); ``layers``: read only these layers (None: all),
@@ -158,7 +162,8 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     notes: list[str] = []
     try:
         with library_notes(notes):
-            raw = read_dxf(path, data, units) if _is_dxf(path, data) else read_csv(path, data, units)
+            read = read_dxf if _is_dxf(path, data) else read_csv
+            raw = read(path, data, units, override_units)
             sketch = _build(path, raw, tolerance, sagitta, layers, exclude_layers)
     except SketchError as error:
         message = str(error) if raw is None else with_damage(str(error), raw.fixes)
@@ -310,7 +315,7 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], use_points
             names[k], layers[k], shapely.transform(polygon, lambda xy: xy / per_metre), joints_m,
             (rule,) * len(joints_m),
             tuple(2 * h.circle[2] / per_metre if h.circle is not None else None for h in outline.holes),
-            outline.largest_gap[0] / per_metre,
+            outline.largest_gap[0] / per_metre, tuple(h.circle_rule for h in outline.holes),
         ))
         count = sum(loop.gaps for loop in [outline.shell, *outline.holes])
         if count:

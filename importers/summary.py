@@ -26,12 +26,13 @@ def link_json(link: ImportedLink) -> dict:
     profile = link.profile(1.0)
     props = profile.area_properties
     holes = []
-    for ring, diameter in zip(link.outline.interiors, link.hole_diameters_m):
+    for ring, diameter, rule in zip(link.outline.interiors, link.hole_diameters_m, link.hole_rules):
         hole = Polygon(ring)
         holes.append({
             "centroid_m": [hole.centroid.x, hole.centroid.y],
             "area_m2": hole.area,
             "diameter_m": diameter,
+            "circle_rule": rule,
         })
     out = {
         "name": link.name,
@@ -111,10 +112,11 @@ def _holes(link: ImportedLink) -> str:
     n = len(link.hole_diameters_m)
     if not n:
         return "0"
-    diameters = [d for d in link.hole_diameters_m if d is not None]
+    circular = [(d, rule) for d, rule in zip(link.hole_diameters_m, link.hole_rules) if d is not None]
     text = f"{n}"
-    if diameters:
-        text += f" ({len(diameters)} circular, diameter {', '.join(f'{d:.6g}' for d in diameters)} m)"
+    if circular:
+        listed = ", ".join(f"{d:.6g} m ({rule})" for d, rule in circular)
+        text += f" ({len(circular)} circular, diameter {listed})"
     return text
 
 

@@ -72,25 +72,34 @@ def insunits_label(code: int) -> str:
 
 
 def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | None,
-                default: tuple[DrawingUnit, str] | None) -> tuple[DrawingUnit, str]:
-    """The unit of a sketch file and where it came from: the file's own (``declared``, found in
-    ``declared_by``) unless absent, then the caller's ``given`` name, then ``default`` (unit, reason).
+                default: tuple[DrawingUnit, str] | None, unsaid: str | None = None,
+                override: bool = True) -> tuple[DrawingUnit, str]:
+    """The unit of a sketch file and where it came from: the caller's ``given`` name, else the file's
+    own (``declared``, found in ``declared_by``), else ``default`` (unit, reason); ``unsaid`` says why
+    the file declares none (default: ``declared_by`` is unitless).
 
-    A file that declares a unit other than the one given is an error: one of them is wrong.
+    With ``override`` (``--units``) a given unit overrides a declared one (a drawing saved with the
+    wrong $INSUNITS is common) and the source says so: "--units mm, overriding the file's $INSUNITS
+    inches". Without (a scene's ``units``, meant for unitless sketches) a disagreement is an error:
+    one of them is wrong.
     """
     chosen = unit_named(given, "units") if given is not None else None
-    if declared is not None and chosen is not None and declared.code != chosen.code:
-        raise SketchError(
-            f"the file declares its units as {declared.name} ({declared_by}) but units {given!r} were given; "
-            "drop the units option or fix the drawing's units"
-        )
+    if chosen is not None and declared is not None and declared.code != chosen.code:
+        if not override:
+            raise SketchError(
+                f"the file declares its units as {declared.name} ({declared_by}) but units {given!r} were "
+                "given; drop the units or fix the drawing's units"
+            )
+        label = insunits_label(declared.code).lower()
+        return chosen, f"--units {chosen.name}, overriding the file's {declared_by.removeprefix('the ')} {label}"
     if declared is not None:
         return declared, declared_by
     if chosen is not None:
         return chosen, "given by the caller (--units or the scene's units)"
     if default is not None:
         return default
+    why = unsaid or f"{declared_by} is unitless"
     raise SketchError(
-        f"the file does not say its units ({declared_by} is unitless): pass --units (mm, cm, m, in or ft), "
-        "or set the scene's units"
+        f"the file does not say its units ({why}): pass --units with the drawing's unit, e.g. --units mm "
+        "(mm, cm, m, in or ft), or set the scene's units"
     )

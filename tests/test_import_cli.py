@@ -26,7 +26,7 @@ def test_import_prints_a_table_per_link(capsys):
     for name in ("crank", "coupler", "output", "ground"):
         assert f"link {name} (layer {name})" in out
     # crank: 1.2 x 0.5 m less two 20 mm holes = 0.6 - 2 pi 1e-4 = 0.599372 m^2
-    assert "0.599372" in out and "(1, 0) (point)" in out and "2 (2 circular, diameter 0.02, 0.02 m)" in out
+    assert "0.599372" in out and "(1, 0) (point)" in out and "2 (2 circular, diameter 0.02 m (circle), 0.02 m (circle))" in out
 
 
 def test_import_json_has_the_design_shape(tmp_path, capsys):

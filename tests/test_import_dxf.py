@@ -112,8 +112,12 @@ def test_every_curve_type_gives_the_exact_plate(tmp_path):
     assert np.abs(link.joints - [[0.0, 0.025], [0.1, 0.025]]).max() <= 1e-9
     assert link.joint_rules == (POINT_RULE, POINT_RULE)
     assert len(link.outline.interiors) == 4
-    # Circles (CIRCLE, bulge circle) are recognised as such; the ellipse and the spline are not.
-    assert sorted(d for d in link.hole_diameters_m if d is not None) == pytest.approx([0.01, 0.01], rel=1e-12)
+    # The CIRCLE, the bulge circle and the rational spline circle are circles, each by its rule; the
+    # ellipse (axes 15 and 8) is not.
+    found = sorted((rule, d) for d, rule in zip(link.hole_diameters_m, link.hole_rules) if d is not None)
+    assert [rule for rule, _ in found] == ["circle", "circle", "closed spline on a circle"]
+    assert [d for _, d in found] == pytest.approx([0.01, 0.01, 0.008], rel=1e-12)
+    assert link.hole_rules.count(None) == 1
 
 
 @pytest.mark.parametrize("code, name, metres", [(4, "mm", 1e-3), (5, "cm", 1e-2), (6, "m", 1.0), (1, "in", 0.0254), (2, "ft", 0.3048)])
@@ -140,11 +144,16 @@ def test_a_unitless_drawing_needs_units(tmp_path):
         read_sketch(path, units="furlong")
 
 
-def test_declared_units_and_given_units_must_agree(tmp_path):
-    doc = ezdxf.new("R2013", units=4)
+def test_given_units_override_the_declared_units_and_say_so(tmp_path):
+    doc = ezdxf.new("R2013", units=1)  # inches
     draw(doc.modelspace(), plate_entities())
-    with pytest.raises(SketchError, match=r"declares its units as mm \(\$INSUNITS\) but units 'in' were given"):
-        read_sketch(save(doc, tmp_path), units="in")
+    path = save(doc, tmp_path)
+    sketch = read_sketch(path, units="mm")
+    assert sketch.units == "mm"
+    assert sketch.units_source == "--units mm, overriding the file's $INSUNITS inches"
+    assert_matches(sketch.link().outline, scaled(stadium_plate(), 1e-3), REL, 0.15)
+    # Giving the unit the file declares is no override.
+    assert read_sketch(path, units="in").units_source == "$INSUNITS"
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
@@ -277,8 +286,9 @@ def test_a_link_without_points_takes_the_centres_of_its_circular_holes(tmp_path)
     recipes = [r for r in plate_entities() if r[0] != "point"]
     draw(doc.modelspace(), recipes)
     link = read_sketch(save(doc, tmp_path)).link()
-    assert np.abs(link.joints - [[0.0, 0.025], [0.1, 0.025]]).max() <= 1e-9
-    assert link.joint_rules == (HOLE_RULE, HOLE_RULE)
+    # The CIRCLE at x = 0, the spline circle at x = 75 and the bulge circle at x = 100 mm.
+    assert np.abs(link.joints - [[0.0, 0.025], [0.075, 0.025], [0.1, 0.025]]).max() <= 1e-9
+    assert link.joint_rules == (HOLE_RULE, HOLE_RULE, HOLE_RULE)
 
 
 def test_points_outside_every_outline_are_ignored_and_repeated_points_dropped(tmp_path):

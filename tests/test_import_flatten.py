@@ -1,5 +1,6 @@
-"""Flattening arcs, bulges and ellipses from their exact geometry: area-preserving vertices within the
-chord tolerance, exact ends, and a vertex count set by the tolerance relative to the radius."""
+"""Flattening arcs, bulges, ellipses and splines from their exact geometry: area-preserving vertices
+within the chord tolerance, exact ends, and a vertex count set by the tolerance relative to the radius
+(a spline's: to its own size)."""
 
 from __future__ import annotations
 
@@ -7,11 +8,13 @@ import math
 
 import numpy as np
 import pytest
+import shapely
+from ezdxf.math import BSpline, global_bspline_interpolation, rational_bspline_from_arc
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
-from linkstress.importers.flatten import Tolerance, flatten, segment_counts
+from linkstress.importers.flatten import Tolerance, flatten, segment_counts, spline_chord
 from linkstress.importers.primitives import CurveSet, Polyline, bulge_arcs
 
 ORIGIN = ("ARC", "1", "0", None)
@@ -47,9 +50,9 @@ def test_an_arc_keeps_its_ends_its_sector_area_and_the_chord_tolerance(radius, s
 
 def test_the_default_tolerance_gives_223_vertices_per_turn():
     # s = 1e-4 r: 2 acos(1 - 1e-4) = 0.028285 rad per step, so ceil(2 pi / 0.028285) = 223.
-    assert segment_counts(np.array([0.01, 1.0, 100.0]), np.full(3, 2 * math.pi), Tolerance(1e-4, 1.0, 1.0)).tolist() == [223, 223, 223]
+    assert segment_counts(np.array([0.01, 1.0, 100.0]), np.full(3, 2 * math.pi), Tolerance(1e-4, 1.0)).tolist() == [223, 223, 223]
     # A drawing-size cap binds for flat arcs: s = min(1e-4 x 100, 1e-3) = 1e-3 -> 703 per turn.
-    assert segment_counts(np.array([100.0]), np.array([2 * math.pi]), Tolerance(1e-4, 1e-3, 1.0)).tolist() == [703]
+    assert segment_counts(np.array([100.0]), np.array([2 * math.pi]), Tolerance(1e-4, 1e-3)).tolist() == [703]
 
 
 def test_a_circle_is_an_inflated_regular_polygon_with_its_area_and_centroid():
@@ -95,3 +98,58 @@ def test_an_ellipse_keeps_its_exact_parametric_sector_area(start, sweep):
     fan = Polygon(xy if pieces.closed[0] else np.vstack([[(0.0, 0.0)], xy])).area
     assert fan == pytest.approx(10.0 * abs(sweep) / 2, rel=1e-12)
     assert np.isnan(pieces.circle[0]).all()
+
+
+SPLINES = {
+    "rational circle r = 4": lambda: rational_bspline_from_arc(center=(1, 2), radius=4, start_angle=0, end_angle=360),
+    "cubic through 30 points of 3 sin x": lambda: global_bspline_interpolation(
+        [(x, 3 * math.sin(x)) for x in np.linspace(0, 4 * math.pi, 30)], degree=3),
+    "cubic zigzag": lambda: BSpline([(0, 0), (1, 5), (2, -5), (3, 5), (4, -5), (5, 0)], order=4),
+}
+
+
+@pytest.mark.parametrize("name", list(SPLINES))
+def test_a_spline_takes_a_few_hundred_vertices_within_its_chord_tolerance_of_the_exact_curve(name):
+    spline = SPLINES[name]()
+    curves = CurveSet()
+    curves.add_spline(spline, ("SPLINE", "1", "0", None))
+    # A drawing 1e6 across: the cap (1e-5 of it) leaves the tolerance 1e-4 x the spline's own size.
+    tolerance = Tolerance.for_size(1e6)
+    xy = flatten(curves, tolerance).vertices(0)
+    chord = spline_chord(spline, tolerance)
+    corners = np.array([(p[0], p[1]) for p in spline.control_points])
+    assert chord == pytest.approx(1e-4 * math.hypot(*np.ptp(corners, axis=0)), rel=1e-12)
+    assert len(xy) <= 300
+    # ezdxf's evaluation of the spline at 20,001 parameters is the exact curve: each of its points lies
+    # within the tolerance of the polyline, and each vertex within it of the curve (to the 20,001
+    # points' own chords, below 1e-7 of the tolerance here).
+    exact = np.array([(p.x, p.y) for p in spline.points(np.linspace(0, spline.max_t, 20_001))])
+    assert shapely.distance(shapely.LineString(xy), shapely.points(exact)).max() <= chord
+    assert shapely.distance(shapely.LineString(exact), shapely.points(xy)).max() <= chord
+    # An open spline's ends are its own; a closed one's first and last vertex stay one point.
+    if np.array_equal(exact[0], exact[-1]):
+        assert np.array_equal(xy[0], xy[-1])
+    else:
+        assert np.abs(xy[[0, -1]] - exact[[0, -1]]).max() <= 1e-9 * chord
+
+
+def test_the_benchmarks_spline_sheet_reads_each_part_keeping_the_splines_area(tmp_path):
+    import ezdxf
+
+    from linkstress.importers import HOLE_RULE, read_sketch
+    from linkstress.validation.bench_import import spline_sheet
+
+    assert spline_sheet(tmp_path / "sheet.dxf", parts=4) == 52
+    sketch = read_sketch(tmp_path / "sheet.dxf")
+    assert [link.name for link in sketch.links] == ["part0", "part1", "part2", "part3"]
+    msp = ezdxf.readfile(tmp_path / "sheet.dxf").modelspace()
+    for k, link in enumerate(sketch.links):
+        # The part's exact outline: its 13 splines evaluated by ezdxf at 20,000 steps each (their chords
+        # lose about 1e-9 of the area), less the 20 mm hole.
+        tools = [e.construction_tool() for e in msp.query(f'SPLINE[layer=="part{k}"]')]
+        exact = np.concatenate([[(p.x, p.y) for p in t.points(np.linspace(0, t.max_t, 20_001))][:-1] for t in tools])
+        area = Polygon(exact).area - math.pi * 100
+        assert link.outline.area == pytest.approx(area * 1e-6, rel=1e-6)
+        assert link.joint_rules == (HOLE_RULE,)
+        assert np.abs(link.joints - [[0.150 * k, 0.0]]).max() <= 1e-12
+        assert len(link.outline.exterior.coords) <= 13 * 300

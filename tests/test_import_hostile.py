@@ -327,7 +327,8 @@ def test_a_dxf_without_a_header_section_is_read_with_given_units(tmp_path):
                     for a, b, c, d in ((0, 0, 2, 0), (2, 0, 2, 1), (2, 1, 0, 1), (0, 1, 0, 0)))
     path = tmp_path / "bare.dxf"
     path.write_text(f"0\nSECTION\n2\nENTITIES\n{lines}0\nENDSEC\n0\nEOF\n")
-    assert refused(tmp_path, path).startswith("bare.dxf: the file does not say its units ($INSUNITS is unitless): pass --units")
+    assert refused(tmp_path, path).startswith(
+        "bare.dxf: the file does not say its units (it has no HEADER section, so no $INSUNITS): pass --units")
     assert imported(tmp_path, path, "--units", "mm")["links"][0]["area_m2"] == pytest.approx(2e-6, rel=1e-12)
 
 

@@ -170,7 +170,7 @@ def _load_profile(entry: Table, name, path: Path, layer, units, thickness, mater
     try:
         key = (path.resolve(), units)
         if key not in sketches:
-            sketches[key] = read_sketch(path, units=units)
+            sketches[key] = read_sketch(path, units=units, override_units=False)
         return sketches[key].link(layer).profile(thickness, material, name)
     except InputError as error:
         raise entry.error("sketch", str(error)) from None
