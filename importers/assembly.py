@@ -134,7 +134,7 @@ def find_assembly(sketch: Sketch) -> Assembly:
         raise SketchError(
             f"link(s) {', '.join(repr(n) for n in left)} are in no four-bar loop driven from "
             f"the main one ({_what_joins(sketch, joints)}); linkstress chains four-bars through a shared crank "
-            "or output pivoted on the ground: remove those links from the drawing, or write the scene by hand"
+            "or output pivoted on the ground: leave their layers out with --exclude-layers, or write the scene by hand"
         )
     bare = _bare_pivots(chosen, joints) if ground is None else None
     loops = tuple(_loop(k, cycle, drive, joints, ground_name, bare) for k, (cycle, drive) in enumerate(chosen))

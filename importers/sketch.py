@@ -105,8 +105,9 @@ class Sketch:
     def link(self, name_or_layer: str | None = None) -> ImportedLink:
         """The link named ``name_or_layer`` (or the only one on that layer); None: the only link.
 
-        A layer with a problem, or a sheet with one when no name is given, is refused with the
-        problems: what was left out there may be the link meant.
+        A layer with a problem (the named link's own, or the one asked for), or a sheet with one when
+        no name is given, is refused with the problems: what was left out there may be the link
+        meant, or part of it.
         """
         names = ", ".join(repr(link.name) for link in self.links)
         if name_or_layer is None:
@@ -118,12 +119,14 @@ class Sketch:
                     f"{listed(self.problems)}; name a clean link or layer, or fix the drawing"
                 )
             raise SketchError(f"{self.path.name} holds {len(self.links)} links ({names}): say which one")
-        for link in self.links:
-            if link.name == name_or_layer:
-                return link
-        layer_problems = [p for p in self.problems if p.layer == name_or_layer]
+        named = [link for link in self.links if link.name == name_or_layer]
+        layer = named[0].layer if named else name_or_layer
+        layer_problems = [p for p in self.problems if p.layer == layer]
         if layer_problems:
-            raise SketchError(f"{self.path.name}: layer {name_or_layer!r}: {listed(layer_problems)}")
+            # What was left out on the link's layer may be part of it (a slot whose outline does not close).
+            raise SketchError(f"{self.path.name}: layer {layer!r}: {listed(layer_problems)}")
+        if named:
+            return named[0]
         on_layer = [link for link in self.links if link.layer == name_or_layer]
         if len(on_layer) == 1:
             return on_layer[0]

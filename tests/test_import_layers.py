@@ -43,3 +43,59 @@ def test_the_same_overlap_on_one_layer_is_refused_with_the_pin_hole_they_share_l
     doc.saveas(tmp_path / "pair.dxf")
     with pytest.raises(SketchError, match=r"pair.dxf: no link imports, 2 problems: \(1\) outlines cross or touch at \(100, 10\) mm.* \(2\) the outline through CIRCLE .* is left out: it lies inside the outline through LWPOLYLINE"):
         read_sketch(tmp_path / "pair.dxf")
+
+
+def assembled_four_bar(path, extra=None) -> None:
+    """A four-bar drawn assembled in mm, crank at 50 deg, each moving link on its own layer, the
+    ground not drawn; ``extra(layout)`` adds more."""
+    import math
+
+    doc = ezdxf.new("R2018", units=4)
+    msp = doc.modelspace()
+    o2, o4 = (0.0, 0.0), (120.0, 0.0)
+    a = (40 * math.cos(math.radians(50)), 40 * math.sin(math.radians(50)))
+    d = math.dist(a, o4)
+    along = (130**2 - 90**2 + d**2) / (2 * d)
+    up = math.sqrt(130**2 - along**2)
+    ex, ey = (o4[0] - a[0]) / d, (o4[1] - a[1]) / d
+    b = (a[0] + along * ex - up * ey, a[1] + along * ey + up * ex)
+    for layer, p, q in (("crank", o2, a), ("coupler", a, b), ("rocker", o4, b)):
+        angle = math.atan2(q[1] - p[1], q[0] - p[0])
+        c, s = math.cos(angle), math.sin(angle)
+        length = math.dist(p, q)
+        corners = [(0, -10, 0), (length, -10, 1), (length, 10, 0), (0, 10, 1)]
+        msp.add_lwpolyline([(p[0] + c * x - s * y, p[1] + s * x + c * y, bulge) for x, y, bulge in corners],
+                           format="xyb", close=True, dxfattribs={"layer": layer})
+        for centre in (p, q):
+            msp.add_circle(centre, 4.0, dxfattribs={"layer": layer})
+    if extra is not None:
+        extra(msp)
+    doc.saveas(path)
+
+
+def test_an_assembled_drawing_with_an_engraving_layer_imports_as_a_scene_once_that_layer_is_left_out(tmp_path, capsys):
+    from linkstress.cli import main
+
+    engraving = lambda msp: msp.add_lwpolyline([(-20, -30), (140, -30), (140, -12), (-20, -12)], close=True,
+                                               dxfattribs={"layer": "ENGRAVING"})
+    assembled_four_bar(tmp_path / "asm.dxf", engraving)
+    scene = tmp_path / "scene.toml"
+    assert main(["import", str(tmp_path / "asm.dxf"), "--scene", str(scene)]) == 2
+    assert "'ENGRAVING' are in no four-bar loop" in capsys.readouterr().err and not scene.exists()
+    assert main(["import", str(tmp_path / "asm.dxf"), "--scene", str(scene), "--exclude-layers", "ENGRAVING"]) == 0
+    assert main(["analyze", str(scene)]) == 0
+
+
+def test_a_stray_line_on_a_links_own_layer_refuses_that_link_in_a_scene_with_the_problem(tmp_path, capsys):
+    # What was left out on a link's layer may be part of it (a slot whose outline does not close): the
+    # link imports for a look with `linkstress import`, but a scene that uses it is refused.
+    from linkstress.cli import main
+
+    assembled_four_bar(tmp_path / "asm.dxf", lambda msp: msp.add_line((200, 0), (260, 40), dxfattribs={"layer": "crank"}))
+    sketch = read_sketch(tmp_path / "asm.dxf")
+    assert [link.name for link in sketch.links] == ["crank", "coupler", "rocker"] and len(sketch.problems) == 1
+    with pytest.raises(SketchError, match=r"asm.dxf: layer 'crank': open curve: LINE \(handle \w+, layer 'crank'\)"):
+        sketch.link("crank")
+    assert sketch.link("coupler").layer == "coupler"
+    assert main(["import", str(tmp_path / "asm.dxf"), "--scene", str(tmp_path / "scene.toml")]) == 2
+    assert "layer 'crank': open curve: LINE" in capsys.readouterr().err
