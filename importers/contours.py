@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
@@ -112,20 +113,25 @@ def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size
         on_layer = keep & (layers == layer)
         # Only within a layer: links drawn assembled have the same pin hole on two layers.
         on_layer &= ~_duplicates(pieces, np.flatnonzero(on_layer & pieces.closed), tolerance, report, fixes)
-        loops, bad = _layer_loops(pieces, on_layer, tolerance, size, report, layer, fixes, problems)
+        loops, bad, left_out = _layer_loops(pieces, on_layer, tolerance, size, report, layer, fixes, problems)
         bad |= _self_crossing(loops, report, layer, problems)
         bad |= _crossing(loops, tolerance, report, layer, problems)
-        outlines += _nest(loops, bad, report, layer, problems)
+        nested = _nest(loops, bad, report, layer, problems)
+        outlines += _not_cut(nested, pieces, left_out, tolerance, report, layer, problems)
     if not outlines and not problems:
         raise SketchError("no closed outline: the drawing has no curves that enclose an area")
     return Contours(tuple(sorted(outlines, key=lambda o: _lower_left(o.shell))), tuple(fixes), tuple(problems))
 
 
 def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size: float, report: Report,
-                 layer: str | None, fixes: list[str],
-                 problems: list[SketchProblem]) -> tuple[list[Loop], NDArray[np.bool_]]:
+                 layer: str | None, fixes: list[str], problems: list[SketchProblem],
+                 ) -> tuple[list[Loop], NDArray[np.bool_], list[NDArray[np.intp]]]:
     """The closed loops of the pieces ``keep`` (one layer's), curves drawn twice dropped, open or
-    branched chains left out as problems; and which loops lie inside such a chain (left out too)."""
+    branched chains left out as problems; which loops lie inside such a chain (left out too); and
+    the pieces of every chain left out.
+
+    Curves that dangle (a tick mark or leader ending on an outline's corner, a stray line) are taken
+    off first, so that the outline they touch still closes; they are listed like any open chain."""
     ends = Ends.of(pieces, np.flatnonzero(keep & ~pieces.closed))
     branched = ends.branched(tolerance)
     if branched.any():
@@ -135,12 +141,45 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
             keep = keep & ~twice
             ends = Ends.of(pieces, np.flatnonzero(keep & ~pieces.closed))
     rounding = DUPLICATE_VERTEX * size
-    chained, open_problems, left_out = chain(pieces, ends, tolerance, rounding, report, layer)
+    core, dangling = dangling_pieces(ends, tolerance)
+    chained, open_problems, left_out = chain(pieces, Ends.of(pieces, core), tolerance, rounding, report, layer)
+    if len(dangling):
+        _, dangling_problems, dangling_out = chain(pieces, Ends.of(pieces, dangling), tolerance, rounding, report, layer)
+        open_problems, left_out = open_problems + dangling_problems, left_out + dangling_out
     problems += open_problems
     rings = Rings.concatenate(closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance), chained)
     loops = [with_circle(loop, pieces) for loop in _loops(rings, rounding, report, fixes)] if len(rings) else []
     loops = _drop_repeated_loops(loops, tolerance, report, fixes)
-    return loops, _within_open(loops, pieces, left_out, report, layer, problems)
+    return loops, _within_open(loops, pieces, left_out, report, layer, problems), left_out
+
+
+def dangling_pieces(ends: Ends, tolerance: float) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """The open pieces of ``ends`` split into those that can close into rings and those that dangle:
+    a piece with an end no other end is within ``tolerance`` of is taken off, and so on until every
+    end left meets another (trees hanging off a ring come off leaf by leaf; a ring with a gap comes
+    off whole, as an open chain)."""
+    n = len(ends.idx)
+    if n == 0:
+        return ends.idx, ends.idx
+    pairs = cKDTree(ends.xy).query_pairs(tolerance, output_type="ndarray")  # a piece's own ends too: a ring of one
+    neighbours = [[] for _ in range(2 * n)]
+    for a, b in pairs.tolist():
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+    degree = np.array([len(x) for x in neighbours])
+    alive = np.ones(n, bool)
+    todo = list(np.flatnonzero(degree == 0) // 2)
+    while todo:
+        piece = todo.pop()
+        if not alive[piece]:
+            continue
+        alive[piece] = False
+        for end in (2 * piece, 2 * piece + 1):
+            for other in neighbours[end]:
+                degree[other] -= 1
+                if degree[other] == 0 and alive[other // 2]:
+                    todo.append(other // 2)
+    return ends.idx[alive], ends.idx[~alive]
 
 
 def _within_open(loops: list[Loop], pieces: Pieces, left_out: list[NDArray[np.intp]], report: Report,
@@ -150,9 +189,10 @@ def _within_open(loops: list[Loop], pieces: Pieces, left_out: list[NDArray[np.in
     inside = np.zeros(len(loops), bool)
     if not loops or not left_out:
         return inside
-    hulls = shapely.convex_hull(shapely.multipoints([
-        np.concatenate([pieces.vertices(k) for k in chain_pieces]) for chain_pieces in left_out
-    ]))
+    hulls = np.array([
+        shapely.convex_hull(shapely.multipoints(np.concatenate([pieces.vertices(k) for k in chain_pieces])))
+        for chain_pieces in left_out
+    ], dtype=object)
     # A straight stray line encloses nothing: only hulls with an area can hold holes.
     solid = np.flatnonzero(shapely.area(hulls) > 0)
     probes = shapely.points([loop.xy[0] for loop in loops])
@@ -170,6 +210,52 @@ def _within_open(loops: list[Loop], pieces: Pieces, left_out: list[NDArray[np.in
             "close that chain (see its problem)",
         ))
     return inside
+
+
+def _not_cut(outlines: list[Outline], pieces: Pieces, left_out: list[NDArray[np.intp]], tolerance: float,
+             report: Report, layer: str | None, problems: list[SketchProblem]) -> list[Outline]:
+    """``outlines`` less those a chain left open cuts into: a chain with an end in their material,
+    more than ``tolerance`` from its edges (a living hinge's slits, a slot whose outline does not
+    close, engraving), or with an end on an edge from which it runs through the material (a line
+    dividing a part in two). Imported without the chain, such an outline would be solid where the
+    drawing cuts it. A chain that touches an outline from outside (a leader, a tick mark), lies
+    along its edge, or crosses it from outside to outside (a construction line) leaves it."""
+    if not outlines or not left_out:
+        return outlines
+    material = np.array([outline.polygon for outline in outlines], dtype=object)
+    lines = [shapely.multilinestrings([shapely.linestrings(pieces.vertices(k)) for k in chain_pieces])
+             for chain_pieces in left_out]
+    piece = np.concatenate(left_out)
+    chain_of = np.concatenate([np.full(len(c), i) for i, c in enumerate(left_out)] * 2)
+    points = shapely.points(np.concatenate([pieces.xy[pieces.start[piece]], pieces.xy[pieces.start[piece + 1] - 1]]))
+    end_at, outline_at = shapely.STRtree(material).query(points, predicate="dwithin", distance=tolerance)
+    inside = shapely.within(points[end_at], material[outline_at])
+    deep = inside & (shapely.distance(points[end_at], shapely.boundary(material[outline_at])) > tolerance)
+    cut_by: dict[int, list[int]] = {}
+    core: dict[int, object] = {}
+    for e, o, is_deep in zip(end_at.tolist(), outline_at.tolist(), deep.tolist()):
+        c = int(chain_of[e])
+        if c in cut_by.get(o, ()):
+            continue
+        if not is_deep:
+            if o not in core:
+                core[o] = shapely.buffer(material[o], -tolerance)
+            if shapely.length(shapely.intersection(lines[c], core[o])) <= tolerance:
+                continue
+        cut_by.setdefault(o, []).append(c)
+    keep = np.ones(len(outlines), bool)
+    for o, chains in sorted(cut_by.items()):
+        keep[o] = False
+        shell = outlines[o].shell
+        problems.append(SketchProblem(
+            layer, (float(shell.xy[0, 0]), float(shell.xy[0, 1])), report.unit,
+            tuple(report.curve(int(k)) for c in chains for k in left_out[c]),
+            f"the outline through {report.curve(shell.pieces[0])} is left out: {len(chains)} open chain(s) cut into "
+            f"its material, e.g. the one through {report.curve(int(left_out[chains[0]][0]))}, which would import as "
+            "solid what the drawing cuts",
+            "draw a slit or slot as a closed outline, or move marks and engraving to a layer of their own",
+        ))
+    return [outline for outline, k in zip(outlines, keep) if k]
 
 
 # -- clean-up -----------------------------------------------------------------------------------

@@ -3,6 +3,8 @@ repairs that are safe to make (duplicates, tiny curves, damaged files) reported 
 
 from __future__ import annotations
 
+import re
+
 import math
 
 import ezdxf
@@ -64,13 +66,27 @@ def test_a_self_crossing_outline_is_refused(tmp_path):
         read_sketch(save(doc, tmp_path))
 
 
-def test_three_curve_ends_at_one_corner_are_a_branch(tmp_path):
+def test_a_line_dividing_a_part_leaves_the_part_out_not_solid(tmp_path):
+    # The chain (0, 0)-(1, 0)-(1, 1) hangs off a corner (so the rectangle still closes once it is
+    # taken off) and runs from the bottom edge to the top one: it may cut the part in two, so the
+    # rectangle is not imported as if solid.
     doc = ezdxf.new("R2013", units=6)
     msp = doc.modelspace()
     rectangle_lines(msp, 0, 0, 2, 1)
     msp.add_line((1, 0), (1, 1))
-    msp.add_line((0, 0), (1, 0))  # splits nothing: a second curve along the bottom edge from a corner
-    with pytest.raises(SketchError, match=r"curve ends meet at \((0|1), (0|1)\) m .*remove the duplicate or overlapping curve"):
+    msp.add_line((0, 0), (1, 0))  # a second curve along the bottom edge from a corner
+    with pytest.raises(SketchError, match=r"no link imports, 2 problems: \(1\) open outline: the end of LINE .* at \(1, 1\) m"
+                       r".*\(2\) the outline through LINE .* is left out: 1 open chain\(s\) cut into its material"):
+        read_sketch(save(doc, tmp_path))
+
+
+def test_curve_ends_meeting_at_a_corner_of_two_outlines_are_a_branch(tmp_path):
+    # Two rectangles of lines sharing a corner: four ends meet there and none dangles.
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    rectangle_lines(msp, 0, 0, 2, 1)
+    rectangle_lines(msp, 2, 1, 3, 2)
+    with pytest.raises(SketchError, match=r"curve ends meet at \(2, 1\) m .*remove the duplicate or overlapping curve"):
         read_sketch(save(doc, tmp_path))
 
 
@@ -133,9 +149,15 @@ def test_a_garbled_group_code_is_read_in_recover_mode_and_noted(tmp_path):
     text = save(doc, tmp_path).read_text()
     second_line = text.index("\nLINE\n", text.index("\nLINE\n") + 1)
     (tmp_path / "garbled.dxf").write_text(text[:second_line] + text[second_line:].replace("\n 10\n", "\n1x0\n", 1))
-    # The second line loses its start x: recovered, the rectangle no longer closes.
-    with pytest.raises(SketchError, match=r"^garbled.dxf: .*\(note: the file is damaged \(line \d+: '1x0' is not a group code\); read in ezdxf's recover mode\)$"):
-        read_sketch(tmp_path / "garbled.dxf")
+    # The second line loses its start x, which becomes 0: recovered, a triangle closes and the bottom
+    # line dangles from its corner, listed as a problem (a scene on this layer is refused with it).
+    sketch = read_sketch(tmp_path / "garbled.dxf")
+    assert re.fullmatch(r"the file is damaged \(line \d+: '1x0' is not a group code\); read in ezdxf's recover mode",
+                        sketch.fixes[0])
+    (problem,) = sketch.problems
+    assert problem.problem.startswith("open curve: LINE") and problem.layer == "bar"
+    with pytest.raises(SketchError, match=r"garbled.dxf: layer 'bar': open curve: LINE"):
+        sketch.link("bar")
 
 
 def test_the_gap_tolerance_must_be_a_fraction(tmp_path):
