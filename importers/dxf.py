@@ -4,7 +4,8 @@ and INSERT (block references, nested, with their transforms), in the units of ``
 Simple entities come through the fast tag table (:mod:`.dxf_tags`); ezdxf reads the rest of the
 file and expands block references (``Insert.virtual_entities``: a non-uniformly scaled circle becomes
 an ellipse). Entities on layers that are off or frozen, on ``Defpoints``, or marked invisible are
-left out, like annotation (TEXT, DIMENSION, HATCH, ...), and counted in ``ignored``. A file whose
+left out, like annotation (TEXT, DIMENSION, HATCH, ...), and counted in ``ignored``. Layer names
+are shown and matched decoded: DXF R12 writes a non-ASCII character as ``\\U+XXXX``. A file whose
 structure is broken is read with ezdxf's recover mode, and what it repaired is reported.
 """
 
@@ -17,13 +18,13 @@ from pathlib import Path
 
 import ezdxf
 import numpy as np
-from ezdxf import recover
+from ezdxf import decode_dxf_unicode, recover
 from ezdxf.lldxf.const import DXFError
 
 from linkstress.errors import SketchError
 from linkstress.importers import dxf_geometry as geo
 from linkstress.importers.dxf_tags import DamagedDXF, SimpleEntities, split_entities
-from linkstress.importers.primitives import CurveSet, Origin, RawSketch, with_damage
+from linkstress.importers.primitives import CurveSet, Origin, RawSketch, no_curves, with_damage
 from linkstress.importers.units import choose_unit, insunits_label, unit_from_insunits
 
 GAP_TOLERANCE = 1e-4
@@ -54,16 +55,33 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
         )
     else:
         doc, simple = _read_text(path, data, fixes)
+    has_header = _has_header(data)
     try:
-        unit, source = _unit(doc, _has_header(data), units, override_units)
         curves = CurveSet()
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
         _add_simple(curves, simple, hidden, ignored)
         _Collector(curves, hidden, ignored, _BlockSizes(doc)).entities(doc.modelspace(), None, ())
+        try:
+            unit, source = _unit(doc, has_header, units, override_units)
+        except SketchError:
+            if not curves.curve_count():  # then the units do not matter: say what the file lacks first
+                raise SketchError(no_curves(ignored)) from None
+            raise
     except SketchError as error:
         raise SketchError(with_damage(str(error), fixes)) from None
-    return RawSketch(curves, unit, source, f"DXF {doc.dxfversion}", dict(ignored), tuple(fixes), GAP_TOLERANCE)
+    return RawSketch(curves, unit, source, _format(doc, has_header, data), dict(ignored), tuple(fixes),
+                     GAP_TOLERANCE)
+
+
+def _format(doc, has_header: bool, data: bytes) -> str:
+    """``DXF AC1015``: the version the file says ($ACADVER), not the one ezdxf assumes (AC1009) when
+    it says none."""
+    if not has_header:
+        return "DXF without HEADER section (version unknown)"
+    if b"$ACADVER" not in data:
+        return "DXF without $ACADVER (version unknown)"
+    return f"DXF {doc.loaded_dxfversion or doc.dxfversion}"
 
 
 def _has_header(data: bytes) -> bool:
@@ -85,7 +103,14 @@ def _unit(doc, has_header: bool, units: str | None, override: bool):
             f"$INSUNITS = {code} ({insunits_label(code)}) has no conversion to metres; "
             "save the drawing in mm, cm, m, in or ft, or pass its unit, e.g. --units mm"
         )
-    unsaid = None if has_header else "it has no HEADER section, so no $INSUNITS"
+    if not has_header:
+        unsaid = "it has no HEADER section, so no $INSUNITS"
+    elif "$INSUNITS" not in doc.header:
+        # $INSUNITS came with DXF R2000 (AC1015); R12 and older files cannot carry it.
+        older = (doc.loaded_dxfversion or doc.dxfversion) < "AC1015"
+        unsaid = "the file has no $INSUNITS" + (", which DXF R12 and older lack" if older else "")
+    else:
+        unsaid = f"$INSUNITS is {code} (unitless)"
     return choose_unit(declared, "$INSUNITS", units, default=None, unsaid=unsaid, override=override)
 
 
@@ -147,7 +172,7 @@ def _hidden_layers(doc) -> set[str]:
     hidden = {"defpoints"}
     for layer in doc.layers:
         if layer.is_off() or layer.is_frozen():
-            hidden.add(layer.dxf.name.lower())
+            hidden.add(decode_dxf_unicode(layer.dxf.name).lower())
     return hidden
 
 
@@ -157,7 +182,8 @@ def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignor
         if not found.count(kind):
             continue
         col = found.columns[kind]
-        layers = found.layers[kind]
+        names = {layer: decode_dxf_unicode(layer) for layer in set(found.layers[kind])}
+        layers = [names[layer] for layer in found.layers[kind]]
         shown = {layer: layer.lower() not in hidden for layer in set(layers)}
         visible = np.array([shown[layer] for layer in layers])
         if not visible.all():
@@ -204,7 +230,7 @@ class _Collector:
             self.ignored[kind] += 1
             return
         try:
-            layer = e.dxf.get("layer", "0")
+            layer = decode_dxf_unicode(e.dxf.get("layer", "0"))
             if insert is not None and layer == "0":
                 layer = insert[1]  # block contents on layer 0 take the layer of the reference
             handle = e.dxf.get("handle") if insert is None else insert[0]
