@@ -61,7 +61,8 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
         _add_simple(curves, simple, hidden, ignored)
-        _Collector(curves, hidden, ignored, _BlockSizes(doc)).entities(doc.modelspace(), None, ())
+        msp = list(doc.modelspace())
+        _Collector(curves, hidden, ignored, _BlockSizes(doc)).entities(msp, None, (), _places(msp, simple))
         try:
             unit, source = _unit(doc, has_header, units, override_units)
         except SketchError:
@@ -82,6 +83,16 @@ def _format(doc, has_header: bool, data: bytes) -> str:
     if b"$ACADVER" not in data:
         return "DXF without $ACADVER (version unknown)"
     return f"DXF {doc.loaded_dxfversion or doc.dxfversion}"
+
+
+def _places(entities: list, simple: SimpleEntities) -> list[tuple[str | None, str | None]]:
+    """(handle, place) of each model-space entity: the file's handle, else its position ``#37``, from
+    the tag table, which lists them in ezdxf's order; ezdxf invents handles for entities that have
+    none, so without the table (a binary or recovered file) its handles are all there is."""
+    rest = simple.rest
+    if len(rest) == len(entities) and all(h is None or h == e.dxf.get("handle") for (_, h), e in zip(rest, entities)):
+        return [(h, None if h else f"#{p}") for p, h in rest]
+    return [(e.dxf.get("handle"), None) for e in entities]
 
 
 def _has_header(data: bytes) -> bool:
@@ -188,7 +199,8 @@ def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignor
         visible = np.array([shown[layer] for layer in layers])
         if not visible.all():
             ignored[f"{kind} (hidden layer)"] += int((~visible).sum())
-        origins = [(kind, h, layer, None) for h, layer, v in zip(found.handles[kind], layers, visible) if v]
+        origins = [(kind, h, layer, None, None if h else f"#{p}")
+                   for h, p, layer, v in zip(found.handles[kind], found.positions[kind], layers, visible) if v]
         extrusion = np.column_stack([col[210], col[220], col[230]])
         if kind == "LINE":
             curves.add_lines(np.column_stack([col[10], col[20], col[11], col[21]])[visible], origins)
@@ -214,36 +226,37 @@ class _Collector:
         self.lines: list[tuple] = []
         self.line_origins: list[Origin] = []
 
-    def entities(self, entities, insert: tuple[str, str] | None, blocks: tuple[str, ...]) -> None:
-        """Add ``entities``; inside a block reference ``insert`` = (INSERT handle, its layer) and
-        ``blocks`` the names of the blocks it is in, outermost first."""
-        for entity in entities:
-            self.entity(entity, insert, blocks)
+    def entities(self, entities, insert: tuple[str, str] | None, blocks: tuple[str, ...],
+                 places: list[tuple[str | None, str | None]]) -> None:
+        """Add ``entities`` with their (handle, place) ``places``; inside a block reference ``insert`` =
+        (the model-space INSERT as named in messages, its layer) and ``blocks`` the names of the blocks
+        it is in, outermost first."""
+        for entity, (handle, place) in zip(entities, places):
+            self.entity(entity, insert, blocks, handle, place)
         if not blocks and self.lines:
             self.curves.add_lines(np.array(self.lines, float), self.line_origins)
             self.lines, self.line_origins = [], []
 
-    def entity(self, e, insert: tuple[str, str] | None, blocks: tuple[str, ...]) -> None:
+    def entity(self, e, insert: tuple[str, str] | None, blocks: tuple[str, ...], handle: str | None,
+               place: str | None) -> None:
         kind = e.dxftype()
+        layer = decode_dxf_unicode(e.dxf.get("layer", "0"))
+        if insert is not None and layer == "0":
+            layer = insert[1]  # block contents on layer 0 take the layer of the reference
+        origin: Origin = (kind, handle, layer, None, place)
         handler = getattr(self, f"_{kind.lower()}", None) if kind in _SUPPORTED else None
         if handler is None:
             self.ignored[kind] += 1
             return
         try:
-            layer = decode_dxf_unicode(e.dxf.get("layer", "0"))
-            if insert is not None and layer == "0":
-                layer = insert[1]  # block contents on layer 0 take the layer of the reference
-            handle = e.dxf.get("handle") if insert is None else insert[0]
-            origin: Origin = (kind if insert is None else f"{kind} in block reference", handle, layer, None)
             if layer.lower() in self.hidden or e.dxf.get("invisible", 0):
                 self.ignored[f"{kind} (hidden layer)"] += 1
                 return
-            handler(e, origin, (handle, layer), blocks)
+            handler(e, origin, insert or (_insert_name(handle, place), layer), blocks)
         except SketchError:
             raise
         except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError, IndexError) as error:
-            where = f"{kind} (handle {e.dxf.get('handle', '?')})" if insert is None else f"{kind} in block reference {insert[0]}"
-            raise SketchError(f"{where} cannot be read ({error}); redraw or explode it") from None
+            raise SketchError(f"{geo.describe(origin)} cannot be read ({error}); redraw or explode it") from None
 
     def _line(self, e, origin, _insert, _blocks) -> None:
         s, t = e.dxf.start, e.dxf.end
@@ -303,12 +316,24 @@ class _Collector:
                     "one sketch per link"
                 )
         skipped = Counter()
+        inner = (*blocks, name)
+        within = " in ".join(f"block {b!r}" for b in reversed(inner))
+        index = self.sizes.index(name)
         for reference in e.multi_insert() if e.mcount > 1 else [e]:
             virtual = list(reference.virtual_entities(
                 skipped_entity_callback=lambda entity, reason: skipped.update([entity.dxftype()])))
-            self.entities(virtual, insert, (*blocks, name))
+            places = [(None, f"#{index.get(id(v.source_of_copy), '?')} of {within} inserted by {insert[0]}")
+                      for v in virtual]
+            self.entities(virtual, insert, inner, places)
         for kind, n in skipped.items():
             self.ignored[f"{kind} in block reference (cannot be transformed)"] += n
+
+
+def _insert_name(handle: str | None, place: str | None) -> str:
+    """A model-space INSERT as the entities of its block name it: ``INSERT with handle 2F``, ``INSERT #12``."""
+    if handle:
+        return f"INSERT with handle {handle}"
+    return f"INSERT {place}" if place else "an INSERT"
 
 
 class _BlockSizes:
@@ -318,6 +343,7 @@ class _BlockSizes:
     def __init__(self, doc) -> None:
         self.doc = doc
         self.known: dict[str, int] = {}
+        self.positions: dict[str, dict[int, int]] = {}
 
     def of(self, name: str, within: tuple[str, ...], origin: Origin) -> int:
         """Entities of block ``name``, referenced inside blocks ``within`` (outermost first) by ``origin``."""
@@ -341,3 +367,10 @@ class _BlockSizes:
                 for e in block
             )
         return self.known[name]
+
+    def index(self, name: str) -> dict[int, int]:
+        """Position (1-based) of each entity of block ``name`` in its definition, by the entity's id."""
+        if name not in self.positions:
+            block = self.doc.blocks.get(name)
+            self.positions[name] = {} if block is None else {id(e): k + 1 for k, e in enumerate(block)}
+        return self.positions[name]

@@ -19,19 +19,23 @@ from numpy.typing import ArrayLike, NDArray
 from linkstress.errors import SketchError
 from linkstress.importers.units import DrawingUnit
 
-Origin = tuple[str, str | None, str | None, int | None]
-"""Where a curve or point came from: (kind, DXF handle, layer, CSV line number)."""
+Origin = tuple[str, str | None, str | None, int | None, str | None]
+"""Where a curve or point came from: (kind, DXF handle, layer, CSV line number, place), ``place``
+finding a DXF entity without a handle (R12, OpenSCAD and DXFWRITE write none): ``#37``, its position
+in the ENTITIES section, or ``#3 of block 'PIN' inserted by INSERT #12``."""
 
 
 def describe(origin: Origin) -> str:
-    """``LINE (handle 2F, layer 'crank')`` or ``circle on line 12``: the culprit in a message."""
-    kind, handle, layer, line = origin
+    """``LINE (handle 2F, layer 'crank')``, ``LINE #37 (layer '0')`` or ``circle on line 12``: the
+    culprit in a message."""
+    kind, handle, layer, line, place = origin
     if line is not None:
         return f"{kind} on line {line}"
     details = [f"handle {handle}"] if handle else []
     if layer is not None:
         details.append(f"layer {layer!r}")
-    return f"{kind} ({', '.join(details)})" if details else kind
+    name = f"{kind} {place}" if place else kind
+    return f"{name} ({', '.join(details)})" if details else name
 
 
 @dataclass(frozen=True)
