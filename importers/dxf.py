@@ -24,7 +24,7 @@ from ezdxf.lldxf.const import DXFError
 from linkstress.errors import SketchError
 from linkstress.importers import dxf_geometry as geo
 from linkstress.importers.dxf_tags import DamagedDXF, SimpleEntities, split_entities
-from linkstress.importers.primitives import CurveSet, Origin, RawSketch, no_curves, with_damage
+from linkstress.importers.primitives import CurveSet, Origin, RawSketch, describe, no_curves, with_damage
 from linkstress.importers.units import choose_unit, insunits_label, unit_from_insunits
 
 GAP_TOLERANCE = 1e-4
@@ -60,9 +60,11 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
         curves = CurveSet()
         ignored: Counter = Counter()
         hidden = _hidden_layers(doc)
-        _add_simple(curves, simple, hidden, ignored)
+        not_flat = _add_simple(curves, simple, hidden, ignored)
         msp = list(doc.modelspace())
-        _Collector(curves, hidden, ignored, _BlockSizes(doc)).entities(msp, None, (), _places(msp, simple))
+        collector = _Collector(curves, hidden, ignored, _BlockSizes(doc))
+        collector.entities(msp, None, (), _places(msp, simple))
+        not_flat += collector.not_flat
         try:
             unit, source = _unit(doc, has_header, units, override_units)
         except SketchError:
@@ -71,8 +73,22 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
             raise
     except SketchError as error:
         raise SketchError(with_damage(str(error), fixes)) from None
+    if not_flat:
+        fixes.append(_flattened(not_flat, unit.name))
     return RawSketch(curves, unit, source, _format(doc, has_header, data), dict(ignored), tuple(fixes),
                      GAP_TOLERANCE)
+
+
+def _flattened(not_flat: list[tuple[Origin, float, float]], unit: str) -> str:
+    """The note for curves whose z varies (``not_flat``: origin, lowest and highest z), which are read
+    projected onto the XY plane: a 3D polyline or a sloping line is likely not meant as a sketch."""
+    origin, low, high = not_flat[0]
+    note = f"{describe(origin)} is 3D: z from {low:.6g} to {high:.6g} {unit}; read in the XY plane"
+    if len(not_flat) > 1:
+        z = np.array([(a, b) for _, a, b in not_flat])
+        note += (f" (as are {len(not_flat) - 1} more curve(s) whose z varies, z from {z.min():.6g} to "
+                 f"{z.max():.6g} {unit} in all)")
+    return note
 
 
 def _format(doc, has_header: bool, data: bytes) -> str:
@@ -187,8 +203,11 @@ def _hidden_layers(doc) -> set[str]:
     return hidden
 
 
-def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignored: Counter) -> None:
-    """The fast path's columns, through the same geometry functions as ezdxf's entities."""
+def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str],
+                ignored: Counter) -> list[tuple[Origin, float, float]]:
+    """The fast path's columns, through the same geometry functions as ezdxf's entities; returns
+    (origin, lowest z, highest z) of the LINEs whose ends differ in z."""
+    not_flat = []
     for kind in ("LINE", "ARC", "CIRCLE", "POINT", "LWPOLYLINE"):
         if not found.count(kind):
             continue
@@ -204,6 +223,9 @@ def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignor
         extrusion = np.column_stack([col[210], col[220], col[230]])
         if kind == "LINE":
             curves.add_lines(np.column_stack([col[10], col[20], col[11], col[21]])[visible], origins)
+            z = np.column_stack([col[30], col[31]])[visible]
+            sloping = np.flatnonzero(z[:, 0] != z[:, 1])
+            not_flat += [(origins[k], float(z[k].min()), float(z[k].max())) for k in sloping.tolist()]
         elif kind == "POINT":
             curves.add_points(np.column_stack([col[10], col[20]])[visible], origins)
         elif kind == "CIRCLE":
@@ -216,6 +238,7 @@ def _add_simple(curves: CurveSet, found: SimpleEntities, hidden: set[str], ignor
             closed = (col[70].astype(np.int64) & 1).astype(bool)
             geo.add_ocs_polylines(curves, found.vertices, found.bulges, found.vertex_start, closed, extrusion,
                                   visible, origins, ignored)
+    return not_flat
 
 
 class _Collector:
@@ -225,6 +248,13 @@ class _Collector:
         self.curves, self.hidden, self.ignored, self.sizes = curves, hidden, ignored, sizes
         self.lines: list[tuple] = []
         self.line_origins: list[Origin] = []
+        self.not_flat: list[tuple[Origin, float, float]] = []  # curves whose z varies: lowest, highest z
+
+    def z_range(self, z, origin: Origin) -> None:
+        """Note ``origin`` in ``not_flat`` if its points' heights ``z`` differ."""
+        low, high = float(np.min(z)), float(np.max(z))
+        if high > low:
+            self.not_flat.append((origin, low, high))
 
     def entities(self, entities, insert: tuple[str, str] | None, blocks: tuple[str, ...],
                  places: list[tuple[str | None, str | None]]) -> None:
@@ -256,12 +286,13 @@ class _Collector:
         except SketchError:
             raise
         except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError, IndexError) as error:
-            raise SketchError(f"{geo.describe(origin)} cannot be read ({error}); redraw or explode it") from None
+            raise SketchError(f"{describe(origin)} cannot be read ({error}); redraw or explode it") from None
 
     def _line(self, e, origin, _insert, _blocks) -> None:
         s, t = e.dxf.start, e.dxf.end
         self.lines.append((s.x, s.y, t.x, t.y))
         self.line_origins.append(origin)
+        self.z_range((s.z, t.z), origin)
 
     def _point(self, e, origin, _insert, _blocks) -> None:
         p = e.dxf.location
@@ -291,9 +322,12 @@ class _Collector:
             self.ignored["POLYLINE (mesh)"] += 1
             return
         vertices = [v for v in e.vertices if not v.dxf.get("flags", 0) & _VERTEX_SPLINE_FRAME]
-        xy = np.array([(v.dxf.location.x, v.dxf.location.y) for v in vertices], float).reshape(-1, 2)
-        if e.is_3d_polyline:
+        xyz = np.array([v.dxf.location for v in vertices], float).reshape(-1, 3)
+        xy = xyz[:, :2]
+        if e.is_3d_polyline:  # WCS vertices: z may vary (a 2D polyline's z is its plane's elevation)
             bulges, extrusion = np.zeros(len(xy)), np.array([0.0, 0.0, 1.0])
+            if len(xyz):
+                self.z_range(xyz[:, 2], origin)
         else:
             bulges = np.array([v.dxf.get("bulge", 0.0) for v in vertices], float)
             extrusion = np.array(e.dxf.get("extrusion", (0.0, 0.0, 1.0)), float)
@@ -303,7 +337,9 @@ class _Collector:
         if not (e.control_point_count() or e.fit_point_count()):
             self.ignored["SPLINE (no points)"] += 1
             return
-        self.curves.add_spline(e.construction_tool(), origin)
+        spline = e.construction_tool()
+        self.curves.add_spline(spline, origin)
+        self.z_range([p[2] for p in spline.control_points], origin)
 
     def _insert(self, e, origin, insert, blocks) -> None:
         name = e.dxf.get("name", "?")
@@ -311,7 +347,7 @@ class _Collector:
             size = e.mcount * self.sizes.of(name, (), origin)
             if size > MAX_BLOCK_ENTITIES:
                 raise SketchError(
-                    f"{geo.describe(origin)} of block {name!r} expands to {size:,} entities, more than the "
+                    f"{describe(origin)} of block {name!r} expands to {size:,} entities, more than the "
                     f"{MAX_BLOCK_ENTITIES:,} linkstress expands; explode its nested blocks in CAD or draw "
                     "one sketch per link"
                 )
@@ -351,12 +387,12 @@ class _BlockSizes:
             through = within[within.index(name) + 1:]
             via = f" through block {', '.join(repr(b) for b in through)}" if through else ""
             raise SketchError(
-                f"block {name!r} inserts itself{via} ({geo.describe(origin)}); a block cannot contain "
+                f"block {name!r} inserts itself{via} ({describe(origin)}); a block cannot contain "
                 f"itself: delete the reference to {name!r} from its definition in CAD"
             )
         if len(within) >= MAX_BLOCK_DEPTH:
             raise SketchError(
-                f"{geo.describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep; explode "
+                f"{describe(origin)}: block references nested more than {MAX_BLOCK_DEPTH} deep; explode "
                 "the outer blocks in CAD"
             )
         if name not in self.known:

@@ -28,7 +28,7 @@ _REQUIRED = {
     "POINT": (10, 20),
     "LWPOLYLINE": (),
 }
-_OPTIONAL = (5, 8, 210, 220, 230, 67, 60, 70)
+_OPTIONAL = (5, 8, 210, 220, 230, 67, 60, 70, 30, 31)
 # DXF group codes run from -5 to 1071; anything far outside is not a code (and must not overflow int64).
 _CODE_RANGE = (-9999, 9999)
 # Codes that make an entity not simple: app data and embedded objects (arbitrary codes inside).
@@ -201,7 +201,7 @@ def _decode(codes, values, starts, ends, kinds, simple) -> tuple[SimpleEntities,
         table = _KindTable(section_codes, section_values, owner, mine[owner], members)
         try:
             columns = {code: table.floats(code) for code in _REQUIRED[kind]}
-            for code, default in ((210, 0.0), (220, 0.0), (230, 1.0), (70, 0.0)):
+            for code, default in ((210, 0.0), (220, 0.0), (230, 1.0), (70, 0.0), (30, 0.0), (31, 0.0)):
                 columns[code] = table.floats(code, default)
             if kind == "LWPOLYLINE":
                 found.vertices, found.bulges, found.vertex_start = table.vertices()
