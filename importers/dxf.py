@@ -270,15 +270,16 @@ class _Collector:
     def entity(self, e, insert: tuple[str, str] | None, blocks: tuple[str, ...], handle: str | None,
                place: str | None) -> None:
         kind = e.dxftype()
-        layer = decode_dxf_unicode(e.dxf.get("layer", "0"))
-        if insert is not None and layer == "0":
-            layer = insert[1]  # block contents on layer 0 take the layer of the reference
-        origin: Origin = (kind, handle, layer, None, place)
         handler = getattr(self, f"_{kind.lower()}", None) if kind in _SUPPORTED else None
         if handler is None:
             self.ignored[kind] += 1
             return
+        origin: Origin = (kind, handle, None, None, place)
         try:
+            layer = decode_dxf_unicode(e.dxf.get("layer", "0"))
+            if insert is not None and layer == "0":
+                layer = insert[1]  # block contents on layer 0 take the layer of the reference
+            origin = (kind, handle, layer, None, place)
             if layer.lower() in self.hidden or e.dxf.get("invisible", 0):
                 self.ignored[f"{kind} (hidden layer)"] += 1
                 return
