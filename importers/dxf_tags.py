@@ -110,14 +110,15 @@ def _places(found: SimpleEntities, codes, values, starts, ends, kinds, taken) ->
     lo = int(starts[0])
     owner = np.repeat(np.arange(n), ends - starts)
     section = codes[lo:int(ends[-1])]
-    handles: list[str | None] = [None] * n
-    for t in np.flatnonzero(section == 5)[::-1].tolist():  # backwards: the first handle wins
-        handles[owner[t]] = values[lo + t].strip()
     paper = np.zeros(n, bool)
     tags = np.flatnonzero(section == 67)
     paper[owner[tags[np.array([values[lo + t].strip() not in ("", "0") for t in tags.tolist()], bool)]]] = True
-    rest = np.flatnonzero(~taken & ~paper & ~np.isin(kinds, ("VERTEX", "SEQEND", "ATTRIB")))
-    found.rest = [(int(position[k]), handles[k]) for k in rest.tolist()]
+    rest = ~taken & ~paper & ~np.isin(kinds, ("VERTEX", "SEQEND", "ATTRIB"))
+    handles: list[str | None] = [None] * n
+    tags = np.flatnonzero(section == 5)
+    for t in tags[rest[owner[tags]]][::-1].tolist():  # backwards: an entity's first handle wins
+        handles[owner[t]] = values[lo + t].strip()
+    found.rest = [(int(position[k]), handles[k]) for k in np.flatnonzero(rest).tolist()]
 
 
 def _first_not_int(texts: list[str]) -> int:

@@ -22,8 +22,9 @@ def line(x0, y0, x1, y1, layer="0", extra="") -> str:
 
 def polyline(points, layer="0", flags=0) -> str:
     """A POLYLINE with its VERTEX and SEQEND records, no handles; ``points`` (x, y[, z])."""
+    vertex_flags = 32 if flags & 8 else 0  # 32: a 3D polyline's vertex
     vertices = "".join(
-        f"0\nVERTEX\n8\n{layer}\n10\n{p[0]}\n20\n{p[1]}\n30\n{p[2] if len(p) > 2 else 0}\n70\n{32 if flags & 8 else 0}\n"
+        f"0\nVERTEX\n8\n{layer}\n10\n{p[0]}\n20\n{p[1]}\n30\n{p[2] if len(p) > 2 else 0}\n70\n{vertex_flags}\n"
         for p in points)
     return f"0\nPOLYLINE\n8\n{layer}\n66\n1\n70\n{flags}\n{vertices}0\nSEQEND\n8\n{layer}\n"
 
@@ -139,16 +140,16 @@ LAMBDA = "\\U+039B\\U+0391"  # what R12 writes for the layer name "ΛΑ"
 
 
 def test_layer_names_written_as_unicode_escapes_are_decoded_and_matched(tmp_path):
-    squares = (polyline([(0, 0), (10, 0), (10, 10), (0, 10)], LAMBDA, flags=1)
-               + "".join(line(*e, layer="B") for e in ((20, 0, 30, 0), (30, 0, 30, 10), (30, 10, 20, 10), (20, 10, 20, 0))))
+    edges = ((20, 0, 30, 0), (30, 0, 30, 10), (30, 10, 20, 10), (20, 10, 20, 0))
+    squares = polyline([(0, 0), (10, 0), (10, 10), (0, 10)], LAMBDA, flags=1) + "".join(line(*e, "B") for e in edges)
     r12(tmp_path / "greek.dxf", squares)
     sketch = read_sketch(tmp_path / "greek.dxf", units="mm")
     assert sorted(link.layer for link in sketch.links) == ["B", "ΛΑ"]
     assert sketch.link("ΛΑ").name == "ΛΑ" and sketch.link(LAMBDA).name == "ΛΑ"
     for chosen in ("ΛΑ", LAMBDA):
-        assert [link.layer for link in read_sketch(tmp_path / "greek.dxf", units="mm", layers=[chosen]).links] == ["ΛΑ"]
-        assert [link.layer for link in read_sketch(tmp_path / "greek.dxf", units="mm",
-                                                   exclude_layers=[chosen]).links] == ["B"]
+        only = read_sketch(tmp_path / "greek.dxf", units="mm", layers=[chosen])
+        others = read_sketch(tmp_path / "greek.dxf", units="mm", exclude_layers=[chosen])
+        assert [link.layer for link in only.links] == ["ΛΑ"] and [link.layer for link in others.links] == ["B"]
 
 
 # -- curves out of the XY plane ---------------------------------------------------------------------
@@ -156,7 +157,8 @@ def test_layer_names_written_as_unicode_escapes_are_decoded_and_matched(tmp_path
 
 def test_a_3d_polyline_is_read_in_the_xy_plane_with_a_note_of_its_z_range(tmp_path):
     # A closed 3D POLYLINE (flag 8) rising to z = 5 at one corner: its XY projection is the 10 mm square.
-    r12(tmp_path / "wire.dxf", TEXT + polyline([(0, 0, 0), (10, 0, 0), (10, 10, 5), (0, 10, 2)], "frame", flags=9))
+    wire = polyline([(0, 0, 0), (10, 0, 0), (10, 10, 5), (0, 10, 2)], "frame", flags=9)  # 9: closed, 3D
+    r12(tmp_path / "wire.dxf", TEXT + wire)
     sketch = read_sketch(tmp_path / "wire.dxf", units="mm")
     assert sketch.link().outline.area == pytest.approx(100e-6, rel=1e-12)
     assert sketch.fixes == ("POLYLINE #2 (layer 'frame') is 3D: z from 0 to 5 mm; read in the XY plane",)
@@ -174,7 +176,8 @@ def test_sloping_lines_are_counted_in_one_note(tmp_path):
 
 @pytest.mark.parametrize("app_data", ["", "102\n{MYAPP\n1\nx\n102\n}\n"], ids=["fast path", "ezdxf"])
 def test_an_arc_in_a_tilted_plane_is_refused_naming_it_by_position(tmp_path, app_data):
+    # Its extrusion (210, 220, 230) is +x: drawn in the YZ plane, so no XY projection is the arc.
     arc = f"0\nARC\n8\nside\n{app_data}10\n0\n20\n0\n40\n5\n50\n0\n51\n90\n210\n1\n220\n0\n230\n0\n"
     r12(tmp_path / "tilted.dxf", TEXT + arc)
-    with pytest.raises(SketchError, match=r"ARC #2 \(layer 'side'\) is not drawn in the XY plane \(extrusion \(1, 0, 0\)\)"):
+    with pytest.raises(SketchError, match=r"ARC #2 \(layer 'side'\) is not drawn in the XY plane \(extrusion \(1, 0, 0"):
         read_sketch(tmp_path / "tilted.dxf", units="mm")
