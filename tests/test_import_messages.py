@@ -29,9 +29,10 @@ def polyline(points, layer="0", flags=0) -> str:
     return f"0\nPOLYLINE\n8\n{layer}\n66\n1\n70\n{flags}\n{vertices}0\nSEQEND\n8\n{layer}\n"
 
 
-def r12(path, entities: str, header: str = "9\n$ACADVER\n1\nAC1009\n", blocks: str = "") -> None:
+def r12(path, entities: str, header: str = "9\n$ACADVER\n1\nAC1009\n", blocks: str = "", tables: str = "") -> None:
     """An R12 file as old exporters write it: no handles, no $INSUNITS."""
     head = f"0\nSECTION\n2\nHEADER\n{header}0\nENDSEC\n" if header is not None else ""
+    head += f"0\nSECTION\n2\nTABLES\n{tables}0\nENDSEC\n" if tables else ""
     block_section = f"0\nSECTION\n2\nBLOCKS\n{blocks}0\nENDSEC\n" if blocks else ""
     path.write_text(f"{head}{block_section}0\nSECTION\n2\nENTITIES\n{entities}0\nENDSEC\n0\nEOF\n")
 
@@ -150,6 +151,16 @@ def test_layer_names_written_as_unicode_escapes_are_decoded_and_matched(tmp_path
         only = read_sketch(tmp_path / "greek.dxf", units="mm", layers=[chosen])
         others = read_sketch(tmp_path / "greek.dxf", units="mm", exclude_layers=[chosen])
         assert [link.layer for link in only.links] == ["ΛΑ"] and [link.layer for link in others.links] == ["B"]
+
+
+def test_a_layer_turned_off_is_left_out_whether_its_name_is_escaped_or_not(tmp_path):
+    # The LAYER table turns "ΛΑ" off (a negative colour); the LINEs on it (fast path) are read with
+    # their names decoded, so the table's name must be decoded too to leave them out.
+    off = f"0\nTABLE\n2\nLAYER\n70\n1\n0\nLAYER\n2\n{LAMBDA}\n70\n0\n62\n-7\n6\nCONTINUOUS\n0\nENDTAB\n"
+    edges = ((20, 0, 30, 0), (30, 0, 30, 10), (30, 10, 20, 10), (20, 10, 20, 0))
+    r12(tmp_path / "off.dxf", SQUARE + "".join(line(*e, LAMBDA) for e in edges), tables=off)
+    sketch = read_sketch(tmp_path / "off.dxf", units="mm")
+    assert len(sketch.links) == 1 and sketch.ignored == {"LINE (hidden layer)": 4}
 
 
 # -- curves out of the XY plane ---------------------------------------------------------------------
