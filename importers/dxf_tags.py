@@ -28,7 +28,7 @@ _REQUIRED = {
     "POINT": (10, 20),
     "LWPOLYLINE": (),
 }
-_OPTIONAL = (5, 8, 210, 220, 230, 67, 60, 70)
+_OPTIONAL = (5, 8, 210, 220, 230, 67, 60, 70, 30, 31)
 # DXF group codes run from -5 to 1071; anything far outside is not a code (and must not overflow int64).
 _CODE_RANGE = (-9999, 9999)
 # Codes that make an entity not simple: app data and embedded objects (arbitrary codes inside).
@@ -43,13 +43,17 @@ class DamagedDXF(Exception):
 class SimpleEntities:
     """Raw columns of the simple entities, one dict per type: code -> values in entity order.
 
-    ``layers``, ``handles`` per type; LWPOLYLINE also has ``vertices`` (V, 2), ``bulges`` (V,) and
-    ``vertex_start`` (n + 1,) offsets.
+    ``layers``, ``handles`` and ``positions`` (1-based in the ENTITIES section, counting every entity
+    but the VERTEX, SEQEND and ATTRIB records that belong to one) per type; LWPOLYLINE also has
+    ``vertices`` (V, 2), ``bulges`` (V,) and ``vertex_start`` (n + 1,) offsets. ``rest`` holds
+    (position, handle or None) of each model-space entity left to ezdxf, in file order.
     """
 
     columns: dict[str, dict[int, NDArray[np.float64]]] = field(default_factory=dict)
     layers: dict[str, list[str]] = field(default_factory=dict)
     handles: dict[str, list[str | None]] = field(default_factory=dict)
+    positions: dict[str, list[int]] = field(default_factory=dict)
+    rest: list[tuple[int, str | None]] = field(default_factory=list)
     vertices: NDArray[np.float64] = field(default_factory=lambda: np.empty((0, 2)))
     bulges: NDArray[np.float64] = field(default_factory=lambda: np.empty(0))
     vertex_start: NDArray[np.intp] = field(default_factory=lambda: np.zeros(1, np.intp))
@@ -84,6 +88,7 @@ def split_entities(text: str) -> tuple[SimpleEntities, str]:
     kinds = np.array(names[first:last], dtype=object)
     simple = _simple_entities(codes, values, starts, ends, kinds)
     found, taken = _decode(codes, values, starts, ends, kinds, simple)
+    _places(found, codes, values, starts, ends, kinds, taken)
     # The rest of the file: the runs of tags between the entities taken, as text lines.
     keep = np.ones(len(codes) + 1, bool)
     keep[np.repeat(starts[taken], (ends - starts)[taken]) + _ranks(ends[taken] - starts[taken])] = False
@@ -91,6 +96,29 @@ def split_entities(text: str) -> tuple[SimpleEntities, str]:
     edges = np.flatnonzero(np.diff(np.concatenate([[False], keep])))
     rest = "\n".join(itertools.chain.from_iterable(lines[2 * a:2 * b] for a, b in zip(edges[0::2], edges[1::2])))
     return found, rest
+
+
+def _places(found: SimpleEntities, codes, values, starts, ends, kinds, taken) -> None:
+    """Each entity's position in the section, for the simple ones taken and the model-space rest:
+    a user finds an entity without a handle by it."""
+    n = len(starts)
+    if not n:
+        return
+    position = np.cumsum(~np.isin(kinds, ("VERTEX", "SEQEND", "ATTRIB")))
+    for kind, members in found.positions.items():
+        found.positions[kind] = position[members].tolist()
+    lo = int(starts[0])
+    owner = np.repeat(np.arange(n), ends - starts)
+    section = codes[lo:int(ends[-1])]
+    paper = np.zeros(n, bool)
+    tags = np.flatnonzero(section == 67)
+    paper[owner[tags[np.array([values[lo + t].strip() not in ("", "0") for t in tags.tolist()], bool)]]] = True
+    rest = ~taken & ~paper & ~np.isin(kinds, ("VERTEX", "SEQEND", "ATTRIB"))
+    handles: list[str | None] = [None] * n
+    tags = np.flatnonzero(section == 5)
+    for t in tags[rest[owner[tags]]][::-1].tolist():  # backwards: an entity's first handle wins
+        handles[owner[t]] = values[lo + t].strip()
+    found.rest = [(int(position[k]), handles[k]) for k in np.flatnonzero(rest).tolist()]
 
 
 def _first_not_int(texts: list[str]) -> int:
@@ -174,7 +202,7 @@ def _decode(codes, values, starts, ends, kinds, simple) -> tuple[SimpleEntities,
         table = _KindTable(section_codes, section_values, owner, mine[owner], members)
         try:
             columns = {code: table.floats(code) for code in _REQUIRED[kind]}
-            for code, default in ((210, 0.0), (220, 0.0), (230, 1.0), (70, 0.0)):
+            for code, default in ((210, 0.0), (220, 0.0), (230, 1.0), (70, 0.0), (30, 0.0), (31, 0.0)):
                 columns[code] = table.floats(code, default)
             if kind == "LWPOLYLINE":
                 found.vertices, found.bulges, found.vertex_start = table.vertices()
@@ -183,6 +211,7 @@ def _decode(codes, values, starts, ends, kinds, simple) -> tuple[SimpleEntities,
         found.columns[kind] = columns
         found.layers[kind] = [layer if layer is not None else "0" for layer in table.texts(8)]
         found.handles[kind] = table.texts(5)
+        found.positions[kind] = members
         taken[members] = True
     return found, taken
 

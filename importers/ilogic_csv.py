@@ -143,9 +143,9 @@ def _read_old(lines: list[str], separator: str, units: str | None) -> RawSketch:
             raise SketchError(f"line {line}: 'New {kind}' has {len(points)} x, y line(s); a curve needs two or more")
         xy = np.array(points)
         circle = _fit_circle(xy) if "circle" in kind.lower() else None
-        curves.add_polyline(Polyline(xy, np.zeros(len(xy)), False, circle), (f"New {kind}", None, None, line))
+        curves.add_polyline(Polyline(xy, np.zeros(len(xy)), False, circle), (f"New {kind}", None, None, line, None))
     if joints:
-        curves.add_points(joints, [("Point", None, None, n) for n in joint_lines])
+        curves.add_points(joints, [("Point", None, None, n, None) for n in joint_lines])
     assumed = (unit_named(INVENTOR_UNITS, "units"),
                "assumed: the old iLogic CSV carries no units and Inventor's API reports centimetres; "
                "pass --units to say otherwise")
@@ -225,7 +225,7 @@ def _read_v1(lines: list[str], header: re.Match, separator: str, units: str | No
             if len(values) < 4 or len(values) % 2:
                 raise SketchError(f"line {line}: a spline needs x, y pairs of two or more points, got {len(values)} numbers")
             xy = np.array(values).reshape(-1, 2)
-            curves.add_polyline(Polyline(xy, np.zeros(len(xy)), False), ("spline", None, None, line))
+            curves.add_polyline(Polyline(xy, np.zeros(len(xy)), False), ("spline", None, None, line, None))
             continue
         if kind not in _V1_FIELDS:
             raise SketchError(
@@ -234,7 +234,7 @@ def _read_v1(lines: list[str], header: re.Match, separator: str, units: str | No
         values = rows.numbers(fields[1:], _V1_FIELDS[kind], line, _what(kind))
         _check_v1(kind, values, line)
         found[kind].append(values)
-        where[kind].append((kind, None, None, line))
+        where[kind].append((kind, None, None, line, None))
     _add_v1(curves, found, where)
     unit, source = choose_unit(declared, "the header's units=", units, default=None, override=override_units)
     return RawSketch(curves, unit, source, "linkstress-sketch v1 CSV", {}, (), V1_GAP_TOLERANCE)

@@ -9,6 +9,7 @@ a circle has perpendicular ``major`` and ``minor`` of equal length, its radius.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,19 +19,23 @@ from numpy.typing import ArrayLike, NDArray
 from linkstress.errors import SketchError
 from linkstress.importers.units import DrawingUnit
 
-Origin = tuple[str, str | None, str | None, int | None]
-"""Where a curve or point came from: (kind, DXF handle, layer, CSV line number)."""
+Origin = tuple[str, str | None, str | None, int | None, str | None]
+"""Where a curve or point came from: (kind, DXF handle, layer, CSV line number, place), ``place``
+finding a DXF entity without a handle (R12, OpenSCAD and DXFWRITE write none): ``#37``, its position
+in the ENTITIES section, or ``#3 of block 'PIN' inserted by INSERT #12``."""
 
 
 def describe(origin: Origin) -> str:
-    """``LINE (handle 2F, layer 'crank')`` or ``circle on line 12``: the culprit in a message."""
-    kind, handle, layer, line = origin
+    """``LINE (handle 2F, layer 'crank')``, ``LINE #37 (layer '0')`` or ``circle on line 12``: the
+    culprit in a message."""
+    kind, handle, layer, line, place = origin
     if line is not None:
         return f"{kind} on line {line}"
     details = [f"handle {handle}"] if handle else []
     if layer is not None:
         details.append(f"layer {layer!r}")
-    return f"{kind} ({', '.join(details)})" if details else kind
+    name = f"{kind} {place}" if place else kind
+    return f"{name} ({', '.join(details)})" if details else name
 
 
 @dataclass(frozen=True)
@@ -151,6 +156,21 @@ def box_of(boxes: NDArray[np.float64]) -> tuple[float, float, float, float] | No
     if not len(boxes):
         return None
     return float(boxes[:, 0].min()), float(boxes[:, 1].min()), float(boxes[:, 2].max()), float(boxes[:, 3].max())
+
+def no_curves(ignored: Mapping[str, int], kept: str = "") -> str:
+    """The message for a drawing without curves (``kept``: e.g. " on the layers read"), saying what it
+    holds instead; a HATCH's boundary is the likely outline, so say how to get it as curves."""
+    if not ignored:
+        return f"no outline: the drawing has no curves{kept}"
+    found = ", ".join(f"{n} {kind}" for kind, n in sorted(ignored.items()))
+    one = sum(ignored.values()) == 1
+    message = (f"no outline: the drawing has no curves{kept} it reads (only {found} "
+               f"{'was' if one else 'were'} found, which {'is' if one else 'are'} not outline geometry)")
+    if any(kind.startswith("HATCH") for kind in ignored):
+        message += ("; a HATCH is a fill, not an outline: draw its boundary as curves, or regenerate the "
+                    "hatch's boundary in CAD (AutoCAD: HATCHGENERATEBOUNDARY) and export again")
+    return message
+
 
 def with_damage(message: str, fixes: tuple[str, ...] | list[str]) -> str:
     """``message``, noting that the file was damaged (and read in recover mode) if it was."""

@@ -18,7 +18,7 @@ class SketchProblem:
 
     ``layer``: the layer of the curves named (None for a CSV, or curves on several layers);
     ``at``: (x, y) where it is, in drawing units ``unit``; ``entities``: the curves or POINTs named
-    (``describe(origin)``); ``problem``: what went wrong, a sentence naming position and entities;
+    (``describe(origin)``), each once, in order; ``problem``: what went wrong, a sentence naming position and entities;
     ``fix``: what to do.
     """
 
@@ -28,6 +28,10 @@ class SketchProblem:
     entities: tuple[str, ...]
     problem: str
     fix: str
+
+    def __post_init__(self) -> None:
+        # A chain of 93 lines through one corner names each once, in order (replace() comes here too).
+        object.__setattr__(self, "entities", tuple(dict.fromkeys(self.entities)))
 
     @property
     def text(self) -> str:

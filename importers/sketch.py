@@ -22,6 +22,7 @@ from types import MappingProxyType
 
 import numpy as np
 import shapely
+from ezdxf import decode_dxf_unicode
 from numpy.typing import NDArray
 from shapely.geometry import Point, Polygon
 
@@ -32,7 +33,7 @@ from linkstress.importers.dxf import read_dxf
 from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.ilogic_csv import read_csv
 from linkstress.importers.library_notes import library_notes, noted, with_notes
-from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, with_damage
+from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, no_curves, with_damage
 from linkstress.importers.problems import SketchProblem, listed
 from linkstress.materials import Material
 from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
@@ -110,6 +111,8 @@ class Sketch:
         meant, or part of it.
         """
         names = ", ".join(repr(link.name) for link in self.links)
+        if name_or_layer is not None:
+            name_or_layer = decode_dxf_unicode(name_or_layer)  # as the drawing's layer names are
         if name_or_layer is None:
             if len(self.links) == 1 and not self.problems:
                 return self.links[0]
@@ -195,7 +198,7 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
     bounds = box_of(boxes[:int(use[:curves].sum())])
     if bounds is None:
         kept = " on the layers read" if layers is not None or exclude_layers else ""
-        raise SketchError(f"no outline: the drawing has no curves{kept}{_ignored_note(raw.ignored)}")
+        raise SketchError(no_curves(raw.ignored, kept))
     _check_reach(raw, boxes, origins)
     size = math.hypot(bounds[2] - bounds[0], bounds[3] - bounds[1])
     if not size > 0:
@@ -226,6 +229,9 @@ def _on_layers(origins: list[Origin], layers: Collection[str] | None, exclude: C
     on = np.array([origin[2] for origin in origins], dtype=object)
     if layers is None and not exclude:
         return np.ones(len(origins), bool)
+    # The drawing's names are decoded (``\U+039B`` is a capital lambda); so are those given.
+    layers = None if layers is None else [decode_dxf_unicode(name) for name in layers]
+    exclude = [decode_dxf_unicode(name) for name in exclude]
     present = sorted({layer for layer in on.tolist() if layer is not None})
     unknown = sorted((set(layers or ()) | set(exclude)) - set(present))
     if unknown:
@@ -270,13 +276,6 @@ def _check_scale(raw: RawSketch, bounds: tuple[float, float, float, float], size
             f"{MAX_OFFSET:g} times its size: double precision cannot resolve its gaps there; move the "
             "drawing near the origin"
         )
-
-
-def _ignored_note(ignored: Mapping[str, int]) -> str:
-    if not ignored:
-        return ""
-    listed = ", ".join(f"{n} {kind}" for kind, n in sorted(ignored.items()))
-    return f" it reads (only {listed} were found, which are not outline geometry)"
 
 
 def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], use_points: NDArray[np.bool_],

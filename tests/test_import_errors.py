@@ -108,7 +108,11 @@ def test_curves_drawn_twice_and_tiny_curves_are_dropped_and_reported(tmp_path):
 def test_an_empty_drawing_says_what_it_holds(tmp_path):
     doc = ezdxf.new("R2013", units=4)
     doc.modelspace().add_text("nothing to see")
-    with pytest.raises(SketchError, match=r"sketch.dxf: no outline: the drawing has no curves it reads \(only 1 TEXT were found"):
+    with pytest.raises(SketchError, match=r"sketch.dxf: no outline: the drawing has no curves it reads \(only 1 TEXT was "
+                                          r"found, which is not outline geometry\)$"):
+        read_sketch(save(doc, tmp_path))
+    doc.modelspace().add_text("nor here")
+    with pytest.raises(SketchError, match=r"\(only 2 TEXT were found, which are not outline geometry\)$"):
         read_sketch(save(doc, tmp_path))
 
 
