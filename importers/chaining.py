@@ -255,6 +255,8 @@ def _branch(ends: Ends, tree: cKDTree, i: int, tolerance: float, report: Report,
         return
     seen[meeting] = len(problems)
     names = ", ".join(report.curve(ends.idx[e // 2]) for e in meeting[:4])
+    if len(meeting) > 4:
+        names += f" and {len(meeting) - 4} more"
     problems.append(SketchProblem(
         layer, _point(ends.xy[i]), report.unit, _names(report, members),
         f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names})",
