@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from linkstress.scene import load_scene
+from linkstress.scene.keys import RANGES
 from linkstress.scene.links import LINK_KEYS, MATERIAL_KEYS
 from linkstress.scene.loads import ANALYSIS_KEYS, COUPLE_KEYS, FORCE_KEYS, LOAD_KEYS
 from linkstress.scene.mechanisms import MECHANISM_KEYS, ROLE_KEYS
@@ -54,6 +55,14 @@ def test_every_key_the_reader_accepts_is_named_in_its_tables_section():
         f"{heading}: `{key}`" for heading, keys in SECTIONS.items() for key in keys if f"`{key}`" not in found[heading]
     ]
     assert not missing, "docs/scenes.md does not name these keys in their table's section: " + ", ".join(missing)
+
+
+def test_the_ranges_table_is_the_readers():
+    # "| kg/m^3 | a density | 1e-2 | 1e5 |": each unit's smallest (when > 0) and largest size
+    table = DOC.read_text().split("| unit | quantity |", 1)[1].split("\n\n", 1)[0]
+    rows = [line.strip("|").split(" | ") for line in table.splitlines()[2:]]
+    documented = {unit.strip(): (float(smallest), float(largest), what) for unit, what, smallest, largest in rows}
+    assert documented == RANGES
 
 
 def test_every_table_of_the_scene_has_a_section():
