@@ -32,6 +32,10 @@ ANALYSIS_KEYS = (
     "kinematics", "forces", "stresses", "stations", "validate", "mesh_size_m", "element_order", "body_load_near_holes",
     "peaks", "fatigue_criterion",
 )
+COUPLE_KEYS = ("value", "at_joint")
+"""The keys of a couple given as an inline table: ``LINK = {value = 2.0, at_joint = 1}``."""
+FORCE_KEYS = ("link", "at_m", "force_n")
+"""The keys of each ``[[loads.forces]]`` entry."""
 
 
 def read_loads(table: Table | None, machine: Machine, links: dict[str, SceneLink]) -> Loads:
@@ -47,7 +51,7 @@ def read_loads(table: Table | None, machine: Machine, links: dict[str, SceneLink
         value = couple_table.data[name]
         if isinstance(value, dict):
             spec = couple_table.table(name)
-            spec.allow(("value", "at_joint"))
+            spec.allow(COUPLE_KEYS)
             spec.require("value", "the couple in N m, counter-clockwise positive")
             amount = spec.number("value", unit="N m")
             joint = spec.integer("at_joint", links[link].frame_joints[0], minimum=0)
@@ -64,7 +68,7 @@ def read_loads(table: Table | None, machine: Machine, links: dict[str, SceneLink
             raise table.error("forces", "must be an array of tables: [[loads.forces]] with link, at_m, force_n")
         for k, item in enumerate(raw):
             spec = Table(item, f"{table.key_path('forces')}[{k}]", table.source)
-            spec.allow(("link", "at_m", "force_n"))
+            spec.allow(FORCE_KEYS)
             for key, what in (("link", "the link's name"), ("at_m", "[x, y] in the link's member frame, metres"),
                               ("force_n", "[Fx, Fy] in the ground frame, newtons")):
                 spec.require(key, what)

@@ -34,6 +34,8 @@ MECHANISM_KEYS = (
     "type", "crank", "coupler", "output", "ground", "slider", "branch", "offset_m", "slider_angle_deg",
     "driven_by", "phase_deg",
 )
+ROLE_KEYS = ("link", "joints")
+"""The keys of a role given as an inline table: ``crank = {link = "NAME", joints = [i, j]}``."""
 
 
 def read_mechanisms(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> list[Loop]:
@@ -94,7 +96,7 @@ def _read_role(entry: Table, role: str, drawn: Mapping[str, NDArray[np.float64]]
     if not isinstance(value, dict):
         raise entry.error(role, f"must be a link name or {{link = \"NAME\", joints = [i, j]}}, got {value!r}")
     spec = entry.table(role)
-    spec.allow(("link", "joints"))
+    spec.allow(ROLE_KEYS)
     spec.require("link", "the link's name, e.g. link = \"crank\"")
     link = spec.string("link")
     counts, shape = ((1, 2), "[k] (or [k, k])") if role == "slider" else ((2,), "[i, j]")

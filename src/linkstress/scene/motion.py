@@ -20,6 +20,8 @@ from linkstress.scene.keys import Table
 
 MOTION_KEYS = ("input_angle_deg", "input_speed_rad_s", "input_acceleration_rad_s2", "actuator")
 RANGE_KEYS = ("start", "stop", "num")
+EXPRESSION_KEYS = ("expression", "t")
+"""The keys of ``input_angle_deg = {expression = "...", t = ...}``."""
 MAX_POSITIONS = 10_000_000
 
 
@@ -55,7 +57,7 @@ def read_actuator(table: Table, machine: Machine) -> str:
 
 def _timed(table: Table) -> InputMotion:
     spec = table.table("input_angle_deg")
-    spec.allow(("expression", "t"))
+    spec.allow(EXPRESSION_KEYS)
     spec.require("t", "the times in seconds: t = {start = 0.0, stop = 1.0, num = 101} or a list")
     for key in ("input_speed_rad_s", "input_acceleration_rad_s2"):
         if table.has(key):
