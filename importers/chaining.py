@@ -11,18 +11,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 from linkstress.errors import SketchError
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.primitives import Origin, describe
 from linkstress.importers.problems import SketchProblem
-
-if TYPE_CHECKING:
-    from scipy.spatial import cKDTree
 
 
 class Report:
@@ -80,8 +79,6 @@ def close_pairs(points: NDArray[np.float64], tolerance: float, what: str) -> NDA
     """(M, 2) index pairs i < j of ``points`` (N, D) within ``tolerance`` of each other; refused,
     naming ``what`` the points are, beyond MAX_CLOSE_PAIRS (counted by the k-d tree before any is
     listed)."""
-    from scipy.spatial import cKDTree  # tens of ms to import: only where a tree is built
-
     tree = cKDTree(points)
     count = (int(tree.count_neighbors(tree, tolerance)) - len(points)) // 2
     if count > MAX_CLOSE_PAIRS:
@@ -134,8 +131,6 @@ class Ends:
         if m == 0:
             return cls(idx, xy, np.zeros(0, np.intp), np.zeros(0), np.zeros(0))
         k = min(3, m)
-        from scipy.spatial import cKDTree
-
         dist, near = cKDTree(xy, balanced_tree=False, compact_nodes=False).query(xy, k=k)
         others_first = np.argsort(near == np.arange(m)[:, None], axis=1, kind="stable")
         near = np.take_along_axis(near, others_first, 1)
@@ -203,10 +198,6 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
     n = len(ends.idx)
     if n == 0:
         return np.ones(0, bool), [], []
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
     rows = np.arange(2 * n)
     branch = ends.branched(tolerance)
     paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance) & ~branch & ~branch[ends.nearest]

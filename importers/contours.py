@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
@@ -160,8 +161,6 @@ def dangling_pieces(ends: Ends, tolerance: float) -> tuple[NDArray[np.intp], NDA
     n = len(ends.idx)
     if n == 0:
         return ends.idx, ends.idx
-    from scipy.spatial import cKDTree
-
     pairs = cKDTree(ends.xy).query_pairs(tolerance, output_type="ndarray")  # a piece's own ends too: a ring of one
     neighbours = [[] for _ in range(2 * n)]
     for a, b in pairs.tolist():
