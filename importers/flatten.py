@@ -36,15 +36,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import BSpline
 
 from linkstress.curves import MIN_SEGMENTS_PER_TURN
 from linkstress.errors import SketchError
 from linkstress.importers import circles
 from linkstress.importers.primitives import CurveSet, Origin, Polyline, bulge_arcs, describe
+
+if TYPE_CHECKING:
+    from scipy.interpolate import BSpline
 
 RELATIVE_SAGITTA = 1e-4
 """Default chord tolerance of an arc, as a fraction of its own (major) radius: 223 vertices per turn."""
@@ -397,6 +400,8 @@ def spline_curve(spline) -> tuple[BSpline, float, float]:
     xy = np.array([(p[0], p[1]) for p in spline.control_points], float).reshape(-1, 2)
     w = np.asarray(spline.weights(), float) if spline.is_rational else np.ones(len(xy))
     degree = spline.degree
+    from scipy.interpolate import BSpline  # scipy.interpolate: tens of ms to import, for SPLINEs alone
+
     return BSpline(knots, np.column_stack([xy * w[:, None], w]), degree), float(knots[degree]), float(knots[len(xy)])
 
 

@@ -11,7 +11,6 @@ and ``center_of_mass`` [m, member frame] come together and take precedence over 
 
 from __future__ import annotations
 
-import importlib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -155,12 +154,8 @@ def _read_members(entry: Table, profile: LinkProfile) -> tuple[tuple[int, int], 
 
 
 def _load_profile(entry: Table, name, path: Path, layer, units, thickness, material, sketches) -> LinkProfile:
-    read_sketch = getattr(importlib.import_module("linkstress.importers"), "read_sketch", None)
-    if read_sketch is None:
-        raise entry.error(
-            "sketch", "this installation cannot read sketches yet (linkstress.importers.read_sketch is "
-            "missing); give the link bare joints = [[x, y], ...] instead"
-        )
+    from linkstress.importers import read_sketch  # ezdxf and shapely's importers: only for a scene with sketches
+
     try:
         found = path.is_file()
     except OSError as error:  # e.g. a name longer than the file system allows
