@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from linkstress.commands import HelpFormatter, examples
 from linkstress.analysis import PEAK_MESH_LEVELS, AnalysisResult, Plan, plan_for, run_analysis
+from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.peak_records import peak_summaries

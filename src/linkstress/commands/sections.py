@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
-from linkstress.commands import HelpFormatter, examples
 from linkstress.builders import straight_bar
+from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError
 from linkstress.materials import Material
 from linkstress.profile import LinkProfile

@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from linkstress.commands import HelpFormatter, examples
 from linkstress.analysis import plan_for
+from linkstress.commands import HelpFormatter, examples
 from linkstress.commands.analyze import check_work, refuse_non_finite, scene_sketches
 from linkstress.errors import InputError
 from linkstress.output import check_outputs, json_bytes, write_all
