@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import shlex
 import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from linkstress import __version__
-from linkstress.cli import main
+from linkstress.cli import build_parser, main
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -40,6 +43,51 @@ def test_help_lists_the_commands():
     result = run_cli("--help")
     assert result.returncode == 0
     assert "sections" in result.stdout
+
+
+COMMANDS = ("import", "analyze", "validate", "sections", "regress", "bench")
+INPUTS = ("scene", "sketch", "cases")
+"""The arguments that name files a command reads (its outputs need not exist yet)."""
+
+
+def help_text(capsys, *argv: str) -> str:
+    with pytest.raises(SystemExit) as stop:
+        main([*argv, "--help"])
+    assert stop.value.code == 0
+    return capsys.readouterr().out
+
+
+def closing_examples(text: str) -> list[str]:
+    """The command lines of a help's last paragraph: a heading starting "example", then the lines."""
+    lines = text.rstrip().split("\n\n")[-1].splitlines()
+    assert lines[0].startswith("example"), lines[0]
+    first = next(k for k, line in enumerate(lines) if line.startswith("  linkstress "))
+    assert all(line.startswith("  linkstress ") for line in lines[first:]), lines
+    return [line.strip() for line in lines[first:]]
+
+
+@pytest.mark.parametrize("command", [(), *((name,) for name in COMMANDS)], ids=["linkstress", *COMMANDS])
+def test_every_help_ends_with_examples_the_parser_takes_on_files_that_exist(capsys, command):
+    examples = closing_examples(help_text(capsys, *command))
+    assert examples
+    for line in examples:
+        argv = shlex.split(line)[1:]
+        if command:
+            assert argv[0] == command[0], line
+        args = build_parser().parse_args(argv)  # exits 2 on a flag or value the command does not take
+        assert hasattr(args, "run"), line
+        for name in INPUTS:
+            if getattr(args, name, None) is not None:
+                assert (REPO / getattr(args, name)).exists(), line
+
+
+def test_the_main_path_runs_import_then_analyze_then_validate(capsys):
+    assert [line.split()[1] for line in closing_examples(help_text(capsys))] == ["import", "analyze", "validate"]
+
+
+def test_analyze_help_says_a_sweep_includes_its_stop(capsys):
+    text = " ".join(help_text(capsys, "analyze").split())
+    assert "{start, stop, num} is num angles from start to stop, both included" in text
 
 
 def test_console_script_is_installed_beside_the_interpreter():

@@ -91,7 +91,7 @@ CASES = [
     ("input_speed_rad_s = 10.0", "input_speed_rad_s = [1.0, 2.0]",
      "motion.input_speed_rad_s: give one number, or a list of 36 numbers (one per input angle)"),
     ("input_angle_deg = {start = 0.0, stop = 350.0, num = 36}", "input_angle_deg = {start = 0.0, stop = 350.0}",
-     "motion.input_angle_deg.num: missing; give start, stop and num"),
+     "motion.input_angle_deg.num: missing; give start, stop and num: num angles from start to stop, both included"),
     ("input_angle_deg = {start = 0.0, stop = 350.0, num = 36}", "input_angle_deg = []",
      "motion.input_angle_deg: must be a non-empty list of numbers deg"),
     ("input_angle_deg = {start = 0.0, stop = 350.0, num = 36}\ninput_speed_rad_s = 10.0",

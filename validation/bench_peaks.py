@@ -198,7 +198,7 @@ def _warm_up(scene: Scene, plan: Plan) -> None:
 
 def _study(name: str, title: str, analysis: AnalysisResult, positions: int) -> PeaksStudy:
     """Each link of ``analysis.peaks`` against its direct FEA at up to ``positions`` feasible positions."""
-    chosen = compared_positions(analysis.feasible, positions)
+    chosen = compared_positions(analysis, positions)
     links = []
     for link, peaks in analysis.peaks.items():
         cases = peaks.sweep.cases

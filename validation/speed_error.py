@@ -311,7 +311,7 @@ def case_study(scene_path, settings: StudySettings, links: tuple[str, ...] | Non
     scene = load_scene(scene_path)
     analysis = run_analysis(scene, plan_for(scene))
     kinetics_seconds = analysis.seconds["kinematics"] + analysis.seconds["forces"]
-    chosen = compared_positions(analysis.feasible, settings.positions)
+    chosen = compared_positions(analysis, settings.positions)
     setups = setup_links(scene, analysis, chosen, links)
     solve_link(setups[0].link, setups[0].loads, setups[0].mesh)  # gmsh and the assembly warm up untimed
     answers: dict[tuple[str, str], dict[str, Answer]] = {}

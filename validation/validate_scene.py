@@ -42,6 +42,10 @@ refinement steps) unless the scene gives a mesh size. Measured by ``linkstress b
 resultants miss the RESULTANT_LIMIT check on the seed case."""
 MAX_POSITIONS = 36
 """Positions of a sweep compared by default (evenly spread over the feasible ones)."""
+POSE_RESOLUTION = 1e-9
+"""Two positions whose state (cosines and sines of angles, origins [m], input speed [rad/s] and
+acceleration [rad/s^2]) agrees to this are one pose: far above the rounding of a sweep's arithmetic
+(the cosine of 360 deg is 1 to 1e-16), far below the step of any sweep worth comparing."""
 
 
 @dataclass(frozen=True)
@@ -82,9 +86,27 @@ class ValidationResult:
         return lines
 
 
-def compared_positions(feasible: NDArray[np.bool_], limit: int) -> NDArray[np.intp]:
-    """Up to ``limit`` feasible positions, evenly spread, first and last included."""
-    ok = np.flatnonzero(feasible)
+def distinct_poses(analysis: AnalysisResult) -> NDArray[np.intp]:
+    """The feasible positions of ``analysis`` less each that repeats an earlier one's pose: the same
+    input angle modulo 360 deg, input speed and acceleration, and every link at the same angle modulo
+    2 pi and with its frame origin at the same point (ground frame), so the same loads. A sweep over
+    0..360 deg (both ends included) ends on the pose it starts from on a machine that closes in one
+    turn; where the links come back elsewhere, or the speed is reversed, both positions are kept."""
+    ok = np.flatnonzero(analysis.feasible)
+    motion = analysis.scene.motion
+    columns = [np.cos(motion.angle), np.sin(motion.angle), motion.speed, motion.acceleration]
+    for link in analysis.kinematics.links.values():
+        columns += [np.cos(link.angle), np.sin(link.angle), link.origin[:, 0], link.origin[:, 1]]
+    # Rounded to the resolution; adding 0.0 makes a rounded -0.0 equal to 0.0 for np.unique.
+    state = np.round(np.column_stack(columns)[ok] / POSE_RESOLUTION) + 0.0
+    _, first = np.unique(state, axis=0, return_index=True)
+    return ok[np.sort(first)]
+
+
+def compared_positions(analysis: AnalysisResult, limit: int) -> NDArray[np.intp]:
+    """Up to ``limit`` distinct poses of ``analysis``'s feasible positions (``distinct_poses``), evenly
+    spread, first and last included (indices into the sweep)."""
+    ok = distinct_poses(analysis)
     if len(ok) <= limit:
         return ok
     return np.unique(ok[np.linspace(0, len(ok) - 1, limit).round().astype(int)])
@@ -103,7 +125,7 @@ def validate_scene(
     (default 2); ``levels`` >= 3 makes each a mesh refinement study; ``jobs``
     > 1 runs the links in that many processes. A progress bar shows on a terminal."""
     analysis = run_analysis(scene, plan)
-    chosen = compared_positions(analysis.feasible, positions)
+    chosen = compared_positions(analysis, positions)
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
     order = scene.analysis.element_order if scene.analysis is not None else 2
     tasks = [

@@ -14,9 +14,16 @@ import signal
 import sys
 
 from linkstress import __version__
+from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError
 
-COMMAND_MODULES = ("sections", "analyze", "import_", "validate", "regress", "bench")
+COMMAND_MODULES = ("import_", "analyze", "validate", "sections", "regress", "bench")
+"""In the order of the help's list: the main path (sketch, analysis, FEA check) first."""
+MAIN_PATH = (
+    "linkstress import validation/cases/six_bar/six_bar.dxf --plot six_bar.png",
+    "linkstress analyze validation/cases/six_bar/scene.toml --html six_bar.html",
+    "linkstress validate validation/cases/six_bar/scene.toml --positions 4",
+)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -27,6 +34,13 @@ def build_parser() -> argparse.ArgumentParser:
             "checked against plane-stress finite elements. SI units; angles in degrees where a "
             "name ends in _deg."
         ),
+        epilog=examples(
+            *MAIN_PATH,
+            heading="example, the main path: a sketch's links, the analysis of the scene drawn from that sketch, "
+            "and its check against FEA (paths from the root of a source checkout; each command's --help ends "
+            "with examples of its own):",
+        ),
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"linkstress {__version__}")
     subparsers = parser.add_subparsers(title="commands", metavar="COMMAND")

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from linkstress.analysis import PEAK_MESH_LEVELS, AnalysisResult, Plan, plan_for, run_analysis
+from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.peak_records import peak_summaries
@@ -46,8 +47,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Read a scene file (TOML) and report, at every input angle, each link's angle, angular "
             "velocity and acceleration and its centre of mass's acceleration, the joint forces and "
             "driving torque, and the largest beam-section von Mises stress of every link with a profile "
-            "(ground frame, SI). Without an [analysis] table the scene gets everything its data allows."
+            "(ground frame, SI). Without an [analysis] table the scene gets everything its data allows. "
+            "A sweep [motion] input_angle_deg = {start, stop, num} is num angles from start to stop, both "
+            "included: {start = 0.0, stop = 350.0, num = 36} is every 10 deg of a turn (stop = 360.0 with "
+            "num = 37 repeats the pose at 0 deg)."
         ),
+        epilog=examples(
+            "linkstress analyze validation/cases/six_bar/scene.toml --html six.html",
+            "linkstress analyze validation/cases/bell_crank/scene.toml --peaks",
+        ),
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("scene", type=Path, metavar="SCENE", help="scene file (TOML)")
     parser.add_argument("--json", type=Path, metavar="OUT", help="also write the results as JSON to OUT")

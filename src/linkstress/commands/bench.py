@@ -12,6 +12,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from linkstress.commands import HelpFormatter, examples
 from linkstress.output import check_outputs, json_bytes, write_all
 
 
@@ -29,6 +30,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "FEA on the same mesh, with the seed's 360-position sweep with peaks timed against one validate at one "
             "position. Checks errors against their bounds, never times."
         ),
+        epilog=examples("linkstress bench --quick", "linkstress bench --json bench.json --html bench.html"),
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("--json", type=Path, metavar="OUT", help="write the figures as JSON to OUT")
     parser.add_argument("--html", type=Path, metavar="OUT", help="write a self-contained HTML report to OUT")

@@ -7,6 +7,7 @@ import json
 import os
 from pathlib import Path
 
+from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError, SketchError
 from linkstress.output import check_outputs, write_all
 
@@ -20,8 +21,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "moment per unit thickness, its joints and the rule that found them, its holes and the "
             "largest gap closed. Coordinates in metres, sketch frame. What cannot make a clean outline "
             "(an open chain, a crossing, a POINT off a hole's centre) is listed as a problem and left "
-            "out; the rest imports (exit 0) unless --strict."
+            "out; the rest imports (exit 0) unless --strict. With --scene, a mechanism drawn assembled (each "
+            "link on its own layer, pin centres meeting) also becomes a scene to edit and analyze; the shipped "
+            "cases' sketches draw their links apart, so --scene refuses them."
         ),
+        epilog=examples(
+            "linkstress import validation/cases/six_bar/six_bar.dxf --plot six_bar.png",
+            "linkstress import validation/cases/bell_crank/bell_crank.dxf --layers crank,bellcrank --json links.json",
+        ),
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("sketch", metavar="SKETCH", help="a .dxf or .csv sketch")
     parser.add_argument("--units", help="units of the sketch (mm, cm, m, in, ft): needed when it does not say, and overriding it when it does; the old iLogic CSV defaults to cm")

@@ -8,6 +8,7 @@ import argparse
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+from linkstress.commands import HelpFormatter, examples
 from linkstress.commands.validate import check_jobs
 from linkstress.regression import CaseResult, find_cases, read_reference, run_case
 from linkstress.tables import format_table
@@ -27,6 +28,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Re-run every case (a folder with scene.toml, its sketches and reference.json) and compare "
             "with the stored reference; exit 1 on any regression. Point it at your own cases folder."
         ),
+        epilog=examples("linkstress regress", "linkstress regress validation/cases/six_bar --verbose"),
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("cases", nargs="?", type=Path, metavar="CASES_DIR",
                         help="folder of cases, or one case folder (default: the shipped validation/cases)")

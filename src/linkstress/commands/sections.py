@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from linkstress.builders import straight_bar
+from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError
 from linkstress.materials import Material
 from linkstress.profile import LinkProfile
@@ -23,6 +24,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Print a link's exact mass properties and its section table (chords, area, neutral axis, "
             "second moment, extreme fibres) at evenly spaced stations along its first two joints."
         ),
+        epilog=examples("linkstress sections --bar 1.0 0.5 0.1 0.1 --hole 0.02"),
+        formatter_class=HelpFormatter,
     )
     parser.add_argument(
         "--bar", nargs=4, type=float, required=True, metavar=("SPACING", "HEIGHT", "OVERHANG", "THICKNESS"),

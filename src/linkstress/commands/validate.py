@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from linkstress.analysis import plan_for
+from linkstress.commands import HelpFormatter, examples
 from linkstress.commands.analyze import check_work, refuse_non_finite, scene_sketches
 from linkstress.errors import InputError
 from linkstress.output import check_outputs, json_bytes, write_all
@@ -42,13 +43,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "--mesh-levels 1; each quantity's change over the last refinement is reported, and a safety factor "
             "is taken only from a peak that converged (within 5 %)."
         ),
+        epilog=examples(
+            "linkstress validate validation/cases/banana_coupler/scene.toml --positions 4",
+            "linkstress validate validation/cases/seed_ansys_fourbar/scene.toml --json seed.json --vtu seed_fields",
+        ),
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("scene", type=Path, metavar="SCENE", help="scene file (TOML)")
     parser.add_argument("--json", type=Path, metavar="OUT", help="write docs/design.md's validate JSON to OUT")
     parser.add_argument("--html", type=Path, metavar="OUT", help="write a self-contained HTML report to OUT")
     parser.add_argument("--vtu", type=Path, metavar="DIR", help="write the FEA fields (VTU + PVD per link) into DIR")
     parser.add_argument("--positions", type=int, default=None, metavar="N",
-                        help="compare at most N feasible positions of a sweep (default 36)")
+                        help="compare at most N feasible positions of a sweep, evenly spread, first and last "
+                        "included; a pose the sweep repeats (0 and 360 deg of a one-turn machine) counts once "
+                        "(default 36)")
     parser.add_argument("--mesh-levels", type=int, default=3, metavar="L",
                         help="mesh refinement levels per link: 3 or more for a convergence study, 1 for one mesh")
     parser.add_argument("--mesh-size", type=float, default=None, metavar="M",

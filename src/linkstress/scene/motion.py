@@ -1,11 +1,13 @@
 """The [motion] table: the main crank's input angles, speed, acceleration, and the actuator.
 
-``input_angle_deg`` is a number, a list of numbers, a range ``{start, stop, num}`` (both ends
-included) or a function of time ``{expression = "90*sin(2*pi*t)", t = {start, stop, num}}`` (``t``
-may also be a list of times [s]). Angles are the main crank's, counter-clockwise from the ground
-frame's +x. ``input_speed_rad_s`` and ``input_acceleration_rad_s2`` are numbers or one per angle
-(default 0: a quasi-static sweep); with an expression they are its exact time derivatives and may
-not be given. ``actuator`` names the link that carries the unknown driving torque (default: the
+``input_angle_deg`` is a number, a list of numbers, a range ``{start, stop, num}`` or a function of
+time ``{expression = "90*sin(2*pi*t)", t = {start, stop, num}}`` (``t`` may also be a list of times
+[s]). A range is ``num`` evenly spaced values from ``start`` to ``stop``, both ends included: a turn
+in 10 deg steps is ``{start = 0.0, stop = 350.0, num = 36}``; ``stop = 360.0, num = 37`` ends on the
+pose it starts from (``validate`` compares that pose once). Angles are the main crank's,
+counter-clockwise from the ground frame's +x. ``input_speed_rad_s`` and ``input_acceleration_rad_s2``
+are numbers or one per angle (default 0: a quasi-static sweep); with an expression they are its exact
+time derivatives and may not be given. ``actuator`` names the link that carries the unknown driving torque (default: the
 main loop's crank).
 """
 
@@ -22,12 +24,22 @@ MOTION_KEYS = ("input_angle_deg", "input_speed_rad_s", "input_acceleration_rad_s
 RANGE_KEYS = ("start", "stop", "num")
 EXPRESSION_KEYS = ("expression", "t")
 """The keys of ``input_angle_deg = {expression = "...", t = ...}``."""
+RANGE_WORDS = {
+    "deg": "start, stop and num: num angles from start to stop, both included, e.g. {start = 0.0, stop = 350.0, "
+    "num = 36} for a turn in 10 deg steps (stop = 360.0 would end on the pose at 0.0 again)",
+    "s": "start, stop and num: num times from start to stop, both included, e.g. {start = 0.0, stop = 1.0, num = 101} "
+    "for 1 s in 10 ms steps",
+}
+"""What a range needs, per unit: angles of a sweep [deg] or times [s]."""
 MAX_POSITIONS = 10_000_000
 
 
 def read_motion(table: Table) -> InputMotion:
     table.allow(MOTION_KEYS)
-    table.require("input_angle_deg", "a number, a list, {start, stop, num} or {expression, t}")
+    table.require(
+        "input_angle_deg", "a number, a list, {start, stop, num} (num angles from start to stop, both included) "
+        "or {expression, t}",
+    )
     value = table.data["input_angle_deg"]
     if isinstance(value, dict) and "expression" in value:
         return _timed(table)
@@ -58,7 +70,10 @@ def read_actuator(table: Table, machine: Machine) -> str:
 def _timed(table: Table) -> InputMotion:
     spec = table.table("input_angle_deg")
     spec.allow(EXPRESSION_KEYS)
-    spec.require("t", "the times in seconds: t = {start = 0.0, stop = 1.0, num = 101} or a list")
+    spec.require(
+        "t", "the times in seconds: t = {start = 0.0, stop = 1.0, num = 101} (101 times from 0 to 1 s, both "
+        "included) or a list",
+    )
     for key in ("input_speed_rad_s", "input_acceleration_rad_s2"):
         if table.has(key):
             raise table.error(key, "not allowed with an expression: it is the expression's time derivative")
@@ -71,9 +86,10 @@ def _timed(table: Table) -> InputMotion:
 
 
 def _range(spec: Table, unit: str) -> np.ndarray:
+    """``num`` evenly spaced values [``unit``] from ``start`` to ``stop``, both included."""
     spec.allow(RANGE_KEYS)
     for key in RANGE_KEYS:
-        spec.require(key, "start, stop and num, e.g. {start = 0.0, stop = 360.0, num = 361}")
+        spec.require(key, RANGE_WORDS[unit])
     start, stop = spec.number("start", unit=unit), spec.number("stop", unit=unit)
     num = spec.integer("num", minimum=1, maximum=MAX_POSITIONS)
     return angle_range(start, stop, num)
