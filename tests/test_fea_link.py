@@ -18,7 +18,7 @@ from linkstress.profile import LinkProfile
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_fea import solve_link
 from linkstress.validation.mesh import MeshSettings
-from linkstress.validation.recovery import von_mises
+from linkstress.stress_state import von_mises
 
 STATIONS = (0.25, 0.5, 0.75)
 

@@ -18,7 +18,8 @@ from linkstress.validation.plane_stress import (
     quadrature_weights,
     vector_loads,
 )
-from linkstress.validation.recovery import interpolation_matrix, stress_recovery, von_mises
+from linkstress.stress_state import von_mises
+from linkstress.validation.recovery import interpolation_matrix, stress_recovery
 
 E, NU, T = 200e9, 0.3, 0.01
 L, H = 1.0, 0.1

@@ -16,6 +16,7 @@ from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.members import link_members
 from linkstress.scene import load_scene
+from linkstress.stress_state import von_mises
 from linkstress.validation import peaks as peaks_module
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_fea import solve_link
@@ -82,6 +83,12 @@ def test_superposition_is_the_direct_fea_exactly_when_every_bearing_force_lies_o
     superposed = superposed_stress(cases, cases.weights(loads))
     scale = np.abs(direct.nodal_stress).max()
     assert np.abs(superposed - direct.nodal_stress).max() <= 1e-9 * scale
+    # The loads are not in equilibrium: the supports react, and the superposed reactions are the direct
+    # ones; over the unit loads' weighted gross load, the ratio is positive and at most the direct one's.
+    reactions = cases.weights(loads).T @ cases.reactions
+    np.testing.assert_allclose(reactions, direct.reactions, rtol=0, atol=1e-9 * np.abs(direct.reactions).max())
+    ratio = sweep_peaks(cases, loads).reaction_ratio
+    assert (ratio > 1e-3).all() and (ratio <= direct.reaction_ratio * (1 + 1e-9)).all()
     # 2 pins x 36 directions, 2 couples, a point force in material (2), one in a hole (36 + its couple), 4 body terms
     assert cases.count == 72 + 2 + 2 + 37 + 4
     assert cases.labels[:2] == ("pin 0: unit bearing force at 0 deg", "pin 0: unit bearing force at 10 deg")
@@ -100,8 +107,6 @@ def test_off_basis_bearing_forces_differ_from_the_direct_fea_only_in_the_pressur
 
 
 def superposed_peak(stress: np.ndarray) -> np.ndarray:
-    from linkstress.validation.recovery import von_mises
-
     return von_mises(stress).max(axis=1)
 
 

@@ -45,6 +45,7 @@ from linkstress.loads import LinkLoadCase
 from linkstress.member_cuts import segment_distance
 from linkstress.members import Member, MemberCuts, frame_member
 from linkstress.profile import LinkProfile
+from linkstress.stress_state import von_mises
 from linkstress.validation.convergence import (
     CONVERGED_CHANGE,
     PEAK_CONVERGED_CHANGE,
@@ -55,7 +56,6 @@ from linkstress.validation.convergence import (
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_fea import CutResultants, LinkFEAResult, solve_link
 from linkstress.validation.mesh import MeshSettings
-from linkstress.validation.recovery import von_mises
 
 COMPARISON_STATIONS = 15
 """Evenly spaced candidate stations per link (those cutting a hole are dropped)."""

@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
+from linkstress.stress_state import von_mises
 from linkstress.validation.errors import FEAError
 from linkstress.validation.link_loads import check_load_case, link_loads, point_force_hole
 from linkstress.validation.mesh import MeshSettings, PlaneMesh, mesh_region
@@ -35,7 +36,6 @@ from linkstress.validation.recovery import (
     cut_integrator,
     interpolation_matrix,
     stress_recovery,
-    von_mises,
 )
 from linkstress.validation.vtu import write_sweep
 
@@ -253,7 +253,7 @@ def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> Li
         raise FEAError(f"link {link.name!r}: {error}") from None
     nodal_stress = stress_recovery(model).nodal_stress(displacement)
     reactions = support_reactions(model, fixed, support)
-    ratio = reaction_ratio(model, forces, reactions)
+    applied = applied_load(model, forces)
     return LinkFEAResult(
         link=link,
         frame_joints=tuple(loads.frame_joints),
@@ -262,20 +262,26 @@ def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> Li
         displacement=displacement,
         nodal_stress=nodal_stress,
         reactions=reactions,
-        reaction_ratio=ratio,
-        applied_load=np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0),
+        reaction_ratio=reaction_ratio(reactions, applied, region_length(model)),
+        applied_load=applied,
         mesh_seconds=meshed - start,
         solve_seconds=time.perf_counter() - meshed,
     )
 
 
-def reaction_ratio(
-    model: PlaneStressModel, forces: NDArray[np.float64], reactions: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """(P,) [-]: the larger of the support force and moment / the region's length, over the gross
-    applied load (sum of |nodal force| of ``forces`` (dofs, P)): ~0 for loads in equilibrium."""
-    applied = np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0)
-    length = float(np.ptp(model.scalar.doflocs, axis=1).max())
+def applied_load(model: PlaneStressModel, forces: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(P,) [N]: the gross load of nodal ``forces`` (dofs, P), the sum of |nodal force|."""
+    return np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0)
+
+
+def region_length(model: PlaneStressModel) -> float:
+    """[m]: the meshed region's larger extent, the arm that makes a support moment a force."""
+    return float(np.ptp(model.scalar.doflocs, axis=1).max())
+
+
+def reaction_ratio(reactions: NDArray[np.float64], applied: NDArray[np.float64], length: float) -> NDArray[np.float64]:
+    """(P,) [-]: the larger of the support force and moment / ``length`` [m] of ``reactions`` (P, 3),
+    over the gross ``applied`` load (P,) [N]: ~0 for loads in equilibrium."""
     size = np.maximum(np.hypot(reactions[:, 0], reactions[:, 1]), np.abs(reactions[:, 2]) / length)
     return np.divide(size, applied, out=np.zeros_like(size), where=applied > 0)
 

@@ -25,15 +25,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import PEAK_MESH_LEVELS
-from linkstress.fatigue import signed_von_mises
 from linkstress.loads import LinkLoadCase
 from linkstress.members import Member
 from linkstress.profile import LinkProfile
+from linkstress.stress_state import larger_principal_sign, von_mises
 from linkstress.validation.compare import choose_stations, default_mesh
 from linkstress.validation.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO
-from linkstress.validation.link_fea import solve_link
+from linkstress.validation.link_fea import reaction_ratio, region_length, solve_link
 from linkstress.validation.mesh import MeshSettings
-from linkstress.validation.recovery import von_mises
 from linkstress.validation.unit_loads import UnitLoadCases
 
 BLOCK_VALUES = 2_000_000
@@ -47,8 +46,9 @@ class SweepPeaks:
     ``peak`` (Pe,) [Pa]: the largest recovered von Mises over the nodes, at node ``peak_node`` (Pe,);
     ``envelope`` (nodes,) [Pa]: each node's largest von Mises over the positions; ``largest`` and
     ``smallest`` (nodes,) [Pa]: each node's extremes of the signed equivalent stress;
-    ``reaction_ratio`` (Pe,) [-]: the superposed support reactions over the applied load (~0 for
-    loads in equilibrium); ``worst`` the index into ``positions`` of the largest peak and
+    ``reaction_ratio`` (Pe,) [-]: the superposed support reactions (exact, the direct FEA's) over
+    the unit cases' gross loads weighted by |weight| (at least the combined load's gross load, so
+    the ratio is at most the direct FEA's; ~0 for loads in equilibrium); ``worst`` the index into ``positions`` of the largest peak and
     ``worst_stress`` (nodes, 3) [Pa] the field there; ``seconds`` of the superposition.
     """
 
@@ -88,7 +88,7 @@ def sweep_peaks(cases: UnitLoadCases, loads: LinkLoadCase, positions: NDArray[np
     envelope = np.zeros(n_nodes)
     largest = np.full(n_nodes, -np.inf)
     smallest = np.full(n_nodes, np.inf)
-    length = float(np.ptp(cases.nodes, axis=0).max())
+    length = region_length(cases.model)
     for first in range(0, len(chosen), block):
         part = slice(first, first + block)
         weights = cases.weights(loads.at(chosen[part]))
@@ -96,14 +96,11 @@ def sweep_peaks(cases: UnitLoadCases, loads: LinkLoadCase, positions: NDArray[np
         vm = von_mises(stress)
         node = vm.argmax(axis=1)
         peak[part], peak_node[part] = vm[np.arange(len(node)), node], node
-        signed = signed_von_mises(stress)
+        signed = larger_principal_sign(stress) * vm  # fatigue's signed_von_mises, its von Mises reused
         np.maximum(envelope, vm.max(axis=0), out=envelope)
         np.maximum(largest, signed.max(axis=0), out=largest)
         np.minimum(smallest, signed.min(axis=0), out=smallest)
-        reactions = weights.T @ cases.reactions  # (C, 3)
-        size = np.maximum(np.hypot(reactions[:, 0], reactions[:, 1]), np.abs(reactions[:, 2]) / length)
-        applied = np.abs(weights).T @ cases.applied
-        ratio[part] = np.divide(size, applied, out=np.zeros_like(size), where=applied > 0)
+        ratio[part] = reaction_ratio(weights.T @ cases.reactions, np.abs(weights).T @ cases.applied, length)
     worst = int(np.argmax(peak)) if len(chosen) else 0
     worst_stress = (
         superposed_stress(cases, cases.weights(loads.at(chosen[worst:worst + 1])))[0]

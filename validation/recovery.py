@@ -4,7 +4,7 @@ The P2 displacement gives a stress that is linear in each element and jumps betw
 constant in each element). The recovered field is its L2 projection onto the continuous scalar
 space of the mesh's order (the "nodal averaged" stress of commercial codes, done variationally:
 M s = int phi sigma_h dA, M the scalar mass matrix), one solve per component for all load cases at
-once. Peak von Mises is taken over its nodes.
+once. Peak von Mises (``linkstress.stress_state``) is taken over its nodes.
 
 Section resultants are integrated over a cut meshed as element edges (``MeshSettings.stations`` and
 ``MeshSettings.cuts``), at any angle, from the raw element stresses, averaging the two sides of each edge; linear stresses on straight
@@ -33,12 +33,6 @@ CANDIDATES = 12
 NEWTON_STEPS = 12
 CUT_POINTS = 3
 """Gauss points per cut edge: exact for the linear P2 stresses on a straight edge (degree 5)."""
-
-
-def von_mises(stress: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Plane-stress von Mises [Pa] of stresses (..., 3) = (sigma_xx, sigma_yy, tau_xy) [Pa]."""
-    sxx, syy, txy = stress[..., 0], stress[..., 1], stress[..., 2]
-    return np.sqrt(np.maximum(sxx * sxx - sxx * syy + syy * syy + 3 * txy * txy, 0.0))
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import link_model, support_reactions
+from linkstress.validation.link_fea import applied_load, link_model, support_reactions
 from linkstress.validation.link_loads import (
     bearing_loads,
     body_loads,
@@ -210,14 +210,13 @@ def unit_load_cases(
         raise FEAError(f"link {link.name!r}: {error}") from None
     nodal = stress_recovery(model).nodal_stress(displacement)  # (U, nodes, 3)
     stress = np.ascontiguousarray(nodal.reshape(len(labels), -1).T)
-    applied = np.hypot(forces[model.components[0]], forces[model.components[1]]).sum(axis=0)
     return UnitLoadCases(
         link=link,
         frame_joints=tuple(loads.frame_joints),
         model=model,
         stress=stress,
         reactions=support_reactions(model, fixed, support),
-        applied=applied,
+        applied=applied_load(model, forces),
         labels=tuple(labels),
         directions=directions,
         pins=tuple(pins),

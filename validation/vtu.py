@@ -19,8 +19,8 @@ import meshio
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.stress_state import von_mises
 from linkstress.validation.plane_stress import PlaneStressModel
-from linkstress.validation.recovery import von_mises
 
 
 def write_sweep(

@@ -26,6 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from linkstress.stress_state import larger_principal_sign, von_mises
+
 CRITERIA = ("goodman", "gerber", "asme-elliptic")
 """The fatigue criteria, the first the one reported as ``fatigue_safety_factor``."""
 
@@ -46,9 +48,7 @@ def signed_von_mises(stress: ArrayLike) -> NDArray[np.float64]:
     stress = np.asarray(stress, float)
     if stress.shape[-1:] != (3,):
         raise ValueError(f"stress must have shape (..., 3) = (sigma_xx, sigma_yy, tau_xy), got {stress.shape}")
-    sxx, syy, txy = stress[..., 0], stress[..., 1], stress[..., 2]
-    magnitude = np.sqrt(sxx * sxx - sxx * syy + syy * syy + 3.0 * txy * txy)
-    return np.where(sxx + syy >= 0.0, magnitude, -magnitude)
+    return larger_principal_sign(stress) * von_mises(stress)
 
 
 def alternating_and_mean(largest: ArrayLike, smallest: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -20,7 +20,7 @@ from linkstress.analysis import AnalysisResult
 from linkstress.report.figures import plt  # pyplot on the reports' Agg backend
 from linkstress.report.html import figure_tag, table_html
 from linkstress.report.peak_records import peak_summaries
-from linkstress.validation.recovery import von_mises
+from linkstress.stress_state import von_mises
 
 CRITERION_NAMES = {"goodman": "Goodman", "gerber": "Gerber", "asme-elliptic": "ASME-elliptic"}
 SUBTRIANGLES = np.array([[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]])

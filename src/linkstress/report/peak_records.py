@@ -101,7 +101,7 @@ def _fatigue(result: AnalysisResult, name: str) -> dict[str, object]:
     record |= {
         "fatigue_safety_factor": factor if peaks.trusted and np.isfinite(factor) else None,
         "fatigue_safety_factors": {k: (v if peaks.trusted and np.isfinite(v) else None) for k, v in fatigue.critical_factors.items()},
-        "fatigue_critical_at_m": (frame.origin + frame.rotation @ node).tolist(),
+        "fatigue_critical_at_m": frame.to_global(node).tolist(),
         "fatigue_critical_at_member_m": node.tolist(),
         "fatigue_alternating_pa": fatigue.sigma_a,
         "fatigue_mean_pa": fatigue.sigma_m,
