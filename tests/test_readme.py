@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
+
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -50,7 +52,7 @@ def test_readme_main_job_runs_as_written_and_its_report_renders_in_chromium(tmp_
 
         if os.environ.get("LINKSTRESS_REQUIRE_BROWSER"):
             raise AssertionError("chromium is required here (LINKSTRESS_REQUIRE_BROWSER is set) but not installed")
-        return
+        pytest.skip("no chromium here to render the report in (CI installs it)")
     import subprocess
 
     import matplotlib.image as mpimg

@@ -37,7 +37,7 @@ RESULTANT_LIMIT = 0.01
 """Largest section-resultant difference between beam and FEA (relative) before the check fails."""
 LINEAR_REFINEMENT = 2.25
 """Linear (P1) elements get meshes this much finer than the default sizes (two of the study's
-refinement steps) unless the scene gives a mesh size. Measured by ``linkstress bench`` (README,
+refinement steps) unless the scene gives a mesh size. Measured by ``linkstress bench`` (docs/benchmarks.md,
 "Speed against error"): on the default meshes P1's nominal error is several times P2's and its cut
 resultants miss the RESULTANT_LIMIT check on the seed case."""
 MAX_POSITIONS = 36

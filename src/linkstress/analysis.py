@@ -23,7 +23,7 @@ from linkstress.scene import Scene
 from linkstress.threads import blas_alone
 
 DEFAULT_STATIONS = 101
-"""Section stations per link when the scene does not say (see the README's speed/error table)."""
+"""Section stations per link when the scene does not say (see docs/benchmarks.md, the speed/error table)."""
 PEAK_MESH_LEVELS = 3
 """The FEA peaks' mesh is the finest of validate's default refinement study of this many levels."""
 
