@@ -62,7 +62,7 @@ estimated from the chord tolerance and the arcs before any is made, and a settin
 
 MAX_SPLINE_VERTICES = 200_000
 """The most vertices all splines together may flatten to (a circle-like spline needs about 140 at the
-default tolerance; the 1,170 splines of ``validation.bench_import``'s sheet about 47,000)."""
+default tolerance; the 1,170 splines of ``validation.bench.sketch_import``'s sheet about 47,000)."""
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from linkstress.dynamics.section_stress import StressSummary
 from linkstress.output import json_bytes, json_stream, write_json, write_json_stream
 from linkstress.report.records import position_records
 from linkstress.scene import load_scene
-from linkstress.validation.bench_memory import analyze_in_child, seed_sweep_scene
+from linkstress.validation.bench.memory import analyze_in_child, seed_sweep_scene
 
 LINKS = ("crank", "coupler", "output")
 

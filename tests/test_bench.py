@@ -20,10 +20,10 @@ from linkstress.cli import main
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.scene import load_scene
-from linkstress.validation.bench_peaks import full_turn_scene
-from linkstress.validation.bench_suite import SEED
-from linkstress.validation.speed_error import CaseStudy, MethodResult
-from linkstress.validation.strip_sections import piecewise_bounds, strip_sections, strip_stresses
+from linkstress.validation.bench.peaks import full_turn_scene
+from linkstress.validation.bench.suite import SEED
+from linkstress.validation.bench.speed_error import CaseStudy, MethodResult
+from linkstress.validation.bench.strip_sections import piecewise_bounds, strip_sections, strip_stresses
 from test_report_html import embedded_images
 
 

@@ -10,7 +10,7 @@ from shapely.geometry import Point, Polygon
 from linkstress.builders import straight_bar
 from linkstress.profile import LinkProfile
 from linkstress.validation.compare import choose_stations, comparison_stations, relative, resultant_error
-from linkstress.validation.errors import FEAError
+from linkstress.validation.fea.errors import FEAError
 
 
 def stack(n, v, m):

@@ -18,8 +18,8 @@ from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
 from linkstress.sections import section_table
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.mesh import MeshSettings
 
 T = 0.01
 DEPTH = 0.02

@@ -28,7 +28,7 @@ from linkstress.report.records import _pin_hole_lists, _rows
 from linkstress.safety import finite_or_none, pin_hole_factor
 from linkstress.scene import load_scene
 from linkstress.validation.compare import compare_link
-from linkstress.validation.pin_hole_kt import lug_kt, round_lug, square_lug
+from linkstress.validation.fea.pin_hole_kt import lug_kt, round_lug, square_lug
 
 REPO = Path(__file__).resolve().parents[1]
 H, SPACING, T, P = 0.04, 0.2, 0.005, 1000.0

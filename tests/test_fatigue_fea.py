@@ -12,9 +12,9 @@ from linkstress.builders import straight_bar
 from linkstress.fatigue import FatigueStrength, node_fatigue, safety_factor
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import Material
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.peaks import sweep_peaks
-from linkstress.validation.unit_loads import unit_load_cases
+from linkstress.validation.fea.unit_loads import unit_load_cases
 
 STEEL = Material("steel", 7850.0, 200e9, 0.3, 350e6, endurance_limit=200e6, ultimate_strength=400e6)
 STRENGTH = STEEL.fatigue_strength

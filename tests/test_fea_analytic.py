@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from linkstress.validation import analytic, benchmarks
+from linkstress.validation.fea import analytic, verification
 
 
-@pytest.mark.parametrize("case", benchmarks.CASES, ids=lambda c: c.__name__)
+@pytest.mark.parametrize("case", verification.CASES, ids=lambda c: c.__name__)
 def test_fea_matches_the_exact_solution_within_its_tolerance(case):
     # Tolerances (issue 6): Kirsch Kt 1 %, Timoshenko stress and tip deflection 0.5 %, Lame hoop
     # 0.5 %, curved bar 1 %, spinning bar N(x) 0.5 %.
@@ -24,17 +24,17 @@ def test_fea_matches_the_exact_solution_within_its_tolerance(case):
 def test_curved_bar_reports_winkler_bach_close_and_straight_beam_far():
     # b / a = 2: Winkler-Bach is within about 1 % of the elasticity solution, Mc/I about 22 % off
     # at the inner fibre (Timoshenko & Goodier section 29 table, Boresi & Schmidt table 9.1).
-    result = benchmarks.curved_bar()
+    result = verification.curved_bar()
     inner = result.comparisons[0]
     beside = dict(inner.beside)
     assert abs(beside["Winkler-Bach"] / inner.reference - 1) < 0.01
     assert abs(beside["Mc/I"] / inner.reference - 1) > 0.2
-    assert "Winkler-Bach" in benchmarks.format_results([result])
+    assert "Winkler-Bach" in verification.format_results([result])
 
 
 def test_the_results_table_lists_every_comparison():
-    results = [benchmarks.timoshenko_cantilever(), benchmarks.spinning_bar()]
-    table = benchmarks.format_results(results)
+    results = [verification.timoshenko_cantilever(), verification.spinning_bar()]
+    table = verification.format_results(results)
     assert len(table.splitlines()) == 2 + 3 + 3
     assert "tip deflection [m]" in table
 

@@ -7,10 +7,10 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from linkstress.validation.bench_fea import nominal_points, seed_crank, seed_position
-from linkstress.validation.convergence import convergence_study, richardson
-from linkstress.validation.errors import FEAError
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.bench.fea import nominal_points, seed_crank, seed_position
+from linkstress.validation.fea.convergence import convergence_study, richardson
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.mesh import MeshSettings
 
 
 @settings(max_examples=60, deadline=None)

@@ -15,10 +15,10 @@ from linkstress.curves import circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
-from linkstress.validation.convergence import convergence_study
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.mesh import MeshSettings, mesh_region
+from linkstress.validation.fea.convergence import convergence_study
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.mesh import MeshSettings, mesh_region
 
 SPACING, DEPTH = 0.4, 0.05
 CENTRES = (0.12, 0.2, 0.28)

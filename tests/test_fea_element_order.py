@@ -19,13 +19,13 @@ from shapely.geometry import box
 from skfem import MeshTri1, MeshTri2
 
 from linkstress.cli import main
-from linkstress.validation.bench_fea import STATIONS, seed_crank, seed_position
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.link_loads import bearing_loads, edge_quadrature, nodal_resultant
-from linkstress.validation.mesh import MeshSettings, mesh_region
-from linkstress.validation.plane_stress import factorise, minimal_support, plane_stress_model, vector_loads
-from linkstress.validation.recovery import cut_integrator
+from linkstress.validation.bench.fea import STATIONS, seed_crank, seed_position
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.loads import bearing_loads, edge_quadrature, nodal_resultant
+from linkstress.validation.fea.mesh import MeshSettings, mesh_region
+from linkstress.validation.fea.plane_stress import factorise, minimal_support, plane_stress_model, vector_loads
+from linkstress.validation.fea.recovery import cut_integrator
 from linkstress.validation.validate_scene import LINEAR_REFINEMENT
 
 SEED = Path(__file__).resolve().parents[1] / "validation" / "cases" / "seed_ansys_fourbar"

@@ -15,9 +15,9 @@ from linkstress.curves import arc_points, circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.stress_state import von_mises
 
 STATIONS = (0.25, 0.5, 0.75)

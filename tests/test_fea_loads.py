@@ -12,17 +12,17 @@ from hypothesis import strategies as st
 from linkstress.builders import straight_bar
 from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.link_loads import (
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.loads import (
     bearing_loads,
     body_loads,
     nodal_resultant,
     patch_loads,
     shaft_couple_loads,
 )
-from linkstress.validation.mesh import MeshSettings, mesh_region
-from linkstress.validation.plane_stress import plane_stress_model
+from linkstress.validation.fea.mesh import MeshSettings, mesh_region
+from linkstress.validation.fea.plane_stress import plane_stress_model
 
 SETTINGS = MeshSettings(0.1, 0.004, stations=(0.5,))
 

@@ -13,9 +13,9 @@ from shapely.geometry.polygon import orient
 
 from linkstress.builders import stadium, straight_bar
 from linkstress.curves import circle_points
-from linkstress.validation.errors import FEAError
-from linkstress.validation.mesh import MeshSettings, mesh_region
-from linkstress.validation.ring_curves import Arc, Circle, Line, Spline, ring_curves
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.mesh import MeshSettings, mesh_region
+from linkstress.validation.fea.ring_curves import Arc, Circle, Line, Spline, ring_curves
 
 
 @settings(max_examples=40, deadline=None)

@@ -8,9 +8,9 @@ from shapely.geometry import box
 from skfem import ElementTriP2, FacetBasis
 from skfem.models.elasticity import lame_parameters, linear_stress, plane_stress
 
-from linkstress.validation.errors import FEAError
-from linkstress.validation.mesh import MeshSettings, mesh_region
-from linkstress.validation.plane_stress import (
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.mesh import MeshSettings, mesh_region
+from linkstress.validation.fea.plane_stress import (
     factorise,
     minimal_support,
     plane_stress_matrix,
@@ -19,7 +19,7 @@ from linkstress.validation.plane_stress import (
     vector_loads,
 )
 from linkstress.stress_state import von_mises
-from linkstress.validation.recovery import interpolation_matrix, stress_recovery
+from linkstress.validation.fea.recovery import interpolation_matrix, stress_recovery
 
 E, NU, T = 200e9, 0.3, 0.01
 L, H = 1.0, 0.1

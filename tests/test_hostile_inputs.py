@@ -270,7 +270,7 @@ def test_ten_million_positions_of_kinematics_alone_still_fit(tmp_path):
 def test_a_million_seed_positions_with_stresses_fit_as_json_too(tmp_path):
     # The JSON is streamed a block of positions at a time, so the estimate does not depend on it:
     # 10^6 x (4 links x (110 + 230) B + 3 stressed links x 60 B) = 1.54 GB, under the 6 GB limit
-    # (measured: 1.36 GB peak with --json, validation/bench_memory.py).
+    # (measured: 1.36 GB peak with --json, validation/bench/memory.py).
     seed = REPO / "validation" / "cases" / "seed_ansys_fourbar"
     shutil.copy(seed / "ansys_four_bars.dxf", tmp_path)
     text = (seed / "scene.toml").read_text().replace(

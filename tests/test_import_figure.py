@@ -12,7 +12,7 @@ from shapely.geometry import Point
 
 from linkstress.importers import read_sketch
 from linkstress.importers.figure import DPI, MAX_LINK_PANELS, MAX_WIDTH_IN, sketch_figure, sketch_png
-from linkstress.validation.bench_plot import png_pixels, sheet_drawing
+from linkstress.validation.bench.plot import png_pixels, sheet_drawing
 from test_import_cli import SEED
 
 

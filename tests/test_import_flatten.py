@@ -137,7 +137,7 @@ def test_the_benchmarks_spline_sheet_reads_each_part_keeping_the_splines_area(tm
     import ezdxf
 
     from linkstress.importers import HOLE_RULE, read_sketch
-    from linkstress.validation.bench_import import spline_sheet
+    from linkstress.validation.bench.sketch_import import spline_sheet
 
     assert spline_sheet(tmp_path / "sheet.dxf", parts=4) == 52
     sketch = read_sketch(tmp_path / "sheet.dxf")

@@ -18,11 +18,11 @@ from linkstress.members import link_members
 from linkstress.scene import load_scene
 from linkstress.stress_state import von_mises
 from linkstress.validation import peaks as peaks_module
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.peaks import field_error, peak_mesh, superposed_stress, sweep_peaks
-from linkstress.validation.unit_loads import bearing_weights, unit_load_cases
+from linkstress.validation.fea.unit_loads import bearing_weights, unit_load_cases
 from linkstress.validation.validate_scene import MAX_POSITIONS, compared_positions
 
 CASES = Path(__file__).resolve().parents[1] / "validation" / "cases"

@@ -23,8 +23,8 @@ from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
 from linkstress.validation.compare import comparison_stations, default_mesh, resultant_error
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.link_loads import link_loads, nodal_resultant, point_force_hole
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.loads import link_loads, nodal_resultant, point_force_hole
 from linkstress.validation.validate_scene import RESULTANT_LIMIT
 
 RADIUS = 0.008

@@ -1,7 +1,7 @@
 """What ``linkstress analyze`` imports: only what the scene needs (issue 20: start-up at most 3 x a
 bare ``import numpy``). Each scene runs in a fresh interpreter, which prints ``sorted(sys.modules)``
 after the command; the lists below are the packages measured to dominate start-up
-(``python -X importtime``; validation/bench_startup.py times the whole process)."""
+(``python -X importtime``; validation/bench/startup.py times the whole process)."""
 
 from __future__ import annotations
 

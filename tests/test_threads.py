@@ -103,7 +103,7 @@ def test_a_sweep_in_many_blocks_on_threads_equals_the_sweep_in_one_block(monkeyp
 @pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="the system cannot hold a process to a core")
 def test_the_benchmark_times_the_sweep_on_one_core_and_gives_the_cores_back():
     from linkstress.threads import cores
-    from linkstress.validation.bench_dynamics import on_one_core
+    from linkstress.validation.bench.dynamics import on_one_core
 
     before = os.sched_getaffinity(0)
     inside = on_one_core(lambda: (cores(), os.sched_getaffinity(0)))

@@ -31,7 +31,7 @@ from linkstress.builders import straight_bar
 from linkstress.cli import main
 from linkstress.scene import load_scene
 from linkstress.validation import compare
-from linkstress.validation.convergence import PEAK_CONVERGED_CHANGE
+from linkstress.validation.fea.convergence import PEAK_CONVERGED_CHANGE
 
 CASES = Path(__file__).resolve().parents[1] / "validation" / "cases"
 OTHER_BARS = (("coupler", 0.25), ("output", 0.2))

@@ -46,16 +46,16 @@ from linkstress.member_cuts import segment_distance
 from linkstress.members import Member, MemberCuts, frame_member
 from linkstress.profile import LinkProfile
 from linkstress.stress_state import von_mises
-from linkstress.validation.convergence import (
+from linkstress.validation.fea.convergence import (
     CONVERGED_CHANGE,
     PEAK_CONVERGED_CHANGE,
     RESULTANT_CONVERGED_CHANGE,
     ConvergenceStudy,
     convergence_study,
 )
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import CutResultants, LinkFEAResult, solve_link
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import CutResultants, LinkFEAResult, solve_link
+from linkstress.validation.fea.mesh import MeshSettings
 
 COMPARISON_STATIONS = 15
 """Evenly spaced candidate stations per link (those cutting a hole are dropped)."""

@@ -30,10 +30,10 @@ from linkstress.members import Member
 from linkstress.profile import LinkProfile
 from linkstress.stress_state import larger_principal_sign, von_mises
 from linkstress.validation.compare import choose_stations, default_mesh
-from linkstress.validation.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO
-from linkstress.validation.link_fea import reaction_ratio, region_length, solve_link
-from linkstress.validation.mesh import MeshSettings
-from linkstress.validation.unit_loads import UnitLoadCases
+from linkstress.validation.fea.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO
+from linkstress.validation.fea.link import reaction_ratio, region_length, solve_link
+from linkstress.validation.fea.mesh import MeshSettings
+from linkstress.validation.fea.unit_loads import UnitLoadCases
 
 BLOCK_VALUES = 2_000_000
 """Stress values (nodes x 3 x positions) superposed at once: 16 MB, whatever the mesh or sweep."""

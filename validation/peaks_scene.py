@@ -25,9 +25,9 @@ from linkstress.dynamics.machine_forces import MachineForces
 from linkstress.fatigue import NodeFatigue, criteria_available, node_fatigue
 from linkstress.members import link_members
 from linkstress.scene import Scene
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.peaks import PeakCheck, SweepPeaks, coarser_peak, peak_mesh, sweep_peaks
-from linkstress.validation.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
+from linkstress.validation.fea.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
 
 FULL_TURN_DEG = 360.0
 

@@ -28,7 +28,7 @@ from linkstress.report.html import analysis_sections, figure_tag, page, table_ht
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
 from linkstress.validation.compare import HolePeak, LinkComparison, MemberComparison
-from linkstress.validation.convergence import CONVERGED_CHANGE, PEAK_CONVERGED_CHANGE, RESULTANT_CONVERGED_CHANGE
+from linkstress.validation.fea.convergence import CONVERGED_CHANGE, PEAK_CONVERGED_CHANGE, RESULTANT_CONVERGED_CHANGE
 from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT, ValidationResult
 
 NOTE = (

@@ -26,7 +26,7 @@ from linkstress.errors import GeometryError
 from linkstress.members import link_members
 from linkstress.scene import Scene
 from linkstress.validation.compare import LinkComparison, choose_stations, compare_link, default_mesh
-from linkstress.validation.errors import FEAError
+from linkstress.validation.fea.errors import FEAError
 
 REACTION_LIMIT = 1e-4
 """Largest support reaction, relative to the applied load, for loads in equilibrium. Not zero: the

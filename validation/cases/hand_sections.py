@@ -30,8 +30,8 @@ from linkstress.loads import LinkLoadCase
 from linkstress.mass_properties import area_properties
 from linkstress.profile import LinkProfile
 from linkstress.stress_state import von_mises
-from linkstress.validation.link_fea import LinkFEAResult, solve_link
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.link import LinkFEAResult, solve_link
+from linkstress.validation.fea.mesh import MeshSettings
 
 REFINEMENT_RATIO = 1.5
 """Each refinement divides every element size by this (as validate's study does)."""

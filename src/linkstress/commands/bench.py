@@ -1,6 +1,6 @@
 """``linkstress bench [--json OUT] [--html OUT] [--quick]``: speed against error of every stress
 method, throughput, FEA memory, the hard cases and the FEA peaks by superposition of unit loads, in
-one run (``linkstress.validation.bench_suite``).
+one run (``linkstress.validation.bench.suite``).
 
 Exit 0 when every error stays under its bound, 1 when one does not; times are reported, never
 checked. ``--quick`` measures fewer settings (seconds, for CI); the full run takes minutes.
@@ -42,8 +42,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     check_outputs({"--json": args.json, "--html": args.html})
     # The FEA stack (gmsh, scikit-fem) loads only when the bench runs.
-    from linkstress.validation.bench_report import bench_html, bench_json, bench_text
-    from linkstress.validation.bench_suite import FULL, QUICK, run_bench
+    from linkstress.validation.bench.report import bench_html, bench_json, bench_text
+    from linkstress.validation.bench.suite import FULL, QUICK, run_bench
 
     result = run_bench(QUICK if args.quick else FULL, progress=lambda message: print(f"bench: {message}", file=sys.stderr))
     print(bench_text(result))

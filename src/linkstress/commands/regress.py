@@ -10,7 +10,7 @@ from pathlib import Path
 
 from linkstress.commands import HelpFormatter, examples
 from linkstress.commands.validate import check_jobs
-from linkstress.regression import CaseResult, find_cases, read_reference, run_case
+from linkstress.validation.regression import CaseResult, find_cases, read_reference, run_case
 from linkstress.tables import format_table
 
 def default_cases() -> Path:

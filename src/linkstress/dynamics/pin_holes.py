@@ -22,7 +22,7 @@ when either neighbour it draws on is):
 
 The nominal stress is the net-section stress P / ((H - d) t) of the pin force P over the two
 ligaments beside the hole. Kt comes from linkstress's own plane-stress FEA of pin-loaded lugs
-(``python -m linkstress.validation.pin_hole_kt`` reproduces the tables): square ends over d/H and
+(``python -m linkstress.validation.fea.pin_hole_kt`` reproduces the tables): square ends over d/H and
 e/H, round ends (e = H / 2) over d/H and w/H, each value from a three-level refinement study, the
 peak von Mises over P / ((H - d) t); linear in log d/H and in e/H or w/H between table points;
 below the smallest table hole Kt (d/H) / (1 - d/H) (the peak over the bearing stress P / (d t))
@@ -73,7 +73,7 @@ ROUND_KT = (
 )
 OPEN_KT = 13.963
 """Kt (rows RATIOS, columns END_DISTANCES or SHANKS; and of the open plate at d/H = 0.1) from
-``linkstress.validation.pin_hole_kt``."""
+``linkstress.validation.fea.pin_hole_kt``."""
 
 DIRECTIONS = 72
 """Force directions per hole on which the outline is measured (every 5 degrees)."""
@@ -113,7 +113,7 @@ SOURCE = (
     "estimate: Kt x P / ((H - d) t), H the link's width across the pin force through the hole centre "
     "(at most 10 d; a round end's diameter), for a close-fitting pin; Kt from linkstress plane-stress FEA "
     "of pin-loaded lugs with square ends (over d/H, end distance e/H), round ends concentric with the hole "
-    "(over d/H, shank width w/H) and holes far from the edges (validation/pin_hole_kt.py), read per "
+    "(over d/H, shank width w/H) and holes far from the edges (validation/fea/pin_hole_kt.py), read per "
     "position by the direction of the pin force; a pin that carries a couple (a driving torque, a keyed "
     "shaft) is outside the tables"
 )

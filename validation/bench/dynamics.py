@@ -1,6 +1,6 @@
 """Benchmark: joint forces and section stresses of the seed four-bar, one position and a sweep.
 
-Run ``python -m linkstress.validation.bench_dynamics``. Prints figures (best of several runs); asserts
+Run ``python -m linkstress.validation.bench.dynamics``. Prints figures (best of several runs); asserts
 nothing about time. Targets (issue 5): the seed case at one position, mass properties included,
 under 5 ms, the work the original program takes 31.8 s for (mass properties at 1e-4 m strips plus
 one solve; ``bench_profile --full`` measures its strip sums here); forces and section stresses for
@@ -27,7 +27,7 @@ from linkstress.profile import LinkProfile
 from linkstress.scene import load_scene
 from linkstress.tables import format_table
 from linkstress.threads import cores
-from linkstress.validation.timing import best_time
+from linkstress.validation.bench.timing import best_time
 
 SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"
 

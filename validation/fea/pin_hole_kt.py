@@ -10,7 +10,7 @@ hole, as everywhere in linkstress). Two end shapes:
 
 Kt is the FEA's peak von Mises over the net-section stress P / ((H - d) t), from a three-level
 refinement study. A hole far from every edge (the open plate: d/H = 0.1, pulled or pushed, whichever
-is higher) gets one more value; run ``python -m linkstress.validation.pin_hole_kt`` to reproduce the tables (it
+is higher) gets one more value; run ``python -m linkstress.validation.fea.pin_hole_kt`` to reproduce the tables (it
 prints them as the Python literals ``pin_holes.py`` holds).
 """
 
@@ -25,8 +25,8 @@ from linkstress.curves import arc_points, circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
-from linkstress.validation.convergence import convergence_study
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.convergence import convergence_study
+from linkstress.validation.fea.mesh import MeshSettings
 
 RATIOS = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7)
 END_DISTANCES = (0.5, 0.75, 1.0, 1.5)

@@ -32,7 +32,7 @@ from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.scene import Scene
 from linkstress.scene.model import MassData
-from linkstress.validation.strip_sum import StripSumProperties, strip_sum_properties
+from linkstress.validation.bench.strip_sum import StripSumProperties, strip_sum_properties
 
 
 def piecewise_bounds(link: LinkProfile, frame_joints: tuple[int, int]) -> tuple[Callable[[float], float], Callable[[float], float]]:

@@ -1,6 +1,6 @@
 """Benchmark: kinematic sweeps against their speed targets.
 
-Run ``python -m linkstress.validation.bench_kinematics``. Prints figures; asserts nothing about time
+Run ``python -m linkstress.validation.bench.kinematics``. Prints figures; asserts nothing about time
 (machines are shared and noisy). Targets (issue 4): angles, speeds and accelerations of every link
 of a four-bar for 1,000,000 input angles in under 0.5 s; a machine of four chained loops over 3,600
 positions in under 50 ms.
@@ -15,7 +15,7 @@ import numpy as np
 
 from linkstress.kinematics import Drive, FourBar, Loop, Machine, Role, angle_motion, solve_fourbar, solve_machine
 from linkstress.tables import format_table
-from linkstress.validation.timing import best_time
+from linkstress.validation.bench.timing import best_time
 
 
 

@@ -4,7 +4,7 @@ Runs the two commands alternately, ``--repeat`` times each, and prints the best 
 and their ratio. Best of N because the noise of a shared machine only ever adds time; alternated so
 that a slow spell of the machine falls on both. The target of issue 20 is a ratio of at most 3.
 
-    python validation/bench_startup.py [--repeat 10]
+    python validation/bench/startup.py [--repeat 10]
 """
 
 from __future__ import annotations

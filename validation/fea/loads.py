@@ -32,8 +32,8 @@ from skfem import Basis
 
 from linkstress.loads import LinkLoadCase, hole_at
 from linkstress.profile import LinkProfile
-from linkstress.validation.errors import FEAError
-from linkstress.validation.plane_stress import PlaneStressModel, quadrature_weights, vector_loads
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.plane_stress import PlaneStressModel, quadrature_weights, vector_loads
 
 FACET_POINTS = 5
 """Gauss points per hole edge (exact to degree 9): resolves the bearing pressure's kink at +-90

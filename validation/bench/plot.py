@@ -1,6 +1,6 @@
 """Benchmark: the ``linkstress import --plot`` picture of a whole sheet of parts.
 
-Run ``python -m linkstress.validation.bench_plot [--links N]``. Writes a nested sheet of ``N`` parts
+Run ``python -m linkstress.validation.bench.plot [--links N]``. Writes a nested sheet of ``N`` parts
 (default 91, as a laser-cut sheet) with ezdxf, reads it, and prints the best time of drawing its PNG
 and the PNG's size. Asserts nothing about time (machines are shared and noisy). Target (issue 19):
 the 91-part sheet under 3 s; the per-link picture of every link took 28 s.
@@ -19,7 +19,7 @@ import ezdxf
 from linkstress.importers import read_sketch
 from linkstress.importers.figure import sketch_png
 from linkstress.tables import format_table
-from linkstress.validation.timing import best_run
+from linkstress.validation.bench.timing import best_run
 
 CELL_MM = 300.0
 """Pitch of the sheet's grid of parts [mm]: every part below fits in a 260 mm square."""

@@ -33,9 +33,9 @@ from linkstress.kinematics.linkage_class import feasible_input_ranges
 from linkstress.kinematics.motion import angle_motion
 from linkstress.scene import Scene, load_scene
 from linkstress.validation.compare import comparison_stations, compare_link, default_mesh
-from linkstress.validation.errors import FEAError
+from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.report import curvature_note
-from linkstress.validation.speed_error import RATIO
+from linkstress.validation.bench.speed_error import RATIO
 from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT
 
 SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"

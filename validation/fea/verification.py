@@ -6,7 +6,7 @@ support prescribed to the exact displacement where one is known, and compares th
 stresses at named points. The spinning bar runs the link pipeline itself (``solve_link``) on a bar
 loaded by its own d'Alembert body force only.
 
-Run ``python -m linkstress.validation.benchmarks`` to print the table.
+Run ``python -m linkstress.validation.fea.verification`` to print the table.
 """
 
 from __future__ import annotations
@@ -25,10 +25,10 @@ from linkstress.curves import arc_points, circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import Material
 from linkstress.tables import format_table
-from linkstress.validation import analytic
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.mesh import MeshSettings, mesh_region
-from linkstress.validation.plane_stress import (
+from linkstress.validation.fea import analytic
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.mesh import MeshSettings, mesh_region
+from linkstress.validation.fea.plane_stress import (
     PlaneStressModel,
     factorise,
     minimal_support,
@@ -36,7 +36,7 @@ from linkstress.validation.plane_stress import (
     quadrature_weights,
     vector_loads,
 )
-from linkstress.validation.recovery import interpolation_matrix, stress_recovery
+from linkstress.validation.fea.recovery import interpolation_matrix, stress_recovery
 
 E, NU, T = 200e9, 0.3, 0.01
 """Steel plate used by every case: E [Pa], nu [-], thickness [m]."""

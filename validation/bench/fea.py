@@ -1,6 +1,6 @@
 """Benchmark: the link FEA against its speed and memory targets.
 
-Run ``python -m linkstress.validation.bench_fea [--dofs N] [--repeat R]``. Prints figures; asserts
+Run ``python -m linkstress.validation.bench.fea [--dofs N] [--repeat R]``. Prints figures; asserts
 nothing about time (machines are shared and noisy: timed tasks run ``--repeat`` times and the best
 time is shown). Three measurements on the seed's ANSYS crank (1.0 m between
 20 mm pin holes, 1.2 x 0.5 x 0.1 m steel):
@@ -29,10 +29,10 @@ from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
 from linkstress.tables import format_table
-from linkstress.validation.convergence import convergence_study
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.mesh import MeshSettings
-from linkstress.validation.timing import best_run
+from linkstress.validation.fea.convergence import convergence_study
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.mesh import MeshSettings
+from linkstress.validation.bench.timing import best_run
 
 STATIONS = (0.25, 0.5, 0.75)
 HOLE_SIZE = 0.004
@@ -151,7 +151,7 @@ def main() -> None:
     rows, finest = one_position(0.12, args.repeat)
     rows.append(sweep(finest, args.positions, args.repeat))
     child = subprocess.run(
-        [sys.executable, "-m", "linkstress.validation.bench_fea", "--memory-child", str(args.dofs)],
+        [sys.executable, "-m", "linkstress.validation.bench.fea", "--memory-child", str(args.dofs)],
         capture_output=True,
         text=True,
         check=True,

@@ -22,22 +22,22 @@ from numpy.typing import ArrayLike, NDArray
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.stress_state import von_mises
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_loads import check_load_case, link_loads, point_force_hole
-from linkstress.validation.mesh import MeshSettings, PlaneMesh, mesh_region
-from linkstress.validation.plane_stress import (
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.loads import check_load_case, link_loads, point_force_hole
+from linkstress.validation.fea.mesh import MeshSettings, PlaneMesh, mesh_region
+from linkstress.validation.fea.plane_stress import (
     PlaneStressModel,
     factorise,
     minimal_support,
     plane_stress_model,
 )
-from linkstress.validation.recovery import (
+from linkstress.validation.fea.recovery import (
     CutIntegrator,
     cut_integrator,
     interpolation_matrix,
     stress_recovery,
 )
-from linkstress.validation.vtu import write_sweep
+from linkstress.validation.fea.vtu import write_sweep
 
 
 @dataclass(frozen=True)

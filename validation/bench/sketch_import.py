@@ -1,6 +1,6 @@
 """Benchmark: importing sketches against the speed targets, and the flattening rule's accuracy.
 
-Run ``python -m linkstress.validation.bench_import [--ezdxf] [--splines]``. Prints figures; asserts
+Run ``python -m linkstress.validation.bench.sketch_import [--ezdxf] [--splines]``. Prints figures; asserts
 nothing about time (machines are shared and noisy: each time is the best of several runs). Targets
 (issue 3): a typical link (under 200 entities) in under 50 ms after start-up; 20 links and 50,000
 entities in under 2 s. ``--ezdxf`` also times the big drawing read entirely through ezdxf's document
@@ -32,7 +32,7 @@ from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.primitives import CurveSet
 from linkstress.mass_properties import area_properties
 from linkstress.tables import format_table
-from linkstress.validation.timing import best_time
+from linkstress.validation.bench.timing import best_time
 
 
 

@@ -33,18 +33,18 @@ from numpy.typing import NDArray
 
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import applied_load, link_model, support_reactions
-from linkstress.validation.link_loads import (
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import applied_load, link_model, support_reactions
+from linkstress.validation.fea.loads import (
     bearing_loads,
     body_loads,
     patch_loads,
     point_force_hole,
     shaft_couple_loads,
 )
-from linkstress.validation.mesh import MeshSettings
-from linkstress.validation.plane_stress import PlaneStressModel, factorise, minimal_support
-from linkstress.validation.recovery import stress_recovery
+from linkstress.validation.fea.mesh import MeshSettings
+from linkstress.validation.fea.plane_stress import PlaneStressModel, factorise, minimal_support
+from linkstress.validation.fea.recovery import stress_recovery
 
 DIRECTION_STEP_DEG = 10.0
 """Spacing of a pin's bearing directions (36 per pin). A force halfway between two of them is

@@ -1,6 +1,6 @@
 """Benchmark: peak memory and time of ``linkstress analyze`` over long sweeps of the seed four-bar.
 
-Run ``python -m linkstress.validation.bench_memory [--sizes 10000,100000,1000000]``. Prints
+Run ``python -m linkstress.validation.bench.memory [--sizes 10000,100000,1000000]``. Prints
 figures; asserts nothing. Each run is ``analyze`` on the seed scene (three links with section
 stresses, 101 stations each) with ``[motion] input_angle_deg = {start, stop, num}`` of ``num``
 positions, with and without ``--json``, in a fresh child process: its peak resident memory

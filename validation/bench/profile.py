@@ -1,6 +1,6 @@
 """Benchmark: section tables and mass properties against their speed targets and the seed's strip sums.
 
-Run ``python -m linkstress.validation.bench_profile [--full]``. Prints figures; asserts nothing about
+Run ``python -m linkstress.validation.bench.profile [--full]``. Prints figures; asserts nothing about
 time (machines are shared and noisy: compare the ratios measured in one run). ``--full`` also runs
 the strip sums at dx = 1e-4 m, the seed's recommended setting (minutes).
 """
@@ -17,8 +17,8 @@ from shapely.geometry import Polygon
 from linkstress.builders import straight_bar
 from linkstress.mass_properties import area_properties
 from linkstress.tables import format_table
-from linkstress.validation.strip_sum import strip_sum_properties
-from linkstress.validation.timing import best_time
+from linkstress.validation.bench.strip_sum import strip_sum_properties
+from linkstress.validation.bench.timing import best_time
 
 SEED_BARS = {"crank": 1.0, "coupler": 1.5, "output": 1.5, "ground": 2.0}  # joint spacing [m]
 

@@ -44,12 +44,12 @@ from linkstress.profile import LinkProfile
 from linkstress.scene import Scene, load_scene
 from linkstress.stress_state import von_mises
 from linkstress.validation.compare import choose_stations, default_mesh, member_stations, relative, resultant_error
-from linkstress.validation.convergence import richardson
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import solve_link
-from linkstress.validation.mesh import MeshSettings
-from linkstress.validation.strip_sections import strip_baseline
-from linkstress.validation.timing import best_run
+from linkstress.validation.fea.convergence import richardson
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import solve_link
+from linkstress.validation.fea.mesh import MeshSettings
+from linkstress.validation.bench.strip_sections import strip_baseline
+from linkstress.validation.bench.timing import best_run
 from linkstress.validation.validate_scene import compared_positions
 
 RATIO = 1.5

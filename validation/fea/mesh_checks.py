@@ -15,7 +15,7 @@ from shapely.geometry import MultiPolygon, Polygon
 from shapely.ops import nearest_points
 from shapely.validation import explain_validity
 
-from linkstress.validation.errors import FEAError
+from linkstress.validation.fea.errors import FEAError
 
 MIN_ELEMENTS_ACROSS = 2
 

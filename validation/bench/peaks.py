@@ -31,10 +31,10 @@ import numpy as np
 from linkstress.analysis import AnalysisResult, Plan, plan_for, run_analysis
 from linkstress.scene import Scene, load_scene
 from linkstress.stress_state import von_mises
-from linkstress.validation.link_fea import solve_link
+from linkstress.validation.fea.link import solve_link
 from linkstress.validation.peaks import field_error, peak_mesh, superposed_stress
-from linkstress.validation.speed_error import VALIDATE_LEVELS
-from linkstress.validation.unit_loads import DIRECTION_STEP_DEG
+from linkstress.validation.bench.speed_error import VALIDATE_LEVELS
+from linkstress.validation.fea.unit_loads import DIRECTION_STEP_DEG
 from linkstress.validation.validate_scene import MAX_POSITIONS, compared_positions, validate_scene
 
 PEAK_BOUND = 0.01

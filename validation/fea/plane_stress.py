@@ -27,8 +27,8 @@ from skfem import Basis, BilinearForm, Element, ElementTriP1, ElementTriP2, Elem
 from skfem.helpers import sym_grad
 from skfem.models.elasticity import linear_elasticity, linear_stress, plane_stress
 
-from linkstress.validation.errors import FEAError
-from linkstress.validation.mesh import PlaneMesh
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.mesh import PlaneMesh
 
 INTORDER = 4
 """Quadrature degree on cells: exact for the P2 stiffness and for P2 x linear loads on straight cells."""

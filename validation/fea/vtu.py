@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.stress_state import von_mises
-from linkstress.validation.plane_stress import PlaneStressModel
+from linkstress.validation.fea.plane_stress import PlaneStressModel
 
 
 def write_sweep(

@@ -6,7 +6,7 @@
   input, each timed alone (best of several runs).
 - The FEA over a sweep: one mesh and one factorisation, every position a right-hand side.
 - Peak memory of one FEA solve, measured in a fresh process (``python -m
-  linkstress.validation.throughput --memory ...``): the resident set after the imports and the
+  linkstress.validation.bench.throughput --memory ...``): the resident set after the imports and the
   scene, and its high-water mark after the solve (``getrusage``), so the FEA's own share is their
   difference.
 """
@@ -32,9 +32,9 @@ from linkstress.kinematics.motion import angle_motion
 from linkstress.members import link_members
 from linkstress.scene import load_scene
 from linkstress.validation.compare import comparison_stations, default_mesh
-from linkstress.validation.link_fea import solve_link
+from linkstress.validation.fea.link import solve_link
 from linkstress.threads import blas_alone
-from linkstress.validation.timing import best_run
+from linkstress.validation.bench.timing import best_run
 
 
 @dataclass(frozen=True)
@@ -122,7 +122,7 @@ def fea_sweep_rate(scene_path: Path, link_name: str, positions: int, refinement:
 def memory_use(scene_path: Path, link_name: str, refinement: float, order: int) -> MemoryUse:
     """Run ``measure_memory`` in a fresh Python process and read its result."""
     child = subprocess.run(
-        [sys.executable, "-m", "linkstress.validation.throughput", "--memory", str(scene_path), link_name,
+        [sys.executable, "-m", "linkstress.validation.bench.throughput", "--memory", str(scene_path), link_name,
          repr(refinement), str(order)],
         capture_output=True, text=True, check=True,
     )

@@ -14,9 +14,9 @@ import numpy as np
 from linkstress.analysis import DEFAULT_STATIONS
 from linkstress.report.html import figure_tag, page, table_html, versions_html  # its figures module selects Agg
 from linkstress.tables import format_table
-from linkstress.validation.bench_peaks import FIELD_BOUND, PEAK_BOUND, RATIO_TARGET, SETTING, SUPERPOSITION_TARGET
-from linkstress.validation.bench_suite import NOMINAL_BOUND, SPEEDUP, BenchResult, converged_setting
-from linkstress.validation.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy
+from linkstress.validation.bench.peaks import FIELD_BOUND, PEAK_BOUND, RATIO_TARGET, SETTING, SUPERPOSITION_TARGET
+from linkstress.validation.bench.suite import NOMINAL_BOUND, SPEEDUP, BenchResult, converged_setting
+from linkstress.validation.bench.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy
 
 PLOT_FLOOR = 1e-4
 """Smallest error [%] drawn on the log axis (a method that matches the reference to rounding)."""

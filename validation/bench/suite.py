@@ -33,10 +33,10 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from linkstress.analysis import DEFAULT_STATIONS
-from linkstress.validation.bench_peaks import FIELD_BOUND, PEAK_BOUND, PeaksSpeed, PeaksStudy, peaks_speed, peaks_study
-from linkstress.validation.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy, StudySettings, case_study
-from linkstress.validation.stability import HardCaseResult, hard_cases
-from linkstress.validation.throughput import MemoryUse, StageRate, fea_sweep_rate, memory_use, sweep_rates
+from linkstress.validation.bench.peaks import FIELD_BOUND, PEAK_BOUND, PeaksSpeed, PeaksStudy, peaks_speed, peaks_study
+from linkstress.validation.bench.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy, StudySettings, case_study
+from linkstress.validation.bench.stability import HardCaseResult, hard_cases
+from linkstress.validation.bench.throughput import MemoryUse, StageRate, fea_sweep_rate, memory_use, sweep_rates
 
 CASES = Path(__file__).resolve().parent / "cases"
 SEED = CASES / "seed_ansys_fourbar" / "scene.toml"

@@ -26,9 +26,9 @@ from numpy.typing import ArrayLike, NDArray
 from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.stress_state import von_mises
-from linkstress.validation.errors import FEAError
-from linkstress.validation.link_fea import LinkFEAResult, solve_link
-from linkstress.validation.mesh import MeshSettings
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.link import LinkFEAResult, solve_link
+from linkstress.validation.fea.mesh import MeshSettings
 
 CONVERGED_CHANGE = 0.005
 """Largest change of the nominal von Mises between the two finest meshes, relative to the largest

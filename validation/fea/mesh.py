@@ -2,7 +2,7 @@
 exact curves, the default) or linear (P1, straight edges between vertices on the exact curves).
 
 The region is a shapely Polygon with holes (a link's outline in its member frame). Its rings are
-read back into circles, arcs, splines and lines first (:mod:`linkstress.validation.ring_curves`),
+read back into circles, arcs, splines and lines first (:mod:`linkstress.validation.fea.ring_curves`),
 so that the drawing's flattening does not refine the mesh. Each cut becomes a line fragmented into
 the plate, so that element edges run along it and section resultants can be integrated over the
 cut exactly: a station x is the vertical line x = const across the whole region, a cut segment
@@ -30,9 +30,9 @@ from numpy.typing import NDArray
 from shapely.geometry import LinearRing, LineString, Point, Polygon
 from skfem import MeshTri1, MeshTri2
 
-from linkstress.validation.errors import FEAError
-from linkstress.validation.mesh_checks import check_meshable
-from linkstress.validation.ring_curves import Arc, Circle, Line, Spline, ring_curves
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.mesh_checks import check_meshable
+from linkstress.validation.fea.ring_curves import Arc, Circle, Line, Spline, ring_curves
 
 TRIANGLE3, TRIANGLE6 = 2, 9
 LINE2, LINE3 = 1, 8

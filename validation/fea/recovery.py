@@ -22,8 +22,8 @@ from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 from skfem import BilinearForm, asm
 
-from linkstress.validation.errors import FEAError
-from linkstress.validation.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix
+from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix
 
 OUTSIDE_TOLERANCE = 0.05
 """How far outside an element (in its reference coordinates) a point may be and still be evaluated
