@@ -29,7 +29,7 @@ from linkstress.tables import format_table
 from linkstress.threads import cores
 from linkstress.validation.bench.timing import best_time
 
-SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"
+SEED = Path(__file__).resolve().parents[1] / "cases" / "seed_ansys_fourbar" / "scene.toml"
 
 
 

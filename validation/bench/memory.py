@@ -32,7 +32,7 @@ from pathlib import Path
 
 from linkstress.tables import format_table
 
-SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"
+SEED = Path(__file__).resolve().parents[1] / "cases" / "seed_ansys_fourbar" / "scene.toml"
 SIZES = (10_000, 100_000, 1_000_000)
 
 CHILD = """

@@ -38,7 +38,7 @@ from linkstress.validation.report import curvature_note
 from linkstress.validation.bench.speed_error import RATIO
 from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT
 
-SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"
+SEED = Path(__file__).resolve().parents[1] / "cases" / "seed_ansys_fourbar" / "scene.toml"
 PLATE = 0.006
 """Plate thickness [m] of the drawn cases."""
 EQUILIBRIUM_FLAG = 1e-6

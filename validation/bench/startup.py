@@ -4,7 +4,7 @@ Runs the two commands alternately, ``--repeat`` times each, and prints the best 
 and their ratio. Best of N because the noise of a shared machine only ever adds time; alternated so
 that a slow spell of the machine falls on both. The target of issue 20 is a ratio of at most 3.
 
-    python validation/bench/startup.py [--repeat 10]
+    python -m linkstress.validation.bench.startup [--repeat 10]
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import sys
 import time
 from pathlib import Path
 
-SEED = Path(__file__).resolve().parent / "cases" / "seed_ansys_fourbar" / "scene.toml"
+SEED = Path(__file__).resolve().parents[1] / "cases" / "seed_ansys_fourbar" / "scene.toml"
 ANALYZE = [sys.executable, "-m", "linkstress", "analyze", str(SEED)]
 NUMPY = [sys.executable, "-c", "import numpy"]
 TARGET_RATIO = 3.0

@@ -38,7 +38,7 @@ from linkstress.validation.bench.speed_error import RATIO, VALIDATE_LEVELS, Case
 from linkstress.validation.bench.stability import HardCaseResult, hard_cases
 from linkstress.validation.bench.throughput import MemoryUse, StageRate, fea_sweep_rate, memory_use, sweep_rates
 
-CASES = Path(__file__).resolve().parent / "cases"
+CASES = Path(__file__).resolve().parents[1] / "cases"
 SEED = CASES / "seed_ansys_fourbar" / "scene.toml"
 CURVED_CASE = CASES / "banana_coupler" / "scene.toml"
 BELL_CRANK = CASES / "bell_crank" / "scene.toml"
