@@ -30,7 +30,7 @@ def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | N
     say its own (``--units``; None: not given)."""
     lines = [
         f"# Written by `linkstress import {_comment(sketch_name)} --scene`: the mechanism as drawn assembled.",
-        "# Edit the material, each link's thickness and the motion; add [loads] (docs/design.md, scene file).",
+        "# Edit the material, each link's thickness and the motion; add [loads] (every key: docs/scenes.md).",
         "",
         f"title = {toml_string(sketch_name + ' as drawn')}",
     ]

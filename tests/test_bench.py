@@ -8,6 +8,7 @@ baseline and the Pareto front are checked against hand-computed values.
 from __future__ import annotations
 
 import json
+from pathlib import Path
 import math
 
 import numpy as np
@@ -24,14 +25,22 @@ from linkstress.validation.bench.peaks import full_turn_scene
 from linkstress.validation.bench.suite import SEED
 from linkstress.validation.bench.speed_error import CaseStudy, MethodResult
 from linkstress.validation.bench.strip_sections import piecewise_bounds, strip_sections, strip_stresses
+from linkstress.validation.bench.markdown import GENERATED, bench_markdown
 from test_report_html import embedded_images
 
 
 @pytest.fixture(scope="module")
-def quick(tmp_path_factory):
+def quick_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
-    code = main(["bench", "--quick", "--json", str(out / "bench.json"), "--html", str(out / "bench.html")])
-    return code, json.loads((out / "bench.json").read_text()), (out / "bench.html").read_text()
+    code = main(["bench", "--quick", "--json", str(out / "bench.json"), "--html", str(out / "bench.html"),
+                 "--markdown", str(out / "bench.md")])
+    return code, json.loads((out / "bench.json").read_text()), (out / "bench.html").read_text(), (out / "bench.md").read_text()
+
+
+@pytest.fixture(scope="module")
+def quick(quick_run):
+    """The quick run's exit code, JSON figures and HTML page."""
+    return quick_run[:3]
 
 
 def test_the_quick_bench_passes_every_error_check(quick):
@@ -256,3 +265,21 @@ def test_a_pareto_front_point_is_beaten_by_none_and_every_other_point_by_one_on_
             assert not beaten
         else:
             assert any(j in front for j in beaten) or any(points[j] == (t, e) for j in front)
+
+
+def test_the_markdown_page_is_the_rendering_of_the_json_written_by_the_same_run(quick_run):
+    _, data, _, page = quick_run
+    assert page == bench_markdown(data)
+    assert page.startswith(GENERATED)
+    seed = data["cases"]["seed_ansys_fourbar"]
+    beam = next(m for m in seed["methods"] if m["setting"] == "101 stations")
+    assert f"| beam | 101 stations | 303 | {1e3 * beam['seconds']:.3g} | {beam['nominal_error_pct']:.3g} |" in page
+    assert ("all passed." if not data["failures"] else "FAILED") in page
+
+
+def test_docs_benchmarks_is_written_by_the_bench_from_its_recorded_full_run():
+    """docs/benchmarks.md is generated, never edited by hand: it is exactly the page of the JSON beside it."""
+    docs = Path(__file__).resolve().parents[1] / "docs"
+    data = json.loads((docs / "benchmarks.json").read_text())
+    assert data["mode"] == "full"
+    assert (docs / "benchmarks.md").read_text() == bench_markdown(data)
