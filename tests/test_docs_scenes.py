@@ -72,11 +72,12 @@ def test_every_table_of_the_scene_has_a_section():
     assert {heading.strip("`[]").split(".")[0] for heading in SECTIONS if heading != "Top level"} == tables
 
 
-def test_the_docs_have_two_example_scenes():
-    assert len(examples(DOC.read_text())) == 2
+def test_the_docs_have_three_example_scenes():
+    assert len(examples(DOC.read_text())) == 3
 
 
-@pytest.mark.parametrize(("index", "title"), [(0, "Seed ANSYS four-bar"), (1, "Six-bar, two loops")])
+@pytest.mark.parametrize(("index", "title"), [(0, "Seed ANSYS four-bar"), (1, "Six-bar, two loops"),
+                                                 (2, "Norton's four-bar, problem 4-1 g")])
 def test_each_example_scene_reads(tmp_path, index, title):
     text = examples(DOC.read_text())[index]
     shutil.copy(SEED / "ansys_four_bars.dxf", tmp_path)

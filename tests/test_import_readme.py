@@ -1,4 +1,4 @@
-"""The README's "Importing sketches" examples run as written."""
+"""docs/importing.md's examples run as written."""
 
 from __future__ import annotations
 
@@ -12,8 +12,7 @@ REPO = Path(__file__).resolve().parents[1]
 
 
 def section() -> str:
-    text = (REPO / "README.md").read_text()
-    return text.split("## Importing sketches", 1)[1].split("\n## ", 1)[0]
+    return (REPO / "docs" / "importing.md").read_text()
 
 
 def test_the_readme_import_commands_run(tmp_path):
@@ -23,7 +22,7 @@ def test_the_readme_import_commands_run(tmp_path):
         (tmp_path / name).symlink_to(REPO / name)
     for command in commands:
         program, *args = shlex.split(command)
-        assert program == ".venv/bin/linkstress"
+        assert program == "linkstress"
         result = subprocess.run([sys.executable, "-m", "linkstress", *args], cwd=tmp_path, capture_output=True, text=True)
         assert result.returncode == 0, result.stderr
         assert "link" in result.stdout

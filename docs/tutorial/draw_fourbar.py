@@ -51,6 +51,9 @@ def main() -> None:
     bar(msp, "crank", o2, a)
     bar(msp, "coupler", a, b)
     bar(msp, "rocker", o4, b)
+    # CLASS entries sorted (ezdxf orders them by hash), so that the file is the same on every run.
+    doc.classes.add_required_classes(doc.dxfversion)
+    doc.classes.classes = dict(sorted(doc.classes.classes.items()))
     doc.saveas(Path(__file__).with_name("fourbar.dxf"))
 
 

@@ -1,0 +1,133 @@
+"""The README's tutorial runs as written: import the drawing into a scene, edit it as shown, analyze
+with peaks, validate; the figures the tutorial quotes are the ones the run gives."""
+
+from __future__ import annotations
+
+import json
+import re
+import shlex
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from linkstress.cli import main
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def tutorial() -> str:
+    text = (REPO / "README.md").read_text()
+    return text.split("## Tutorial", 1)[1].split("\n## ", 1)[0]
+
+
+def commands() -> list[list[str]]:
+    """The tutorial's shell commands, without the venv's path."""
+    lines = re.findall(r"```sh\n(.+?)\n```", tutorial(), re.S)
+    words = [shlex.split(line) for line in lines]
+    assert all(w[0] == ".venv/bin/linkstress" for w in words)
+    return [w[1:] for w in words]
+
+
+def edit_scene(text: str, edits: str) -> str:
+    """``text`` with each ``key = value`` of ``edits`` set in its table: the line replaced where the
+    key is (commented or not), else added at the table's end; a table ``text`` lacks is appended."""
+    lines = text.splitlines()
+    headers = [line.split("#", 1)[0].strip() for line in lines]
+    table = None
+    for line in edits.splitlines():
+        if not line.strip():
+            continue
+        if line.startswith("["):
+            table = line
+            if table not in headers:
+                lines += ["", table]
+                headers += ["", table]
+            continue
+        key = line.split("=", 1)[0].strip()
+        start = headers.index(table) + 1
+        end = next((k for k in range(start, len(lines)) if lines[k].startswith("[")), len(lines))
+        at = [k for k in range(start, end) if re.match(rf"#?\s*{re.escape(key)}\s*=", lines[k])]
+        for k in at[1:]:
+            lines[k] = ""
+        if at:
+            lines[at[0]] = line
+        else:
+            while end > start and not lines[end - 1].strip():
+                end -= 1
+            lines.insert(end, line)
+            headers.insert(end, line)
+    return "\n".join(lines) + "\n"
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("tutorial")
+    (folder / "docs").symlink_to(REPO / "docs")
+    steps = commands()
+    assert [s[0] for s in steps] == ["import", "analyze", "validate"]
+    import os
+
+    here = os.getcwd()
+    os.chdir(folder)
+    try:
+        assert main(steps[0]) == 0
+        edits = re.findall(r"```toml\n(.+?)\n```", tutorial(), re.S)[0]
+        scene = folder / "fourbar.toml"
+        scene.write_text(edit_scene(scene.read_text(), edits))
+        analyze = steps[1] + ["--json", "analysis.json"]
+        assert main(analyze) == 0
+        validate = steps[2] + ["--json", "check.json"]
+        code = main(validate)
+    finally:
+        os.chdir(here)
+    return folder, code
+
+
+def test_the_written_and_edited_scene_is_the_scene_the_tutorial_describes(run):
+    folder, _ = run
+    scene = tomllib.loads((folder / "fourbar.toml").read_text())
+    assert {link["thickness"] for link in scene["links"].values()} == {0.006}
+    assert scene["motion"]["input_speed_rad_s"] == 100.0
+    assert scene["loads"]["couples"] == {"rocker": 5.0}
+    assert (folder / "fourbar.png").stat().st_size > 10_000
+
+
+def test_the_figures_the_tutorial_quotes_are_those_of_the_run(run):
+    folder, _ = run
+    links = json.loads((folder / "analysis.json").read_text())["links"]
+    positions = json.loads((folder / "analysis.json").read_text())["positions"]
+    rocker = links["rocker"]
+    beam = max(p["links"]["rocker"]["max_von_mises_pa"] for p in positions)
+    beam_factor = min(p["links"]["rocker"]["yield_safety_factor"] for p in positions)
+    text = tutorial()
+    quoted = re.search(r"beam maximum is (\d+) MPa but its FEA peak, at the pin hole, is (\d+) MPa", text)
+    factors = re.search(r"yield safety factor is ([\d.]+), not the ([\d.]+)", text)
+    assert round(beam / 1e6) == int(quoted.group(1))
+    assert round(rocker["peak_max_von_mises_pa"] / 1e6) == int(quoted.group(2))
+    assert rocker["peak_converged"]
+    assert round(rocker["peak_yield_safety_factor"], 1) == float(factors.group(1))
+    assert round(beam_factor, 1) == float(factors.group(2))
+    assert rocker["fatigue_safety_factor"] is not None
+
+
+def test_the_tutorial_validate_passes(run):
+    folder, code = run
+    assert code == 0
+    report = json.loads((folder / "check.json").read_text())
+    assert set(report["links"]) == {"crank", "coupler", "rocker"}
+
+
+def test_the_tutorial_pictures_are_in_the_repository():
+    for path in re.findall(r"\]\((docs/images/[^)]+\.png)\)", tutorial()):
+        assert (REPO / path).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", path
+    assert len(re.findall(r"\]\((docs/images/[^)]+\.png)\)", tutorial())) == 2
+
+
+def test_the_tutorial_drawing_is_what_its_script_draws(tmp_path):
+    import runpy
+    import shutil
+
+    shutil.copy(REPO / "docs" / "tutorial" / "draw_fourbar.py", tmp_path)
+    runpy.run_path(str(tmp_path / "draw_fourbar.py"), run_name="__main__")
+    assert (tmp_path / "fourbar.dxf").read_bytes() == (REPO / "docs" / "tutorial" / "fourbar.dxf").read_bytes()
