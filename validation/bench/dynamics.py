@@ -1,7 +1,7 @@
 """Benchmark: joint forces and section stresses of the seed four-bar, one position and a sweep.
 
 Run ``python -m linkstress.validation.bench.dynamics``. Prints figures (best of several runs); asserts
-nothing about time. Targets (issue 5): the seed case at one position, mass properties included,
+nothing about time. Targets: the seed case at one position, mass properties included,
 under 5 ms, the work the original program takes 31.8 s for (mass properties at 1e-4 m strips plus
 one solve; ``bench_profile --full`` measures its strip sums here); forces and section stresses for
 3,600 positions x 3 links x 200 stations under 0.2 s. The one position with section stresses as

@@ -2,7 +2,7 @@
 
 Run ``python -m linkstress.validation.bench.plot [--links N]``. Writes a nested sheet of ``N`` parts
 (default 91, as a laser-cut sheet) with ezdxf, reads it, and prints the best time of drawing its PNG
-and the PNG's size. Asserts nothing about time (machines are shared and noisy). Target (issue 19):
+and the PNG's size. Asserts nothing about time (machines are shared and noisy). Target:
 the 91-part sheet under 3 s; the per-link picture of every link took 28 s.
 """
 

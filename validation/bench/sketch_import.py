@@ -2,12 +2,12 @@
 
 Run ``python -m linkstress.validation.bench.sketch_import [--ezdxf] [--splines]``. Prints figures; asserts
 nothing about time (machines are shared and noisy: each time is the best of several runs). Targets
-(issue 3): a typical link (under 200 entities) in under 50 ms after start-up; 20 links and 50,000
+a typical link (under 200 entities) in under 50 ms after start-up; 20 links and 50,000
 entities in under 2 s. ``--ezdxf`` also times the big drawing read entirely through ezdxf's document
 loader (the fast tag table switched off), to show what the fast path buys. ``--splines`` reads a sheet
 of 90 parts outlined by 13 SPLINEs through 40 fit points each (1,170 splines, the size of a sheet
 that took 148 s and 545 MB only to be refused when splines were flattened by ezdxf to 1e-7 of the
-drawing, issue 19; that flattening refused this sheet too, after 5.8 s) in a fresh child process, for
+drawing; that flattening refused this sheet too, after 5.8 s) in a fresh child process, for
 its time and peak memory; targets under 10 s and 300 MB. Measured: 1.9 s and 146 MB, 67,000 vertices.
 """
 

@@ -43,7 +43,7 @@ SEED = CASES / "seed_ansys_fourbar" / "scene.toml"
 CURVED_CASE = CASES / "banana_coupler" / "scene.toml"
 BELL_CRANK = CASES / "bell_crank" / "scene.toml"
 NOMINAL_BOUND = 0.02
-"""Nominal error the beam engine must stay under against converged FEA (issue 8's must-show), on
+"""Nominal error the beam engine must stay under against converged FEA (a must-show figure), on
 every member of a link unless its case bounds it otherwise."""
 CURVED_BOUND = 0.03
 """Nominal error bound of the beam's curved (Winkler-Bach) sections on the curved couplers."""
