@@ -1,7 +1,7 @@
 """Benchmark: importing sketches against the speed targets, and the flattening rule's accuracy.
 
 Run ``python -m linkstress.validation.bench.sketch_import [--ezdxf] [--splines]``. Prints figures; asserts
-nothing about time (machines are shared and noisy: each time is the best of several runs). Targets
+nothing about time (machines are shared and noisy: each time is the best of several runs). Targets:
 a typical link (under 200 entities) in under 50 ms after start-up; 20 links and 50,000
 entities in under 2 s. ``--ezdxf`` also times the big drawing read entirely through ezdxf's document
 loader (the fast tag table switched off), to show what the fast path buys. ``--splines`` reads a sheet
