@@ -118,5 +118,30 @@ def test_the_table_gives_each_links_lowest_factor_over_the_sweep(tmp_path, capsy
     peaks = [p["links"]["coupler"]["max_von_mises_pa"] for p in data["positions"]]
     lowest, highest = f"{250e6 / max(peaks):.3g}", f"{250e6 / min(peaks):.3g}"
     assert lowest != highest
-    row = next(line.split() for line in text.splitlines() if line.strip().startswith("coupler "))
+    # the last column may carry a flag for a hole no estimate covers: " (joint k: no estimate *)"
+    row = next(line.split(" (joint")[0].split() for line in text.splitlines() if line.strip().startswith("coupler "))
     assert row[-2] == lowest
+
+
+def test_a_pin_hole_no_estimate_covers_is_flagged_beside_the_factors_with_where_to_find_its_stress(tmp_path, capsys):
+    # The seed crank's pivot O2 (joint 0) carries the driving torque and the output's O4 the 2 N m
+    # couple: both holes are outside the Kt tables, so neither factor of those links covers them.
+    data, text = analyze(seed_scene(tmp_path, "yield_strength = 250e6\n"), tmp_path, capsys)
+    holes = {name: [h["joint"] for h in link["pin_holes"] if h["kt_outside_table"]]
+             for name, link in data["positions"][0]["links"].items() if "pin_holes" in link}
+    assert holes == {"crank": [0], "coupler": [], "output": [0]}
+    rows = {line.split()[0]: line for line in text.splitlines() if line.strip().split(" ")[0] in ("crank", "coupler", "output")
+            and "e+" in line}
+    assert rows["crank"].endswith("(joint 0: no estimate *)") and rows["output"].endswith("(joint 0: no estimate *)")
+    assert "*" not in rows["coupler"]
+    notes = [line for line in text.splitlines() if line.startswith("* ")]
+    assert [n.split(":")[0] for n in notes] == ["* crank", "* output"]
+    assert all("joint 0 (at 1 of 1 positions)" in n and "analyze --peaks" in n for n in notes)
+
+
+def test_with_peaks_the_flag_points_to_the_fea_peak_table(tmp_path, capsys):
+    sweep = "input_angle_deg = [30.0, 60.0]\ninput_speed_rad_s = -1.0\n"
+    scene = seed_scene(tmp_path, "yield_strength = 250e6\n", sweep)
+    assert main(["analyze", str(scene), "--peaks"]) == 0
+    notes = [line for line in capsys.readouterr().out.splitlines() if line.startswith("* ")]
+    assert notes and all("the FEA peak table below gives the stress there" in n for n in notes)

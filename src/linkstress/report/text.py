@@ -196,7 +196,7 @@ def stress_table(result: AnalysisResult) -> str:
     rows = []
     ok = result.feasible
     factors = link_safety_factors(result)
-    where = []
+    where, uncovered_notes = [], []
     for name, stress in result.stresses.items():
         figures = link_figures(result, name, factors.get(name))
         if figures is None:
@@ -209,6 +209,11 @@ def stress_table(result: AnalysisResult) -> str:
         ]
         if factors:
             row += _factor_cells(factors.get(name), ok)
+            uncovered = uncovered_holes(stress, ok)
+            if name in factors and uncovered:
+                joints = ", ".join(str(joint) for joint, _ in uncovered)
+                row[-1] = f"{row[-1]} (joint {joints}: no estimate *)"
+                uncovered_notes.append(_uncovered_note(name, uncovered, int(ok.sum()), name in result.peaks))
         rows.append(tuple(row))
         where += [f"  {name}: {line}" for line in figure_lines(figures)]
     headers = ["link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
@@ -231,7 +236,24 @@ def stress_table(result: AnalysisResult) -> str:
             "yield safety factor: the material's yield_strength over the largest stress of the sweep (section "
             "von Mises; pin hole estimate); '-' where the material gives no yield_strength"
         )
+    lines += uncovered_notes
     return "\n".join(lines)
+
+
+def uncovered_holes(stress, ok) -> list[tuple[int, int]]:
+    """(joint, positions) of each loaded pin hole whose estimate is outside the Kt tables at some
+    feasible position: there no figure of the table covers the hole."""
+    counts = [(hole.joint, int((hole.outside & (hole.nominal > 0))[ok].sum())) for hole in stress.pin_holes]
+    return [(joint, count) for joint, count in counts if count]
+
+
+def _uncovered_note(name: str, holes: list[tuple[int, int]], feasible: int, peaks: bool) -> str:
+    """Why a link's yield safety factor covers its sections only, and where the holes' stress is."""
+    listed = ", ".join(f"joint {joint} (at {count} of {feasible} positions)" for joint, count in holes)
+    where = ("the FEA peak table below gives the stress there, holes included" if peaks
+             else "run analyze --peaks (or validate) for the FEA peak there, holes included")
+    return (f"* {name}: no yield safety factor covers the pin holes at {listed}: they are outside the Kt tables, "
+            f"so no estimate covers them, and beam theory is silent at a hole; {where}")
 
 
 def figure_lines(figures: LinkFigures) -> list[str]:
