@@ -25,7 +25,7 @@ from linkstress.validation.bench.peaks import full_turn_scene
 from linkstress.validation.bench.suite import SEED
 from linkstress.validation.bench.speed_error import CaseStudy, MethodResult
 from linkstress.validation.bench.strip_sections import piecewise_bounds, strip_sections, strip_stresses
-from linkstress.validation.bench.markdown import GENERATED, bench_markdown
+from linkstress.validation.bench.markdown import GENERATED, bench_markdown, readme_summary
 from test_report_html import embedded_images
 
 
@@ -283,3 +283,9 @@ def test_docs_benchmarks_is_written_by_the_bench_from_its_recorded_full_run():
     data = json.loads((docs / "benchmarks.json").read_text())
     assert data["mode"] == "full"
     assert (docs / "benchmarks.md").read_text() == bench_markdown(data)
+
+
+def test_the_readme_states_the_figures_of_that_same_run():
+    repo = Path(__file__).resolve().parents[1]
+    data = json.loads((repo / "docs" / "benchmarks.json").read_text())
+    assert readme_summary(data) in (repo / "README.md").read_text()

@@ -198,3 +198,27 @@ def bench_markdown(figures: dict) -> str:
                                               else "FAILED: " + "; ".join(figures["failures"]) + "."), "",
               "## Other benchmarks", "", SCRIPTS, ""]
     return "\n".join(lines)
+
+
+def readme_summary(figures: dict) -> str:
+    """The README's paragraph of figures, from the same run as the page (a test holds them equal)."""
+    must = figures["must_show"]
+    beams = {name: next(m for m in case["methods"] if m["method"] == "beam" and m["setting"] == f"{must['beam_stations']} stations")
+             for name, case in figures["cases"].items()}
+    others = [beam["nominal_error_pct"] for name, beam in beams.items() if name != "seed_ansys_fourbar"]
+    rates = {(r["case"], r["stage"]): r for r in figures["throughput"]}
+    kinematics, whole = rates[("seed_ansys_fourbar", "kinematics")], rates[("seed_ansys_fourbar", "whole analysis")]
+    speed = figures["superposition"]["speed"]
+    machine = figures["machine"]
+    load = next((value for key, value in machine.items() if key.startswith("load")), "not measured")
+    return (
+        f"on the seed four-bar the beam engine's nominal von Mises is {must['beam_nominal_error_pct']:.2g} % from "
+        f"converged FEA, in {1e3 * must['beam_seconds']:.2g} ms for three links: {must['speedup']:,.0f} x faster than one "
+        f"solve on validate's converged mesh. On the curved couplers and the bell crank the worst member is "
+        f"{max(others):.2g} % off. A whole turn of {speed['sweep_positions']} positions with FEA peaks takes "
+        f"{speed['ratio']:.2g} x the time of one `validate` at one position. Over a sweep of "
+        f"{kinematics['positions']:,} positions of the seed, kinematics runs at {kinematics['positions_per_second']:,.0f} "
+        f"positions per second and the whole analysis (kinematics, forces, stresses of three links) at "
+        f"{whole['positions_per_second']:,.0f}. Measured on {machine['cpu']}, {machine['cores']} cores shared with "
+        f"other work (load average {load}), Python {machine['python']}, in a {figures['seconds']:.0f} s run."
+    )
