@@ -9,12 +9,16 @@ threads (``linkstress.threads.in_parallel``).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
 
 from linkstress.threads import in_parallel
 
-BLOCK = 1 << 14
-"""Positions per block: about 20 temporaries of 128 kB each, which stay in the caches."""
+BLOCK = 1 << 15
+"""Positions per block: a dozen temporaries of 256 kB each, which stay in the caches."""
 
 
 def solve_in_blocks(work: Callable[[slice], None], n: int) -> None:
@@ -22,3 +26,33 @@ def solve_in_blocks(work: Callable[[slice], None], n: int) -> None:
     (the last one shorter), on a thread per core when there are several. Not to be called from
     inside ``in_parallel``'s blocks."""
     in_parallel(work, [slice(start, min(start + BLOCK, n)) for start in range(0, n, BLOCK)])
+
+
+def angle_of(y: NDArray[np.float64], x: NDArray[np.float64], out: NDArray[np.float64],
+             scratch: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``out`` = arctan2(y, x) [rad] in [-pi, pi], as arctan(y / x) plus pi where x is negative
+    (its sign bit set), pi taking the sign of y. Within an ulp of pi of ``np.arctan2``, except that
+    the zero vector gives NaN; numpy calls the C library per element for both, and there atan2
+    costs about twice atan. ``scratch`` (same length as ``out``) is overwritten."""
+    # x = 0 gives y / x = +-inf, whose arctan is +-pi/2; 0 / 0 gives the NaN above
+    with np.errstate(divide="ignore", invalid="ignore"):
+        np.divide(y, x, out=out)
+    np.arctan(out, out=out)
+    np.copysign(math.pi, y, out=scratch)
+    scratch *= np.signbit(x)
+    out += scratch
+    return out
+
+
+def dot_into(x1: NDArray[np.float64], y1: NDArray[np.float64], x2: NDArray[np.float64], y2: NDArray[np.float64],
+             out: NDArray[np.float64], scratch: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``out`` = x1 y1 + x2 y2 (the dot product of (x1, x2) and (y1, y2)); ``scratch`` is overwritten."""
+    np.multiply(x1, y1, out=out)
+    out += np.multiply(x2, y2, out=scratch)
+    return out
+
+
+def set_columns(pairs: NDArray[np.float64], x: NDArray[np.float64], y: NDArray[np.float64]) -> None:
+    """Fill the (M, 2) array ``pairs`` with its columns ``x`` and ``y`` (M,)."""
+    pairs[:, 0] = x
+    pairs[:, 1] = y

@@ -38,7 +38,7 @@ from linkstress.kinematics.crossings import (
     BranchPoint,
     find_crossings,
 )
-from linkstress.kinematics.blocks import solve_in_blocks
+from linkstress.kinematics.blocks import angle_of, dot_into, set_columns, solve_in_blocks
 from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.results import FloatArray, JointMotion, LinkMotion, LoopMotion, fixed_link
 
@@ -241,7 +241,7 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     np.multiply(sin2, a, out=ray)
     np.subtract(dx, rax, out=ddx)  # D = O4 - A
     np.subtract(dy, ray, out=ddy)
-    _dot(ddx, ddx, ddy, ddy, s2, tmp)
+    dot_into(ddx, ddx, ddy, ddy, s2, tmp)
     one_minus_cos = np.subtract(s2, (b - c) ** 2, out=tmp)
     one_minus_cos /= 2 * b * c
     one_plus_cos = np.subtract((b + c) ** 2, s2, out=tmp2)
@@ -268,12 +268,15 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     np.multiply(along, ddx, out=r3x)  # B - A
     r3x -= np.multiply(across, ddy, out=tmp)
     r3x *= half_inv_s2
-    _dot(along, ddy, across, ddx, r3y, tmp)
+    dot_into(along, ddy, across, ddx, r3y, tmp)
     r3y *= half_inv_s2
     r4x = np.subtract(r3x, ddx, out=ddx)  # B - O4
     r4y = np.subtract(r3y, ddy, out=ddy)
-    np.arctan2(r3y, r3x, out=out.theta3[rows])
-    np.arctan2(r4y, r4x, out=out.theta4[rows])
+    theta3 = angle_of(r3y, r3x, out.theta3[rows], tmp)
+    theta4 = angle_of(r4y, r4x, out.theta4[rows], tmp)
+    if not all_feasible:  # filler B - A or B - O4 may be the zero vector
+        theta3[bad] = np.arctan2(r3y[bad], r3x[bad])
+        theta4[bad] = np.arctan2(r4y[bad], r4x[bad])
 
     cross34 = np.multiply(sin_mu, sigma * b * c, out=sin_mu)  # (B - A) x (B - O4), exactly
     if not all_feasible:
@@ -282,13 +285,13 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     np.negative(vax, out=vax)
     vay = np.multiply(w, rax, out=sin2)
     omega3, omega4, alpha3, alpha4 = out.omega3[rows], out.omega4[rows], out.alpha3[rows], out.alpha4[rows]
-    _dot(vax, r4x, vay, r4y, omega3, tmp)
+    dot_into(vax, r4x, vay, r4y, omega3, tmp)
     np.negative(omega3, out=omega3)
     omega3 /= cross34
-    _dot(vax, r3x, vay, r3y, omega4, tmp)
+    dot_into(vax, r3x, vay, r3y, omega4, tmp)
     np.negative(omega4, out=omega4)
     omega4 /= cross34
-    _columns(out.vel_a[rows], vax, vay)
+    set_columns(out.vel_a[rows], vax, vay)
 
     w2sq = np.multiply(w, w, out=tmp2)
     aax = np.multiply(al, ray, out=vax)
@@ -296,23 +299,23 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     aax -= np.multiply(w2sq, rax, out=tmp)
     aay = np.multiply(al, rax, out=vay)
     aay -= np.multiply(w2sq, ray, out=tmp)
-    _columns(out.acc_a[rows], aax, aay)
+    set_columns(out.acc_a[rows], aax, aay)
     pos_a, pos_b = out.pos_a[rows], out.pos_b[rows]
     for k, (ra, r3) in enumerate(((rax, r3x), (ray, r3y))):
         np.add(ra, linkage.o2[k], out=pos_a[:, k])
         np.add(pos_a[:, k], r3, out=pos_b[:, k])
 
-    dot34 = _dot(r3x, r4x, r3y, r4y, rax, tmp)
+    dot34 = dot_into(r3x, r4x, r3y, r4y, rax, tmp)
     w3sq = np.multiply(omega3, omega3, out=ray)
     w4sq = np.multiply(omega4, omega4, out=tmp2)
     # alpha3 = (w3^2 dot34 - w4^2 c^2 - a_A . (B - O4)) / cross34, alpha4 likewise
     np.multiply(w3sq, dot34, out=alpha3)
     alpha3 -= np.multiply(w4sq, c * c, out=tmp)
-    alpha3 -= _dot(aax, r4x, aay, r4y, out=s2, tmp=tmp)
+    alpha3 -= dot_into(aax, r4x, aay, r4y, s2, tmp)
     alpha3 /= cross34
     np.multiply(w3sq, b * b, out=alpha4)
     alpha4 -= np.multiply(w4sq, dot34, out=tmp)
-    alpha4 -= _dot(aax, r3x, aay, r3y, out=s2, tmp=tmp)
+    alpha4 -= dot_into(aax, r3x, aay, r3y, s2, tmp)
     alpha4 /= cross34
     if not all_feasible:
         for rate in (omega3, omega4, alpha3, alpha4):
@@ -327,19 +330,6 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     np.subtract(tmp, np.multiply(w4sq, r4x, out=s2), out=acc_b[:, 0])
     np.multiply(alpha4, r4x, out=tmp)
     np.subtract(tmp, np.multiply(w4sq, r4y, out=s2), out=acc_b[:, 1])
-
-
-def _dot(x1, y1, x2, y2, out, tmp):
-    """out = x1 y1 + x2 y2, ``tmp`` a scratch array of the same length; returns ``out``."""
-    np.multiply(x1, y1, out=out)
-    out += np.multiply(x2, y2, out=tmp)
-    return out
-
-
-def _columns(pairs, x, y) -> None:
-    """Fill the (M, 2) block ``pairs`` with its columns ``x`` and ``y`` (M,)."""
-    pairs[:, 0] = x
-    pairs[:, 1] = y
 
 
 def _status(one_minus_cos, one_plus_cos, cos2, sin2, theta1: float):
