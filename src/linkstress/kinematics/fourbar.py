@@ -235,6 +235,7 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     dx, dy = linkage.o4[0] - linkage.o2[0], linkage.o4[1] - linkage.o2[1]
     w, al = w2[rows], al2[rows]
     cos2, sin2, rax, ray, ddx, ddy, s2, sin_mu, r3x, r3y, tmp, tmp2 = np.empty((12, rows.stop - rows.start))
+    # positions: B where the circles (A, b) and (O4, c) meet
     np.cos(theta2[rows], out=cos2)
     np.sin(theta2[rows], out=sin2)
     np.multiply(cos2, a, out=rax)
@@ -278,6 +279,7 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
         theta3[bad] = np.arctan2(r3y[bad], r3x[bad])
         theta4[bad] = np.arctan2(r4y[bad], r4x[bad])
 
+    # velocities (Norton eq. 6.18), then accelerations (eq. 7.12), dotted with B - A and B - O4
     cross34 = np.multiply(sin_mu, sigma * b * c, out=sin_mu)  # (B - A) x (B - O4), exactly
     if not all_feasible:
         cross34[bad] = 1.0

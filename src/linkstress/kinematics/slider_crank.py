@@ -189,6 +189,7 @@ def _solve_rows(linkage: SliderCrank, theta2, w2, al2, out: _Sweep, rows: slice)
     nx, ny = -uy, ux
     w, al = w2[rows], al2[rows]
     rax, ray, along, sin_psi, cos_psi, r3x, r3y, tmp, tmp2 = np.empty((9, rows.stop - rows.start))
+    # positions (Norton eqs. 4.16-4.17 in the line's frame)
     np.cos(theta2[rows], out=rax)
     rax *= a
     np.sin(theta2[rows], out=ray)
@@ -221,6 +222,7 @@ def _solve_rows(linkage: SliderCrank, theta2, w2, al2, out: _Sweep, rows: slice)
         np.add(ra, linkage.o2[k], out=pos_a[:, k])
         np.add(pos_a[:, k], r3, out=pos_b[:, k])
 
+    # velocities (eq. 6.20) and accelerations (eq. 7.16)
     b_cos = np.multiply(cos_psi, b, out=r3x)
     if not all_feasible:
         b_cos[bad] = 1.0
