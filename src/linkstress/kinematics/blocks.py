@@ -28,6 +28,16 @@ def solve_in_blocks(work: Callable[[slice], None], n: int) -> None:
     in_parallel(work, [slice(start, min(start + BLOCK, n)) for start in range(0, n, BLOCK)])
 
 
+def empty_arrays(n: int, vectors: int, pairs: int) -> tuple[list[NDArray[np.float64]], list[NDArray[np.float64]]]:
+    """``vectors`` arrays (n,) and ``pairs`` arrays (n, 2), uninitialised, carved from one
+    allocation: the kernel maps a sweep's fresh pages for it in one go (large pages where it can),
+    which costs less than a separate mapping per array."""
+    memory = np.empty((vectors + 2 * pairs) * n)
+    ends = np.cumsum([0] + [n] * vectors + [2 * n] * pairs)
+    arrays = [memory[lo:hi] for lo, hi in zip(ends[:-1], ends[1:])]
+    return arrays[:vectors], [array.reshape(n, 2) for array in arrays[vectors:]]
+
+
 def angle_of(y: NDArray[np.float64], x: NDArray[np.float64], out: NDArray[np.float64],
              scratch: NDArray[np.float64]) -> NDArray[np.float64]:
     """``out`` = arctan2(y, x) [rad] in [-pi, pi], as arctan(y / x) plus pi where x is negative

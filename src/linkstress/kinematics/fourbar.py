@@ -38,7 +38,7 @@ from linkstress.kinematics.crossings import (
     BranchPoint,
     find_crossings,
 )
-from linkstress.kinematics.blocks import angle_of, dot_into, set_columns, solve_in_blocks
+from linkstress.kinematics.blocks import angle_of, dot_into, empty_arrays, set_columns, solve_in_blocks
 from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.results import FloatArray, JointMotion, LinkMotion, LoopMotion, fixed_link
 
@@ -222,9 +222,8 @@ class _Sweep:
 
     @classmethod
     def empty(cls, n: int, mode_side: bool) -> _Sweep:
-        rows = [np.empty(n) for _ in range(6)]
-        points = [np.empty((n, 2)) for _ in range(6)]
-        return cls(*rows, np.zeros(n, np.int8), *points, np.empty(n) if mode_side else None)
+        vectors, pairs = empty_arrays(n, 6, 6)
+        return cls(*vectors, np.zeros(n, np.int8), *pairs, np.empty(n) if mode_side else None)
 
 
 def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> None:

@@ -29,7 +29,7 @@ from linkstress.kinematics.crossings import (
     BranchPoint,
     find_crossings,
 )
-from linkstress.kinematics.blocks import angle_of, dot_into, set_columns, solve_in_blocks
+from linkstress.kinematics.blocks import angle_of, dot_into, empty_arrays, set_columns, solve_in_blocks
 from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.fourbar import BRANCHES, TOGGLE_TOLERANCE
 from linkstress.kinematics.results import FloatArray, JointMotion, LinkMotion, LoopMotion, fixed_link
@@ -177,8 +177,8 @@ class _Sweep:
 
     @classmethod
     def empty(cls, n: int) -> _Sweep:
-        rows = [np.empty(n) for _ in range(6)]
-        return cls(*rows, np.zeros(n, np.int8), *[np.empty((n, 2)) for _ in range(6)])
+        vectors, pairs = empty_arrays(n, 6, 6)
+        return cls(*vectors, np.zeros(n, np.int8), *pairs)
 
 
 def _solve_rows(linkage: SliderCrank, theta2, w2, al2, out: _Sweep, rows: slice) -> None:
