@@ -49,8 +49,7 @@ def angle_of(y: NDArray[np.float64], x: NDArray[np.float64], out: NDArray[np.flo
         np.divide(y, x, out=out)
     np.arctan(out, out=out)
     np.copysign(math.pi, y, out=scratch)
-    scratch *= np.signbit(x)
-    out += scratch
+    np.add(out, scratch, out=out, where=np.signbit(x))
     return out
 
 

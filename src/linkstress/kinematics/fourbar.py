@@ -246,9 +246,9 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     one_minus_cos /= 2 * b * c
     one_plus_cos = np.subtract((b + c) ** 2, s2, out=tmp2)
     one_plus_cos /= 2 * b * c
-    bad = (one_minus_cos <= TOGGLE_TOLERANCE) | (one_plus_cos <= TOGGLE_TOLERANCE)
-    all_feasible = not bad.any()
+    all_feasible = min(one_minus_cos.min(), one_plus_cos.min()) > TOGGLE_TOLERANCE
     if not all_feasible:
+        bad = (one_minus_cos <= TOGGLE_TOLERANCE) | (one_plus_cos <= TOGGLE_TOLERANCE)
         out.status[rows] = _status(one_minus_cos, one_plus_cos, cos2, sin2, linkage.ground_angle)
     if out.mode_side is not None:
         side = out.mode_side[rows]
@@ -257,7 +257,8 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
         side *= sigma
 
     np.multiply(one_minus_cos, one_plus_cos, out=sin_mu)
-    np.maximum(sin_mu, 0.0, out=sin_mu)
+    if not all_feasible:  # elsewhere both factors exceed TOGGLE_TOLERANCE
+        np.maximum(sin_mu, 0.0, out=sin_mu)
     np.sqrt(sin_mu, out=sin_mu)
     along = np.add(s2, b * b - c * c, out=cos2)
     across = np.multiply(sin_mu, sigma * 2 * b * c, out=sin2)

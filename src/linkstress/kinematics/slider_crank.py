@@ -200,13 +200,14 @@ def _solve_rows(linkage: SliderCrank, theta2, w2, al2, out: _Sweep, rows: slice)
     sin_psi /= b
     one_minus = np.subtract(1.0, sin_psi, out=tmp)
     one_plus = np.add(sin_psi, 1.0, out=tmp2)
-    bad = (one_minus <= TOGGLE_TOLERANCE) | (one_plus <= TOGGLE_TOLERANCE)
-    all_feasible = not bad.any()
+    all_feasible = min(one_minus.min(), one_plus.min()) > TOGGLE_TOLERANCE
     if not all_feasible:
+        bad = (one_minus <= TOGGLE_TOLERANCE) | (one_plus <= TOGGLE_TOLERANCE)
         far = (one_minus[bad] < -TOGGLE_TOLERANCE) | (one_plus[bad] < -TOGGLE_TOLERANCE)
         out.status[rows][bad] = np.where(far, TOO_FAR, TOGGLE)
     np.multiply(one_minus, one_plus, out=cos_psi)
-    np.maximum(cos_psi, 0.0, out=cos_psi)
+    if not all_feasible:  # elsewhere both factors exceed TOGGLE_TOLERANCE
+        np.maximum(cos_psi, 0.0, out=cos_psi)
     np.sqrt(cos_psi, out=cos_psi)
     cos_psi *= linkage.sigma
 
