@@ -247,8 +247,8 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     one_plus_cos = np.subtract((b + c) ** 2, s2, out=tmp2)
     one_plus_cos /= 2 * b * c
     all_feasible = min(one_minus_cos.min(), one_plus_cos.min()) > TOGGLE_TOLERANCE
+    bad = None if all_feasible else (one_minus_cos <= TOGGLE_TOLERANCE) | (one_plus_cos <= TOGGLE_TOLERANCE)
     if not all_feasible:
-        bad = (one_minus_cos <= TOGGLE_TOLERANCE) | (one_plus_cos <= TOGGLE_TOLERANCE)
         out.status[rows] = _status(one_minus_cos, one_plus_cos, cos2, sin2, linkage.ground_angle)
     if out.mode_side is not None:
         side = out.mode_side[rows]

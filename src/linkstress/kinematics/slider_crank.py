@@ -201,8 +201,8 @@ def _solve_rows(linkage: SliderCrank, theta2, w2, al2, out: _Sweep, rows: slice)
     one_minus = np.subtract(1.0, sin_psi, out=tmp)
     one_plus = np.add(sin_psi, 1.0, out=tmp2)
     all_feasible = min(one_minus.min(), one_plus.min()) > TOGGLE_TOLERANCE
+    bad = None if all_feasible else (one_minus <= TOGGLE_TOLERANCE) | (one_plus <= TOGGLE_TOLERANCE)
     if not all_feasible:
-        bad = (one_minus <= TOGGLE_TOLERANCE) | (one_plus <= TOGGLE_TOLERANCE)
         far = (one_minus[bad] < -TOGGLE_TOLERANCE) | (one_plus[bad] < -TOGGLE_TOLERANCE)
         out.status[rows][bad] = np.where(far, TOO_FAR, TOGGLE)
     np.multiply(one_minus, one_plus, out=cos_psi)
