@@ -283,25 +283,29 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     cross34 = np.multiply(sin_mu, sigma * b * c, out=sin_mu)  # (B - A) x (B - O4), exactly
     if not all_feasible:
         cross34[bad] = 1.0
-    vax = np.multiply(w, ray, out=cos2)
-    np.negative(vax, out=vax)
+    # v_A = omega2 k x (A - O2) and a_A = alpha2 k x (A - O2) - omega2^2 (A - O2), each with its
+    # x component kept negated and the sign folded into the sums (negation is exact)
+    minus_vax = np.multiply(w, ray, out=cos2)
     vay = np.multiply(w, rax, out=sin2)
     omega3, omega4, alpha3, alpha4 = out.omega3[rows], out.omega4[rows], out.alpha3[rows], out.alpha4[rows]
-    dot_into(vax, r4x, vay, r4y, omega3, tmp)
-    np.negative(omega3, out=omega3)
+    # omega3 = -(v_A . (B - O4)) / cross34, omega4 = -(v_A . (B - A)) / cross34
+    np.multiply(minus_vax, r4x, out=omega3)
+    omega3 -= np.multiply(vay, r4y, out=tmp)
     omega3 /= cross34
-    dot_into(vax, r3x, vay, r3y, omega4, tmp)
-    np.negative(omega4, out=omega4)
+    np.multiply(minus_vax, r3x, out=omega4)
+    omega4 -= np.multiply(vay, r3y, out=tmp)
     omega4 /= cross34
-    set_columns(out.vel_a[rows], vax, vay)
+    vel_a = out.vel_a[rows]
+    np.negative(minus_vax, out=vel_a[:, 0])
+    vel_a[:, 1] = vay
 
     w2sq = np.multiply(w, w, out=tmp2)
-    aax = np.multiply(al, ray, out=vax)
-    np.negative(aax, out=aax)
-    aax -= np.multiply(w2sq, rax, out=tmp)
-    aay = np.multiply(al, rax, out=vay)
+    minus_aax = dot_into(al, ray, w2sq, rax, cos2, tmp)
+    aay = np.multiply(al, rax, out=sin2)
     aay -= np.multiply(w2sq, ray, out=tmp)
-    set_columns(out.acc_a[rows], aax, aay)
+    acc_a = out.acc_a[rows]
+    np.negative(minus_aax, out=acc_a[:, 0])
+    acc_a[:, 1] = aay
     pos_a, pos_b = out.pos_a[rows], out.pos_b[rows]
     for k, (ra, r3) in enumerate(((rax, r3x), (ray, r3y))):
         np.add(ra, linkage.o2[k], out=pos_a[:, k])
@@ -313,23 +317,25 @@ def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> 
     # alpha3 = (w3^2 dot34 - w4^2 c^2 - a_A . (B - O4)) / cross34, alpha4 likewise
     np.multiply(w3sq, dot34, out=alpha3)
     alpha3 -= np.multiply(w4sq, c * c, out=tmp)
-    alpha3 -= dot_into(aax, r4x, aay, r4y, s2, tmp)
+    np.multiply(minus_aax, r4x, out=s2)
+    s2 -= np.multiply(aay, r4y, out=tmp)
+    alpha3 += s2
     alpha3 /= cross34
     np.multiply(w3sq, b * b, out=alpha4)
     alpha4 -= np.multiply(w4sq, dot34, out=tmp)
-    alpha4 -= dot_into(aax, r3x, aay, r3y, s2, tmp)
+    np.multiply(minus_aax, r3x, out=s2)
+    s2 -= np.multiply(aay, r3y, out=tmp)
+    alpha4 += s2
     alpha4 /= cross34
-    if not all_feasible:
+    if bad is not None:
         for rate in (omega3, omega4, alpha3, alpha4):
             rate[bad] = 0.0
 
+    # v_B = omega4 k x (B - O4), a_B = alpha4 k x (B - O4) - omega4^2 (B - O4)
     vel_b, acc_b = out.vel_b[rows], out.acc_b[rows]
-    np.multiply(omega4, r4y, out=vel_b[:, 0])
-    np.negative(vel_b[:, 0], out=vel_b[:, 0])
+    np.negative(np.multiply(omega4, r4y, out=tmp), out=vel_b[:, 0])
     np.multiply(omega4, r4x, out=vel_b[:, 1])
-    np.multiply(alpha4, r4y, out=tmp)
-    np.negative(tmp, out=tmp)
-    np.subtract(tmp, np.multiply(w4sq, r4x, out=s2), out=acc_b[:, 0])
+    np.negative(dot_into(alpha4, r4y, w4sq, r4x, tmp, s2), out=acc_b[:, 0])
     np.multiply(alpha4, r4x, out=tmp)
     np.subtract(tmp, np.multiply(w4sq, r4y, out=s2), out=acc_b[:, 1])
 
