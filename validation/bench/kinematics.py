@@ -1,13 +1,15 @@
 """Benchmark: four-bar sweeps against pylinkage and two plain reference loops, measured in one run.
 
 Run ``python -m linkstress.validation.bench.kinematics``. Every figure is the best of ``--repeat``
-runs in this one process, so their ratios compare like with like; it prints figures and asserts
-nothing about time (machines are shared and noisy).
+rounds in this one process, each round running every sweep once, so that their ratios compare like
+with like; wall time and CPU time (every thread: the work done, whatever else loads the machine).
+It prints figures and asserts nothing about time (machines are shared and noisy).
 
 - linkstress ``solve_fourbar``: angles, angular velocities and accelerations of every link and the
   joints' positions, velocities and accelerations.
-- pylinkage (when installed, with numba): its compiled ``Linkage.step_fast`` over the same
-  four-bar, joint positions only. The target is linkstress at least twice its rate.
+- pylinkage (not a dependency: ``pip install 'pylinkage[numba]'``): its compiled
+  ``Linkage.step_fast`` over the same four-bar, joint positions only. The target is linkstress at
+  least twice its rate.
 - Two references that never change, so that a ratio to them can be quoted across machines: the
   same four-bar's joint positions in a plain Python loop (``math`` module) and in one vectorised
   numpy pass.
