@@ -5,6 +5,7 @@
 - ``machine.Machine``: loops chained by a power graph; ``solve.solve_machine`` sweeps it.
 - ``linkage_class``: Grashof class, Barker type, toggles, limit positions, feasible input ranges.
 - ``crossings``: steps of a sweep that pass a loop's toggle or change point (``Crossing``).
+- ``blocks``: a loop's sweep solved a block of positions at a time, the blocks on every core.
 - ``motion.InputMotion``: the main crank's angles, speeds and accelerations; ``expression`` parses
   functions of time safely.
 """

@@ -15,6 +15,11 @@ a step between two samples that passes one is a crossing (``crossings``), also r
 
 Velocities and accelerations solve the loop's relative-motion equations (Norton eqs. 6.18 and 7.12
 in vector form): v_A + omega3 k x (B - A) = omega4 k x (B - O4), and the same for accelerations.
+
+A sweep is solved a block of positions at a time (``kinematics.blocks``), each block in a dozen
+temporaries updated in place: the work is a few dozen arithmetic passes besides the four
+transcendental ones (sin and cos of theta2, arctan2 for theta3 and theta4), so memory traffic, not
+arithmetic, is what a whole-sweep temporary per step would cost.
 """
 
 from __future__ import annotations
@@ -33,8 +38,9 @@ from linkstress.kinematics.crossings import (
     BranchPoint,
     find_crossings,
 )
+from linkstress.kinematics.blocks import angle_of, dot_into, empty_arrays, set_columns, solve_in_blocks
 from linkstress.kinematics.errors import LinkageError
-from linkstress.kinematics.results import JointMotion, LinkMotion, LoopMotion, fixed_link, stack_xy
+from linkstress.kinematics.results import FloatArray, JointMotion, LinkMotion, LoopMotion, fixed_link
 
 TOGGLE_TOLERANCE = 1e-12
 """A position is a toggle when 1 - |cos(mu)| is below this. The computed rates carry a relative
@@ -120,80 +126,38 @@ def solve_fourbar(
     n = theta2.shape[0]
     w2 = np.broadcast_to(np.asarray(omega2, float), (n,))
     al2 = np.broadcast_to(np.asarray(alpha2, float), (n,))
-    a, b, c, _ = linkage.lengths
-    sigma = linkage.sigma
-    dx, dy = linkage.o4[0] - linkage.o2[0], linkage.o4[1] - linkage.o2[1]
-
-    cos2, sin2 = np.cos(theta2), np.sin(theta2)
-    rax, ray = a * cos2, a * sin2
-    ddx, ddy = dx - rax, dy - ray  # D = O4 - A
-    s2 = ddx * ddx + ddy * ddy
-    one_minus_cos = (s2 - (b - c) ** 2) / (2 * b * c)
-    one_plus_cos = ((b + c) ** 2 - s2) / (2 * b * c)
-    status = _status(one_minus_cos, one_plus_cos, cos2, sin2, linkage.ground_angle)
-    all_feasible = not status.any()
-
-    sin_mu = np.sqrt(np.maximum(one_minus_cos * one_plus_cos, 0.0))
-    along = b * b - c * c + s2
-    across = (sigma * 2 * b * c) * sin_mu
-    # Feasible positions have s^2 >= 2 b c TOGGLE_TOLERANCE; only filler positions get a stand-in.
-    half_inv_s2 = 0.5 / (s2 if all_feasible else np.where(s2 > 1e-20 * b * c, s2, b * c))
-    r3x = (along * ddx - across * ddy) * half_inv_s2  # B - A
-    r3y = (along * ddy + across * ddx) * half_inv_s2
-    r4x, r4y = r3x - ddx, r3y - ddy  # B - O4
-    theta3 = np.arctan2(r3y, r3x)
-    theta4 = np.arctan2(r4y, r4x)
-
-    cross34 = (sigma * b * c) * sin_mu  # (B - A) x (B - O4), exactly
-    if not all_feasible:
-        cross34 = np.where(status == FEASIBLE, cross34, 1.0)
-    vax, vay = -w2 * ray, w2 * rax
-    omega3 = -(vax * r4x + vay * r4y) / cross34
-    omega4 = -(vax * r3x + vay * r3y) / cross34
-    w2sq, w3sq, w4sq = w2 * w2, omega3 * omega3, omega4 * omega4
-    aax, aay = -al2 * ray - w2sq * rax, al2 * rax - w2sq * ray
-    dot34 = r3x * r4x + r3y * r4y
-    alpha3 = (w3sq * dot34 - w4sq * (c * c) - (aax * r4x + aay * r4y)) / cross34
-    alpha4 = (w3sq * (b * b) - w4sq * dot34 - (aax * r3x + aay * r3y)) / cross34
-    if not all_feasible:
-        bad = status != FEASIBLE
-        for rate in (omega3, omega4, alpha3, alpha4):
-            rate[bad] = 0.0
-
+    points = branch_points(linkage)
+    names = mode_names(linkage)
+    sweep = _Sweep.empty(n, mode_side=bool(points) and names is not None and n > 1)
+    solve_in_blocks(lambda rows: _solve_rows(linkage, theta2, w2, al2, sweep, rows), n)
     o2 = np.broadcast_to(np.asarray(linkage.o2), (n, 2))
     o4 = np.broadcast_to(np.asarray(linkage.o4), (n, 2))
     zero2 = np.broadcast_to(0.0, (n, 2))
-    pos_a = stack_xy(rax + linkage.o2[0], ray + linkage.o2[1])
-    vel_a = stack_xy(vax, vay)
-    acc_a = stack_xy(aax, aay)
-    pos_b = stack_xy(pos_a[:, 0] + r3x, pos_a[:, 1] + r3y)
-    vel_b = stack_xy(-omega4 * r4y, omega4 * r4x)
-    acc_b = stack_xy(-alpha4 * r4y - w4sq * r4x, alpha4 * r4x - w4sq * r4y)
 
     frames = {**DEFAULT_FRAMES, **(frame_joints or {})}
     links = {
         "crank": LinkMotion(frames["crank"], theta2, w2, al2, o2, zero2, zero2),
-        "coupler": LinkMotion(frames["coupler"], theta3, omega3, alpha3, pos_a, vel_a, acc_a),
-        "output": LinkMotion(frames["output"], theta4, omega4, alpha4, o4, zero2, zero2),
+        "coupler": LinkMotion(
+            frames["coupler"], sweep.theta3, sweep.omega3, sweep.alpha3, sweep.pos_a, sweep.vel_a, sweep.acc_a
+        ),
+        "output": LinkMotion(frames["output"], sweep.theta4, sweep.omega4, sweep.alpha4, o4, zero2, zero2),
         "ground": fixed_link(frames["ground"], linkage.ground_angle, linkage.o2, n),
     }
     joints = {
         "O2": JointMotion(o2, zero2, zero2),
-        "A": JointMotion(pos_a, vel_a, acc_a),
-        "B": JointMotion(pos_b, vel_b, acc_b),
+        "A": JointMotion(sweep.pos_a, sweep.vel_a, sweep.acc_a),
+        "B": JointMotion(sweep.pos_b, sweep.vel_b, sweep.acc_b),
         "O4": JointMotion(o4, zero2, zero2),
     }
     crossings = ()
-    points = branch_points(linkage)
     if points and n > 1:
-        side = sigma * (sin2 * math.cos(linkage.ground_angle) - cos2 * math.sin(linkage.ground_angle))
         crossings = find_crossings(
             points, theta2, np.diff(theta2) if steps is None else np.asarray(steps, float),
-            status == FEASIBLE, linkage.branch, side, mode_names(linkage),
+            sweep.status == FEASIBLE, linkage.branch, sweep.mode_side, names,
         )
     return LoopMotion(
-        "four-bar", theta2, theta3, theta4, w2, omega3, omega4, al2, alpha3, alpha4,
-        joints, links, status, REASONS, crossings=crossings,
+        "four-bar", theta2, sweep.theta3, sweep.theta4, w2, sweep.omega3, sweep.omega4, al2, sweep.alpha3,
+        sweep.alpha4, joints, links, sweep.status, REASONS, crossings=crossings,
     )
 
 
@@ -233,6 +197,147 @@ def mode_names(linkage: FourBar) -> tuple[str, str] | None:
     if abs(a - b) <= tol and abs(c - d) <= tol:
         return "kite", "folded (B held at O2, output still)"
     return None
+
+
+@dataclass(frozen=True)
+class _Sweep:
+    """The arrays a sweep fills a block of rows at a time: angles, rates and joint motions as
+    ``LoopMotion`` holds them, and ``mode_side`` (P,) for ``find_crossings`` (None when the
+    linkage has no named assembly modes)."""
+
+    theta3: FloatArray
+    theta4: FloatArray
+    omega3: FloatArray
+    omega4: FloatArray
+    alpha3: FloatArray
+    alpha4: FloatArray
+    status: np.ndarray
+    pos_a: FloatArray
+    vel_a: FloatArray
+    acc_a: FloatArray
+    pos_b: FloatArray
+    vel_b: FloatArray
+    acc_b: FloatArray
+    mode_side: FloatArray | None
+
+    @classmethod
+    def empty(cls, n: int, mode_side: bool) -> _Sweep:
+        vectors, pairs = empty_arrays(n, 6, 6)
+        return cls(*vectors, np.zeros(n, np.int8), *pairs, np.empty(n) if mode_side else None)
+
+
+def _solve_rows(linkage: FourBar, theta2, w2, al2, out: _Sweep, rows: slice) -> None:
+    """Rows ``rows`` of ``out`` for crank angles ``theta2`` [rad], speeds ``w2`` [rad/s] and
+    accelerations ``al2`` [rad/s^2] (P,), in a dozen reused temporaries of the block's length."""
+    a, b, c, _ = linkage.lengths
+    sigma = linkage.sigma
+    dx, dy = linkage.o4[0] - linkage.o2[0], linkage.o4[1] - linkage.o2[1]
+    w, al = w2[rows], al2[rows]
+    cos2, sin2, rax, ray, ddx, ddy, s2, sin_mu, r3x, r3y, tmp, tmp2 = np.empty((12, rows.stop - rows.start))
+    # positions: B where the circles (A, b) and (O4, c) meet
+    np.cos(theta2[rows], out=cos2)
+    np.sin(theta2[rows], out=sin2)
+    np.multiply(cos2, a, out=rax)
+    np.multiply(sin2, a, out=ray)
+    np.subtract(dx, rax, out=ddx)  # D = O4 - A
+    np.subtract(dy, ray, out=ddy)
+    dot_into(ddx, ddx, ddy, ddy, s2, tmp)
+    one_minus_cos = np.subtract(s2, (b - c) ** 2, out=tmp)
+    one_minus_cos /= 2 * b * c
+    one_plus_cos = np.subtract((b + c) ** 2, s2, out=tmp2)
+    one_plus_cos /= 2 * b * c
+    all_feasible = min(one_minus_cos.min(), one_plus_cos.min()) > TOGGLE_TOLERANCE
+    bad = None if all_feasible else (one_minus_cos <= TOGGLE_TOLERANCE) | (one_plus_cos <= TOGGLE_TOLERANCE)
+    if not all_feasible:
+        out.status[rows] = _status(one_minus_cos, one_plus_cos, cos2, sin2, linkage.ground_angle)
+    if out.mode_side is not None:
+        side = out.mode_side[rows]
+        np.multiply(sin2, math.cos(linkage.ground_angle), out=side)
+        side -= np.multiply(cos2, math.sin(linkage.ground_angle), out=cos2)
+        side *= sigma
+
+    np.multiply(one_minus_cos, one_plus_cos, out=sin_mu)
+    if not all_feasible:  # elsewhere both factors exceed TOGGLE_TOLERANCE
+        np.maximum(sin_mu, 0.0, out=sin_mu)
+    np.sqrt(sin_mu, out=sin_mu)
+    along = np.add(s2, b * b - c * c, out=cos2)
+    across = np.multiply(sin_mu, sigma * 2 * b * c, out=sin2)
+    # Feasible positions have s^2 >= 2 b c TOGGLE_TOLERANCE; only filler positions get a stand-in.
+    if not all_feasible:
+        s2[s2 <= 1e-20 * b * c] = b * c
+    half_inv_s2 = np.divide(0.5, s2, out=s2)
+    np.multiply(along, ddx, out=r3x)  # B - A
+    r3x -= np.multiply(across, ddy, out=tmp)
+    r3x *= half_inv_s2
+    dot_into(along, ddy, across, ddx, r3y, tmp)
+    r3y *= half_inv_s2
+    r4x = np.subtract(r3x, ddx, out=ddx)  # B - O4
+    r4y = np.subtract(r3y, ddy, out=ddy)
+    theta3 = angle_of(r3y, r3x, out.theta3[rows], tmp)
+    theta4 = angle_of(r4y, r4x, out.theta4[rows], tmp)
+    if not all_feasible:  # filler B - A or B - O4 may be the zero vector
+        theta3[bad] = np.arctan2(r3y[bad], r3x[bad])
+        theta4[bad] = np.arctan2(r4y[bad], r4x[bad])
+
+    # velocities (Norton eq. 6.18), then accelerations (eq. 7.12), dotted with B - A and B - O4
+    cross34 = np.multiply(sin_mu, sigma * b * c, out=sin_mu)  # (B - A) x (B - O4), exactly
+    if not all_feasible:
+        cross34[bad] = 1.0
+    # v_A = omega2 k x (A - O2) and a_A = alpha2 k x (A - O2) - omega2^2 (A - O2), each with its
+    # x component kept negated and the sign folded into the sums (negation is exact)
+    minus_vax = np.multiply(w, ray, out=cos2)
+    vay = np.multiply(w, rax, out=sin2)
+    omega3, omega4, alpha3, alpha4 = out.omega3[rows], out.omega4[rows], out.alpha3[rows], out.alpha4[rows]
+    # omega3 = -(v_A . (B - O4)) / cross34, omega4 = -(v_A . (B - A)) / cross34
+    np.multiply(minus_vax, r4x, out=omega3)
+    omega3 -= np.multiply(vay, r4y, out=tmp)
+    omega3 /= cross34
+    np.multiply(minus_vax, r3x, out=omega4)
+    omega4 -= np.multiply(vay, r3y, out=tmp)
+    omega4 /= cross34
+    vel_a = out.vel_a[rows]
+    np.negative(minus_vax, out=vel_a[:, 0])
+    vel_a[:, 1] = vay
+
+    w2sq = np.multiply(w, w, out=tmp2)
+    minus_aax = dot_into(al, ray, w2sq, rax, cos2, tmp)
+    aay = np.multiply(al, rax, out=sin2)
+    aay -= np.multiply(w2sq, ray, out=tmp)
+    acc_a = out.acc_a[rows]
+    np.negative(minus_aax, out=acc_a[:, 0])
+    acc_a[:, 1] = aay
+    pos_a, pos_b = out.pos_a[rows], out.pos_b[rows]
+    for k, (ra, r3) in enumerate(((rax, r3x), (ray, r3y))):
+        np.add(ra, linkage.o2[k], out=pos_a[:, k])
+        np.add(pos_a[:, k], r3, out=pos_b[:, k])
+
+    dot34 = dot_into(r3x, r4x, r3y, r4y, rax, tmp)
+    w3sq = np.multiply(omega3, omega3, out=ray)
+    w4sq = np.multiply(omega4, omega4, out=tmp2)
+    # alpha3 = (w3^2 dot34 - w4^2 c^2 - a_A . (B - O4)) / cross34, alpha4 likewise
+    np.multiply(w3sq, dot34, out=alpha3)
+    alpha3 -= np.multiply(w4sq, c * c, out=tmp)
+    np.multiply(minus_aax, r4x, out=s2)
+    s2 -= np.multiply(aay, r4y, out=tmp)
+    alpha3 += s2
+    alpha3 /= cross34
+    np.multiply(w3sq, b * b, out=alpha4)
+    alpha4 -= np.multiply(w4sq, dot34, out=tmp)
+    np.multiply(minus_aax, r3x, out=s2)
+    s2 -= np.multiply(aay, r3y, out=tmp)
+    alpha4 += s2
+    alpha4 /= cross34
+    if bad is not None:
+        for rate in (omega3, omega4, alpha3, alpha4):
+            rate[bad] = 0.0
+
+    # v_B = omega4 k x (B - O4), a_B = alpha4 k x (B - O4) - omega4^2 (B - O4)
+    vel_b, acc_b = out.vel_b[rows], out.acc_b[rows]
+    np.negative(np.multiply(omega4, r4y, out=tmp), out=vel_b[:, 0])
+    np.multiply(omega4, r4x, out=vel_b[:, 1])
+    np.negative(dot_into(alpha4, r4y, w4sq, r4x, tmp, s2), out=acc_b[:, 0])
+    np.multiply(alpha4, r4x, out=tmp)
+    np.subtract(tmp, np.multiply(w4sq, r4y, out=s2), out=acc_b[:, 1])
 
 
 def _status(one_minus_cos, one_plus_cos, cos2, sin2, theta1: float):

@@ -176,14 +176,6 @@ class MachineMotion:
         return tuple(per_row)
 
 
-def stack_xy(x: FloatArray, y: FloatArray) -> FloatArray:
-    """(P, 2) array from its two columns (P,)."""
-    out = np.empty((x.shape[0], 2))
-    out[:, 0] = x
-    out[:, 1] = y
-    return out
-
-
 def fixed_link(frame_joints: tuple[int, int], angle: float, origin: ArrayLike, n: int) -> LinkMotion:
     """A link that does not move (a ground): constant ``angle`` [rad] and ``origin`` [m] over ``n`` positions."""
     zero = np.broadcast_to(0.0, (n,))

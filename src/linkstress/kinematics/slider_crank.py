@@ -29,9 +29,10 @@ from linkstress.kinematics.crossings import (
     BranchPoint,
     find_crossings,
 )
+from linkstress.kinematics.blocks import angle_of, dot_into, empty_arrays, set_columns, solve_in_blocks
 from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.fourbar import BRANCHES, TOGGLE_TOLERANCE
-from linkstress.kinematics.results import JointMotion, LinkMotion, LoopMotion, fixed_link, stack_xy
+from linkstress.kinematics.results import FloatArray, JointMotion, LinkMotion, LoopMotion, fixed_link
 
 FEASIBLE, TOGGLE, TOO_FAR = range(3)
 REASONS = (
@@ -103,53 +104,20 @@ def solve_slider_crank(
     n = theta2.shape[0]
     w2 = np.broadcast_to(np.asarray(omega2, float), (n,))
     al2 = np.broadcast_to(np.asarray(alpha2, float), (n,))
-    a, b, e = linkage.crank, linkage.rod, linkage.offset
-    ux, uy = linkage.direction
-    nx, ny = -uy, ux
-
-    rax, ray = a * np.cos(theta2), a * np.sin(theta2)
-    a_along = rax * ux + ray * uy  # a cos(phi)
-    a_across = rax * nx + ray * ny  # a sin(phi)
-    sin_psi = (e - a_across) / b
-    one_minus, one_plus = 1.0 - sin_psi, 1.0 + sin_psi
-    status = np.zeros(n, np.int8)
-    bad = (one_minus <= TOGGLE_TOLERANCE) | (one_plus <= TOGGLE_TOLERANCE)
-    if bad.any():
-        far = (one_minus[bad] < -TOGGLE_TOLERANCE) | (one_plus[bad] < -TOGGLE_TOLERANCE)
-        status[bad] = np.where(far, TOO_FAR, TOGGLE)
-    all_feasible = not bad.any()
-    cos_psi = linkage.sigma * np.sqrt(np.maximum(one_minus * one_plus, 0.0))
-    r3x = b * (cos_psi * ux + sin_psi * nx)  # B - A
-    r3y = b * (cos_psi * uy + sin_psi * ny)
-    theta3 = np.arctan2(r3y, r3x)
-    x = a_along + b * cos_psi
-
-    b_cos = b * cos_psi if all_feasible else np.where(status == FEASIBLE, b * cos_psi, 1.0)
-    b_sin = b * sin_psi
-    vax, vay = -w2 * ray, w2 * rax
-    omega3 = -(vax * nx + vay * ny) / b_cos
-    x_dot = vax * ux + vay * uy - omega3 * b_sin
-    w2sq, w3sq = w2 * w2, omega3 * omega3
-    aax, aay = -al2 * ray - w2sq * rax, al2 * rax - w2sq * ray
-    alpha3 = (w3sq * b_sin - (aax * nx + aay * ny)) / b_cos
-    x_ddot = aax * ux + aay * uy - alpha3 * b_sin - w3sq * b * cos_psi
-    if not all_feasible:
-        for rate in (omega3, alpha3, x_dot, x_ddot):
-            rate[bad] = 0.0
-
+    sweep = _Sweep.empty(n)
+    solve_in_blocks(lambda rows: _solve_rows(linkage, theta2, w2, al2, sweep, rows), n)
     o2 = np.broadcast_to(np.asarray(linkage.o2), (n, 2))
     zero = np.broadcast_to(0.0, (n,))
     zero2 = np.broadcast_to(0.0, (n, 2))
-    pos_a = stack_xy(rax + linkage.o2[0], ray + linkage.o2[1])
-    vel_a, acc_a = stack_xy(vax, vay), stack_xy(aax, aay)
-    pos_b = stack_xy(pos_a[:, 0] + r3x, pos_a[:, 1] + r3y)
-    vel_b, acc_b = stack_xy(x_dot * ux, x_dot * uy), stack_xy(x_ddot * ux, x_ddot * uy)
     line = np.broadcast_to(linkage.slider_angle, (n,))
+    pos_a, vel_a, acc_a, pos_b, vel_b, acc_b = (
+        sweep.pos_a, sweep.vel_a, sweep.acc_a, sweep.pos_b, sweep.vel_b, sweep.acc_b
+    )
 
     frames = {**DEFAULT_FRAMES, **(frame_joints or {})}
     links = {
         "crank": LinkMotion(frames["crank"], theta2, w2, al2, o2, zero2, zero2),
-        "coupler": LinkMotion(frames["coupler"], theta3, omega3, alpha3, pos_a, vel_a, acc_a),
+        "coupler": LinkMotion(frames["coupler"], sweep.theta3, sweep.omega3, sweep.alpha3, pos_a, vel_a, acc_a),
         "slider": LinkMotion(frames["slider"], line, zero, zero, pos_b, vel_b, acc_b),
         "ground": fixed_link(frames["ground"], linkage.slider_angle, linkage.o2, n),
     }
@@ -163,11 +131,11 @@ def solve_slider_crank(
     if points and n > 1:
         crossings = find_crossings(
             points, theta2, np.diff(theta2) if steps is None else np.asarray(steps, float),
-            status == FEASIBLE, linkage.branch,
+            sweep.status == FEASIBLE, linkage.branch,
         )
     return LoopMotion(
-        "slider-crank", theta2, theta3, line, w2, omega3, zero, al2, alpha3, zero,
-        joints, links, status, REASONS, x, x_dot, x_ddot, crossings,
+        "slider-crank", theta2, sweep.theta3, line, w2, sweep.omega3, zero, al2, sweep.alpha3, zero,
+        joints, links, sweep.status, REASONS, sweep.x, sweep.x_dot, sweep.x_ddot, crossings,
     )
 
 
@@ -187,3 +155,109 @@ def branch_points(linkage: SliderCrank) -> tuple[BranchPoint, ...]:
             phi = math.asin(reach / a)
             points += [BranchPoint(theta1 + phi, KIND_TOGGLE), BranchPoint(theta1 + math.pi - phi, KIND_TOGGLE)]
     return tuple(points)
+
+
+@dataclass(frozen=True)
+class _Sweep:
+    """The arrays a sweep fills a block of rows at a time, as ``LoopMotion`` holds them."""
+
+    theta3: FloatArray
+    omega3: FloatArray
+    alpha3: FloatArray
+    x: FloatArray
+    x_dot: FloatArray
+    x_ddot: FloatArray
+    status: np.ndarray
+    pos_a: FloatArray
+    vel_a: FloatArray
+    acc_a: FloatArray
+    pos_b: FloatArray
+    vel_b: FloatArray
+    acc_b: FloatArray
+
+    @classmethod
+    def empty(cls, n: int) -> _Sweep:
+        vectors, pairs = empty_arrays(n, 6, 6)
+        return cls(*vectors, np.zeros(n, np.int8), *pairs)
+
+
+def _solve_rows(linkage: SliderCrank, theta2, w2, al2, out: _Sweep, rows: slice) -> None:
+    """Rows ``rows`` of ``out`` for crank angles ``theta2`` [rad], speeds ``w2`` [rad/s] and
+    accelerations ``al2`` [rad/s^2] (P,), in a few reused temporaries of the block's length."""
+    a, b, e = linkage.crank, linkage.rod, linkage.offset
+    ux, uy = linkage.direction
+    nx, ny = -uy, ux
+    w, al = w2[rows], al2[rows]
+    rax, ray, along, sin_psi, cos_psi, r3x, r3y, tmp, tmp2 = np.empty((9, rows.stop - rows.start))
+    # positions (Norton eqs. 4.16-4.17 in the line's frame)
+    np.cos(theta2[rows], out=rax)
+    rax *= a
+    np.sin(theta2[rows], out=ray)
+    ray *= a
+    a_along = dot_into(rax, ux, ray, uy, along, tmp)  # a cos(phi)
+    a_across = dot_into(rax, nx, ray, ny, sin_psi, tmp)  # a sin(phi)
+    np.subtract(e, a_across, out=sin_psi)
+    sin_psi /= b
+    one_minus = np.subtract(1.0, sin_psi, out=tmp)
+    one_plus = np.add(sin_psi, 1.0, out=tmp2)
+    all_feasible = min(one_minus.min(), one_plus.min()) > TOGGLE_TOLERANCE
+    bad = None if all_feasible else (one_minus <= TOGGLE_TOLERANCE) | (one_plus <= TOGGLE_TOLERANCE)
+    if not all_feasible:
+        far = (one_minus[bad] < -TOGGLE_TOLERANCE) | (one_plus[bad] < -TOGGLE_TOLERANCE)
+        out.status[rows][bad] = np.where(far, TOO_FAR, TOGGLE)
+    np.multiply(one_minus, one_plus, out=cos_psi)
+    if not all_feasible:  # elsewhere both factors exceed TOGGLE_TOLERANCE
+        np.maximum(cos_psi, 0.0, out=cos_psi)
+    np.sqrt(cos_psi, out=cos_psi)
+    cos_psi *= linkage.sigma
+
+    dot_into(cos_psi, ux, sin_psi, nx, r3x, tmp2)  # B - A
+    r3x *= b
+    dot_into(cos_psi, uy, sin_psi, ny, r3y, tmp2)
+    r3y *= b
+    angle_of(r3y, r3x, out.theta3[rows], tmp2)
+    x = np.multiply(cos_psi, b, out=out.x[rows])
+    x += a_along
+    pos_a, pos_b = out.pos_a[rows], out.pos_b[rows]
+    for k, (ra, r3) in enumerate(((rax, r3x), (ray, r3y))):
+        np.add(ra, linkage.o2[k], out=pos_a[:, k])
+        np.add(pos_a[:, k], r3, out=pos_b[:, k])
+
+    # velocities (eq. 6.20) and accelerations (eq. 7.16)
+    b_cos = np.multiply(cos_psi, b, out=r3x)
+    if not all_feasible:
+        b_cos[bad] = 1.0
+    b_sin = np.multiply(sin_psi, b, out=sin_psi)
+    vax = np.multiply(w, ray, out=r3y)
+    np.negative(vax, out=vax)
+    vay = np.multiply(w, rax, out=along)
+    omega3, alpha3 = out.omega3[rows], out.alpha3[rows]
+    dot_into(vax, nx, vay, ny, omega3, tmp)
+    np.negative(omega3, out=omega3)
+    omega3 /= b_cos
+    x_dot = dot_into(vax, ux, vay, uy, out.x_dot[rows], tmp)
+    x_dot -= np.multiply(omega3, b_sin, out=tmp)
+    set_columns(out.vel_a[rows], vax, vay)
+
+    w2sq = np.multiply(w, w, out=tmp2)
+    aax = np.multiply(al, ray, out=vax)
+    np.negative(aax, out=aax)
+    aax -= np.multiply(w2sq, rax, out=tmp)
+    aay = np.multiply(al, rax, out=vay)
+    aay -= np.multiply(w2sq, ray, out=tmp)
+    set_columns(out.acc_a[rows], aax, aay)
+    w3sq = np.multiply(omega3, omega3, out=tmp2)
+    np.multiply(w3sq, b_sin, out=alpha3)
+    alpha3 -= dot_into(aax, nx, aay, ny, rax, tmp)
+    alpha3 /= b_cos
+    x_ddot = dot_into(aax, ux, aay, uy, out.x_ddot[rows], tmp)
+    x_ddot -= np.multiply(alpha3, b_sin, out=tmp)
+    np.multiply(w3sq, b, out=tmp)
+    x_ddot -= np.multiply(tmp, cos_psi, out=tmp)
+    if not all_feasible:
+        for rate in (omega3, alpha3, x_dot, x_ddot):
+            rate[bad] = 0.0
+    vel_b, acc_b = out.vel_b[rows], out.acc_b[rows]
+    for k, direction in enumerate((ux, uy)):
+        np.multiply(x_dot, direction, out=vel_b[:, k])
+        np.multiply(x_ddot, direction, out=acc_b[:, k])
