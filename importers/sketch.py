@@ -22,7 +22,6 @@ from types import MappingProxyType
 
 import numpy as np
 import shapely
-from ezdxf import decode_dxf_unicode
 from numpy.typing import NDArray
 from shapely.geometry import Point, Polygon
 
@@ -30,6 +29,7 @@ from linkstress.errors import SketchError
 from linkstress.importers.chaining import close_pairs
 from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
+from linkstress.importers.dxf_tags import decode_dxf_unicode
 from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.ilogic_csv import read_csv
 from linkstress.importers.library_notes import library_notes, noted, with_notes
