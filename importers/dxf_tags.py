@@ -36,13 +36,13 @@ _CODE_RANGE = (-9999, 9999)
 _FOREIGN = (101, 102)
 
 
-_DXF_UNICODE = re.compile(r"\\U\+([A-Fa-f0-9]{4})")
+_DXF_UNICODE = re.compile(r"(\\U\+[A-Fa-f0-9]{4})")
 
 
 def decode_dxf_unicode(text: str) -> str:
-    """``text`` with each ``\\U+XXXX`` (how DXF R12 writes a character beyond ASCII) decoded, as
-    ezdxf's ``decode_dxf_unicode`` does."""
-    return _DXF_UNICODE.sub(lambda match: chr(int(match.group(1), 16)), text)
+    """``text`` with each ``\\U+XXXX`` (how DXF R12 writes a character beyond ASCII) decoded, exactly
+    as ezdxf's ``decode_dxf_unicode`` does (a piece that starts ``\\U+`` is taken as hex, even a short one)."""
+    return "".join(chr(int(part[3:], 16)) if part.startswith("\\U+") else part for part in _DXF_UNICODE.split(text))
 
 
 class DamagedDXF(Exception):
