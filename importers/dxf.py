@@ -50,7 +50,7 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
                 "a .csv sketch"
             )
         else:
-            doc, simple = document.read_text(path, data, fixes)
+            doc, simple = document.read_text(path, data, fixes, split_entities)
         plain = DocumentFacts(document.version(doc), document.insunits(doc), frozenset(document.hidden_layers(doc)),
                               has_header)
     try:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
 
 import ezdxf
@@ -19,7 +20,7 @@ from ezdxf.lldxf.const import DXFError
 
 from linkstress.errors import SketchError
 from linkstress.importers import dxf_geometry as geo
-from linkstress.importers.dxf_tags import DamagedDXF, SimpleEntities, decode_dxf_unicode, split_entities
+from linkstress.importers.dxf_tags import DamagedDXF, SimpleEntities, decode_dxf_unicode
 from linkstress.importers.primitives import CurveSet, Origin, describe
 
 MAX_BLOCK_DEPTH = 64
@@ -80,15 +81,15 @@ def _recover(path: Path, fixes: list[str]):
     return doc
 
 
-def read_text(path: Path, data: bytes, fixes: list[str]):
-    """An ASCII DXF: the fast path's simple entities and ezdxf's document of the rest, or, if the file
-    is damaged, all of it from ezdxf's recover mode."""
+def read_text(path: Path, data: bytes, fixes: list[str], split: Callable[[str], tuple[SimpleEntities, str]]):
+    """An ASCII DXF: the fast path's simple entities (``split`` of the text) and ezdxf's document of
+    the rest, or, if the file is damaged, all of it from ezdxf's recover mode."""
     try:
         info = ezdxf.filemanagement.dxf_file_info(str(path))
     except Exception as damage:  # noqa: BLE001 - on damaged input ezdxf raises many types, all meaning the same
         return _damaged(path, fixes, _reason(damage))
     try:
-        simple, rest = split_entities(data.decode(info.encoding, errors="surrogateescape"))
+        simple, rest = split(data.decode(info.encoding, errors="surrogateescape"))
     except (DamagedDXF, LookupError) as damage:
         return _damaged(path, fixes, str(damage))
     return _ezdxf_only(path, fixes, lambda: ezdxf.read(io.StringIO(rest)), simple)
