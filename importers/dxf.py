@@ -4,8 +4,7 @@ and INSERT (block references, nested, with their transforms), in the units of ``
 Simple entities come through the fast tag table (:mod:`.dxf_tags`). When they are all the file
 holds beside a header and tables in good order, :mod:`.dxf_plain` reads those too and ezdxf is
 never imported; otherwise ezdxf (:mod:`.dxf_document`) reads the rest of the file and expands block
-references (``Insert.virtual_entities``: a non-uniformly scaled circle becomes
-an ellipse). Entities on layers that are off or frozen, on ``Defpoints``, or marked invisible are
+references (``Insert.virtual_entities``: a non-uniformly scaled circle becomes an ellipse). Entities on layers that are off or frozen, on ``Defpoints``, or marked invisible are
 left out, like annotation (TEXT, DIMENSION, HATCH, ...), and counted in ``ignored``. Layer names
 are shown and matched decoded: DXF R12 writes a non-ASCII character as ``\\U+XXXX``. A file whose
 structure is broken is read with ezdxf's recover mode, and what it repaired is reported.
@@ -37,9 +36,9 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
     in $INSUNITS; ``override_units`` False refuses ``units`` that disagree with $INSUNITS instead."""
     fixes: list[str] = []
     has_header = _has_header(data)
-    plain, simple = _read_plain(data, has_header)
+    facts, simple = _read_plain(data, has_header)
     doc = None
-    if plain is None:
+    if facts is None:
         from linkstress.importers import dxf_document as document  # ezdxf: 0.2 s to import
 
         if data.startswith(_BINARY):
@@ -51,16 +50,16 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
             )
         else:
             doc, simple = document.read_text(path, data, fixes, split_entities)
-        plain = DocumentFacts(document.version(doc), document.insunits(doc), frozenset(document.hidden_layers(doc)),
+        facts = DocumentFacts(document.version(doc), document.insunits(doc), frozenset(document.hidden_layers(doc)),
                               has_header)
     try:
         curves = CurveSet()
         ignored: Counter = Counter()
-        not_flat = _add_simple(curves, simple, plain.hidden_layers, ignored)
+        not_flat = _add_simple(curves, simple, facts.hidden_layers, ignored)
         if doc is not None:
-            not_flat += document.entities(doc, simple, curves, set(plain.hidden_layers), ignored)
+            not_flat += document.entities(doc, simple, curves, set(facts.hidden_layers), ignored)
         try:
-            unit, source = _unit(plain, has_header, units, override_units)
+            unit, source = _unit(facts, has_header, units, override_units)
         except SketchError:
             if not curves.curve_count():  # then the units do not matter: say what the file lacks first
                 raise SketchError(no_curves(ignored)) from None
@@ -69,7 +68,7 @@ def read_dxf(path: Path, data: bytes, units: str | None, override_units: bool = 
         raise SketchError(with_damage(str(error), fixes)) from None
     if not_flat:
         fixes.append(_flattened(not_flat, unit.name))
-    return RawSketch(curves, unit, source, _format(plain.version, has_header, data), dict(ignored), tuple(fixes),
+    return RawSketch(curves, unit, source, _format(facts.version, has_header, data), dict(ignored), tuple(fixes),
                      GAP_TOLERANCE)
 
 
@@ -82,7 +81,7 @@ def _read_plain(data: bytes, has_header: bool) -> tuple[DocumentFacts | None, Si
         simple, rest = split_entities(data.decode("ascii"))
     except DamagedDXF:
         return None, SimpleEntities()
-    plain = read_plain(data, rest)
+    plain = read_plain(rest)
     if plain is None or plain.has_header != has_header:
         return None, SimpleEntities()
     return plain, simple

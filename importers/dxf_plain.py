@@ -53,11 +53,10 @@ class DocumentFacts:
     has_header: bool
 
 
-def read_plain(data: bytes, rest: str) -> DocumentFacts | None:
-    """The header values and hidden layers of the DXF file ``data`` from ``rest`` (its text without
-    the entities the fast path took), or None unless the file is plain (see the module)."""
-    if not data.isascii():
-        return None
+def read_plain(rest: str) -> DocumentFacts | None:
+    """The header values and hidden layers of an ASCII DXF file from ``rest``, its text without the
+    entities the fast path took; None unless the file is plain (see the module). The caller checks
+    that the file is ASCII: then the encoding it declares cannot change a character."""
     lines = rest.split("\n")
     if len(lines) % 2:
         return None
