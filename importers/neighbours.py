@@ -57,14 +57,28 @@ def nearest(points: NDArray[np.float64], k: int) -> tuple[NDArray[np.float64], N
     """For each point, its ``k`` nearest points (itself among them, as the k-d tree's ``query``
     gives them): distances (n, k) ascending and their indices, equal distances by index."""
     points = np.asarray(points, float)
-    if len(points) > BRUTE_FORCE_POINTS:
+    n = len(points)
+    if n > BRUTE_FORCE_POINTS:
         from scipy.spatial import cKDTree
 
         dist, near = cKDTree(points, balanced_tree=False, compact_nodes=False).query(points, k=k)
-        return dist.reshape(len(points), k), near.reshape(len(points), k).astype(np.intp)
-    distance = np.sqrt(_squared(points, points))
-    order = np.argsort(distance, axis=1, kind="stable")[:, :k]
-    return np.take_along_axis(distance, order, 1), order.astype(np.intp)
+        return dist.reshape(n, k), near.reshape(n, k).astype(np.intp)
+    squared = _squared(points, points)
+    rows = np.arange(n)
+    near = np.empty((n, k), np.intp)
+    for column in range(k):  # k (at most 3) passes of argmin, which takes the lowest index of equals
+        near[:, column] = np.argmin(squared, axis=1)
+        squared[rows, near[:, column]] = np.inf
+    return np.sqrt(_squared_to(points, near)), near
+
+
+def _squared_to(points: NDArray[np.float64], near: NDArray[np.intp]) -> NDArray[np.float64]:
+    """Squared distances (n, k) from each point to its points ``near``, summed as ``_squared`` sums."""
+    total = np.zeros(near.shape)
+    for d in range(points.shape[1]):
+        diff = points[:, d, None] - points[near, d]
+        total += diff * diff
+    return total
 
 
 def within_of(points: NDArray[np.float64], tolerance: float) -> Callable[[NDArray[np.float64]], list[int]]:
@@ -84,18 +98,20 @@ def components(count: int, pairs: NDArray[np.intp]) -> tuple[int, NDArray[np.int
     and each node's component, numbered in the order of each component's lowest node (as SciPy's
     ``connected_components`` numbers them)."""
     pairs = np.asarray(pairs, np.intp).reshape(-1, 2)
-    label = np.arange(count)
     i, j = pairs[:, 0], pairs[:, 1]
+    root = np.arange(count)
     while True:
-        # Each node takes the lowest label among its neighbours', then follows labels to their
-        # roots; at the fixed point every edge joins equal labels, each its component's lowest node.
-        low = np.minimum(label[i], label[j])
-        hooked = label.copy()
-        np.minimum.at(hooked, i, low)
-        np.minimum.at(hooked, j, low)
-        hooked = hooked[hooked]
-        if np.array_equal(hooked, label):
+        # Hook each edge's larger root under its smaller one, then point every node at its root.
+        # Roots only ever fall to a node of their own component, so at the fixed point (every edge
+        # within one tree) each component's root is its lowest node; rounds grow as log(count).
+        low = np.minimum(root[i], root[j])
+        hooked = root.copy()
+        np.minimum.at(hooked, root[i], low)
+        np.minimum.at(hooked, root[j], low)
+        while not np.array_equal(hooked[hooked], hooked):
+            hooked = hooked[hooked]
+        if np.array_equal(hooked, root):
             break
-        label = hooked
-    roots, numbered = np.unique(label, return_inverse=True)
+        root = hooked
+    roots, numbered = np.unique(root, return_inverse=True)
     return len(roots), numbered.reshape(-1).astype(np.intp)
