@@ -35,8 +35,8 @@ from shapely.geometry.polygon import orient
 from linkstress.errors import SketchError
 from linkstress.importers.circles import with_circle
 from linkstress.importers.chaining import Ends, Report, Rings, chain, close_pairs, closed_rings
-from linkstress.importers.neighbours import pairs_within
 from linkstress.importers.flatten import Pieces
+from linkstress.importers.neighbours import pairs_within
 from linkstress.importers.primitives import Origin
 from linkstress.importers.problems import SketchProblem
 

@@ -4,10 +4,11 @@ and INSERT (block references, nested, with their transforms), in the units of ``
 Simple entities come through the fast tag table (:mod:`.dxf_tags`). When they are all the file
 holds beside a header and tables in good order, :mod:`.dxf_plain` reads those too and ezdxf is
 never imported; otherwise ezdxf (:mod:`.dxf_document`) reads the rest of the file and expands block
-references (``Insert.virtual_entities``: a non-uniformly scaled circle becomes an ellipse). Entities on layers that are off or frozen, on ``Defpoints``, or marked invisible are
-left out, like annotation (TEXT, DIMENSION, HATCH, ...), and counted in ``ignored``. Layer names
-are shown and matched decoded: DXF R12 writes a non-ASCII character as ``\\U+XXXX``. A file whose
-structure is broken is read with ezdxf's recover mode, and what it repaired is reported.
+references (``Insert.virtual_entities``: a non-uniformly scaled circle becomes an ellipse).
+Entities on layers that are off or frozen, on ``Defpoints``, or marked invisible are left out, like
+annotation (TEXT, DIMENSION, HATCH, ...), and counted in ``ignored``. Layer names are shown and
+matched decoded: DXF R12 writes a non-ASCII character as ``\\U+XXXX``. A file whose structure is
+broken is read with ezdxf's recover mode, and what it repaired is reported.
 """
 
 from __future__ import annotations

@@ -46,7 +46,8 @@ def clouds():
     yield "repeats", np.repeat(rng.uniform(0, 1, (30, 2)), 3, axis=0), 1e-9
     yield "at the tolerance", boundary_points(0.1), 0.1
     yield "at a tolerance of 0.5", boundary_points(0.5), 0.5
-    yield "six columns", np.hstack([rng.uniform(0, 1, (300, 4)), np.repeat(rng.uniform(0, 1, (100, 2)), 3, axis=0)]), 0.2
+    columns = np.hstack([rng.uniform(0, 1, (300, 4)), np.repeat(rng.uniform(0, 1, (100, 2)), 3, axis=0)])
+    yield "six columns", columns, 0.2
 
 
 @pytest.mark.parametrize("name, points, tolerance", list(clouds()), ids=[c[0] for c in clouds()])
