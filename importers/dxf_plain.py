@@ -34,6 +34,7 @@ INT_CODES = frozenset(chain(range(60, 80), range(90, 100), range(160, 180), rang
 FLOAT_CODES = frozenset(chain(range(10, 60), range(110, 150), range(210, 240), range(460, 470), range(1010, 1060)))
 BINARY_CODES = frozenset((*range(310, 320), 1004))
 _COMMENT = 999
+_XDICTIONARY = "{ACAD_XDICTIONARY"  # ezdxf resolves its handle while loading, and fails if it is missing
 _LAYER_KEYS = (2, 62, 70)  # the layer's name, colour (negative: off) and flags (1: frozen)
 
 
@@ -234,7 +235,8 @@ def _layer(record: Record) -> tuple[str, int, int] | None:
 def _outside_groups(record: Record) -> Record | None:
     """A record's tags outside its app data groups (102 ``{NAME`` ... 102 ``}`` or ``NAME}``) and its
     extended data (from the first 1001 on); None if a group is not closed, nests, or follows a
-    subclass marker (ezdxf reads app data only before the first), or the record embeds an object (101)."""
+    subclass marker (ezdxf reads app data only before the first), is an extension dictionary, or the
+    record embeds an object (101)."""
     plain: Record = []
     group: str | None = None  # the open group's name
     subclassed = False
@@ -245,7 +247,7 @@ def _outside_groups(record: Record) -> Record | None:
             return None
         subclassed |= code == 100
         if code == 102:
-            if group is None and value.startswith("{") and not subclassed:
+            if group is None and value.startswith("{") and not subclassed and value != _XDICTIONARY:
                 group = value[1:]
             elif group is not None and value in ("}", group + "}"):
                 group = None

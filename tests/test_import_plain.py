@@ -237,3 +237,71 @@ def test_reading_the_seed_sketch_imports_neither_ezdxf_nor_scipy():
     )
     done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, check=True)
     assert done.stdout.strip() == "[]"
+
+
+ENTITIES = (
+    "  0\nSECTION\n  2\nENTITIES\n"
+    "  0\nLWPOLYLINE\n  8\ncrank\n 90\n4\n 70\n1\n 10\n0\n 20\n-10\n 10\n100\n 20\n-10\n 42\n1\n"
+    " 10\n100\n 20\n10\n 10\n0\n 20\n10\n 42\n1\n"
+    "  0\nCIRCLE\n  8\ncrank\n 10\n0\n 20\n0\n 40\n4\n  0\nCIRCLE\n  8\ncrank\n 10\n100\n 20\n0\n 40\n4\n"
+    "  0\nLINE\n  8\nnotes\n 10\n-50\n 20\n-50\n 11\n-40\n 21\n-40\n  0\nENDSEC\n"
+)
+"""A crank (a closed LWPOLYLINE with bulges, two pin holes) and a stray LINE on layer notes, in mm."""
+
+
+def header(version: str = "AC1015", extra: str = "") -> str:
+    return f"  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\n{version}\n  9\n$INSUNITS\n 70\n4\n{extra}  0\nENDSEC\n"
+
+
+def layers(notes: str = "", colour: int = 7, flags: int = 0, more: str = "") -> str:
+    entry = "  0\nLAYER\n{}  2\n{}\n 70\n{}\n 62\n{}\n  6\nCONTINUOUS\n"
+    return ("  0\nSECTION\n  2\nTABLES\n  0\nTABLE\n  2\nLAYER\n 70\n2\n" + entry.format("", "crank", 0, 7)
+            + entry.format(notes, "notes", flags, colour) + more + "  0\nENDTAB\n  0\nENDSEC\n")
+
+
+BLOCK = "  0\nSECTION\n  2\nBLOCKS\n  0\nBLOCK\n  8\n0\n  2\n*Model_Space\n 70\n0\n 10\n0\n 20\n0\n{}  0\nENDBLK\n  8\n0\n  0\nENDSEC\n"
+HAND_WRITTEN = {
+    # name: (the file's text, read plain?)
+    "R2000 without OBJECTS or BLOCKS": (header() + layers() + ENTITIES, True),
+    "a comment first, as LibreCAD writes": ("999\ndxfrw 0.6.3\n" + header() + layers() + ENTITIES, True),
+    "R12 without tables": (header("AC1009") + ENTITIES, True),
+    "a layer off (negative colour)": (header() + layers(colour=-7) + ENTITIES, True),
+    "a layer frozen and locked": (header() + layers(flags=5) + ENTITIES, True),
+    "a point in the header": (header(extra="  9\n$EXTMIN\n 10\n0\n 20\n0\n 30\n0\n") + layers() + ENTITIES, True),
+    "an empty model-space block": (header() + layers() + BLOCK.format("") + ENTITIES, True),
+    "a missing reactor": (header() + layers("102\n{ACAD_REACTORS\n330\n1F\n102\n}\n", -7) + ENTITIES, True),
+    "an extension dictionary": (header() + layers("102\n{ACAD_XDICTIONARY\n360\n1F\n102\n}\n", -7) + ENTITIES, False),
+    "an app data group not closed": (header() + layers("102\n{ACAD_REACTORS\n330\n1F\n", -7) + ENTITIES, False),
+    "two layers differing in case": (header() + layers(colour=-7, more="  0\nLAYER\n  2\nNOTES\n 70\n0\n 62\n7\n")
+                                     + ENTITIES, False),
+    "a handle twice": (header() + layers("  5\n10\n", more="  0\nLAYER\n  5\n10\n  2\nx\n 70\n0\n 62\n7\n")
+                       + ENTITIES, False),
+    "an $INSUNITS of 4.0": (header().replace(" 70\n4\n", " 70\n4.0\n") + layers() + ENTITIES, False),
+    "a header point without y": (header(extra="  9\n$EXTMIN\n 10\n0\n 30\n0\n") + layers() + ENTITIES, False),
+    "a model-space block with a LINE": (header() + layers() + BLOCK.format(
+        "  0\nLINE\n  8\n0\n 10\n0\n 20\n0\n 11\n1\n 21\n1\n") + ENTITIES, False),
+    "an unknown table": (header() + layers(more="  0\nENDTAB\n  0\nTABLE\n  2\nFOO\n") + ENTITIES, False),
+    "version R10": (header("AC1006") + layers() + ENTITIES, False),
+}
+
+
+@pytest.mark.parametrize("name", HAND_WRITTEN)
+def test_hand_written_files_read_plain_only_when_sure_and_always_as_through_ezdxf(tmp_path, monkeypatch, name):
+    text, plain = HAND_WRITTEN[name]
+    (tmp_path / "hand.dxf").write_text(text + "  0\nEOF\n")
+    assert (plain_facts(tmp_path / "hand.dxf") is not None) == plain
+
+    def read():
+        try:
+            return read_sketch(tmp_path / "hand.dxf")
+        except SketchError as error:
+            return str(error)
+
+    fast = read()
+    with monkeypatch.context() as patch:
+        patch.setattr(dxf, "_read_plain", lambda data, has_header: (None, SimpleEntities()))
+        slow = read()
+    if isinstance(fast, str) or isinstance(slow, str):
+        assert fast == slow
+    else:
+        assert_same_sketch(fast, slow)
