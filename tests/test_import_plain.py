@@ -259,7 +259,9 @@ def layers(notes: str = "", colour: int = 7, flags: int = 0, more: str = "") -> 
             + entry.format(notes, "notes", flags, colour) + more + "  0\nENDTAB\n  0\nENDSEC\n")
 
 
-BLOCK = "  0\nSECTION\n  2\nBLOCKS\n  0\nBLOCK\n  8\n0\n  2\n*Model_Space\n 70\n0\n 10\n0\n 20\n0\n{}  0\nENDBLK\n  8\n0\n  0\nENDSEC\n"
+BLOCK = ("  0\nSECTION\n  2\nBLOCKS\n  0\nBLOCK\n  8\n0\n  2\n*Model_Space\n 70\n0\n 10\n0\n 20\n0\n"
+         "{}  0\nENDBLK\n  8\n0\n  0\nENDSEC\n")
+"""The BLOCKS section with model space's block, its content (DXF text) to be filled in."""
 HAND_WRITTEN = {
     # name: (the file's text, read plain?)
     "R2000 without OBJECTS or BLOCKS": (header() + layers() + ENTITIES, True),
