@@ -17,6 +17,7 @@ sources again.
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import subprocess
@@ -77,6 +78,12 @@ def phases(repeat: int, env: dict[str, str]) -> tuple[float, dict[str, float]]:
     return bare, min(runs, key=lambda run: sum(run.values()))
 
 
+def bytecode_written() -> bool:
+    """Whether linkstress's modules have bytecode beside their sources (else each run compiles them)."""
+    source = importlib.util.find_spec("linkstress.analysis").origin
+    return Path(importlib.util.cache_from_source(source)).exists()
+
+
 def cached_bytecode(folder: str) -> dict[str, str]:
     """An environment whose bytecode lives in ``folder``, warmed by one run of each command."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
@@ -106,9 +113,10 @@ def main() -> int:
     args = parser.parse_args()
     if args.repeat < 1:
         parser.error(f"--repeat: give at least 1 run, got {args.repeat}")
-    written = "PYTHONDONTWRITEBYTECODE" not in os.environ
-    print_times("as this environment runs it" + ("" if written else " (PYTHONDONTWRITEBYTECODE: sources compiled "
-                                                                  "every run)"), args.repeat, dict(os.environ))
+    compiled = "PYTHONDONTWRITEBYTECODE" in os.environ and not bytecode_written()
+    print_times("as this environment runs it" + (" (PYTHONDONTWRITEBYTECODE set, no bytecode beside the sources: "
+                                                 "linkstress compiles them every run)" if compiled else ""),
+                args.repeat, dict(os.environ))
     with tempfile.TemporaryDirectory(prefix="linkstress-bytecode-") as folder:
         print_times("with bytecode cached, as an installed package runs it", args.repeat, cached_bytecode(folder))
     return 0
