@@ -9,7 +9,7 @@ alternated so that a slow spell of the machine falls on both.
 Both are timed twice: as this environment runs them, and with bytecode cached (in a temporary
 folder, warmed by one run) as an installed package has it. They differ where bytecode is not
 written (``PYTHONDONTWRITEBYTECODE``, a read-only checkout): then every run compiles linkstress's
-sources again.
+sources again (about 0.1 s), unless ``python -m compileall src importers validation`` wrote it once.
 
     python -m linkstress.validation.bench.startup [--repeat 10]
 """
