@@ -24,11 +24,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
 
 from linkstress.errors import SketchError
 from linkstress.importers.chaining import close_pairs
+from linkstress.importers.neighbours import components
 from linkstress.importers.sketch import ImportedLink, Sketch
 from linkstress.kinematics.fourbar import FourBar
 from linkstress.kinematics.linkage_class import feasible_input_ranges
@@ -155,8 +154,7 @@ def shared_joints(links: tuple[ImportedLink, ...], tolerance: float) -> list[Joi
         return []
     points = np.vstack([link.joints for link in links if len(link.joints)])
     pairs = close_pairs(points, tolerance, "joints")
-    near = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(points), len(points)))
-    _, pin = connected_components(near, directed=False)
+    _, pin = components(len(points), pairs)
     found = [
         Joint(points[pin == k].mean(axis=0), tuple(ends[i] for i in np.flatnonzero(pin == k)))
         for k in range(pin.max() + 1)

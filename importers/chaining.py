@@ -10,16 +10,14 @@ close. Everything is in drawing units.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
-
 from linkstress.errors import SketchError
 from linkstress.importers.flatten import Pieces
+from linkstress.importers.neighbours import components, count_pairs_within, nearest, pairs_within, within_of
 from linkstress.importers.primitives import Origin, describe
 from linkstress.importers.problems import SketchProblem
 
@@ -76,18 +74,16 @@ to drop, and a cluster of n points makes n^2 / 2 of them: 30,000 POINTs on one s
 
 
 def close_pairs(points: NDArray[np.float64], tolerance: float, what: str) -> NDArray[np.intp]:
-    """(M, 2) index pairs i < j of ``points`` (N, D) within ``tolerance`` of each other; refused,
-    naming ``what`` the points are, beyond MAX_CLOSE_PAIRS (counted by the k-d tree before any is
-    listed)."""
-    tree = cKDTree(points)
-    count = (int(tree.count_neighbors(tree, tolerance)) - len(points)) // 2
+    """(M, 2) index pairs i < j of ``points`` (N, D) within ``tolerance`` of each other, sorted; refused,
+    naming ``what`` the points are, beyond MAX_CLOSE_PAIRS (counted before any is listed)."""
+    count = count_pairs_within(points, tolerance)
     if count > MAX_CLOSE_PAIRS:
         raise SketchError(
             f"{count:,} pairs of {what} lie within the gap tolerance ({tolerance:.3g} drawing units) of each "
             f"other, more than {MAX_CLOSE_PAIRS:,}: the drawing repeats them on one spot or holds detail "
             "finer than the tolerance; clean the drawing, or give a smaller --tolerance"
         )
-    return tree.query_pairs(tolerance, output_type="ndarray")
+    return pairs_within(points, tolerance)
 
 
 def circle_of(circles: NDArray[np.float64], tolerance: float) -> tuple[float, float, float] | None:
@@ -131,7 +127,7 @@ class Ends:
         if m == 0:
             return cls(idx, xy, np.zeros(0, np.intp), np.zeros(0), np.zeros(0))
         k = min(3, m)
-        dist, near = cKDTree(xy, balanced_tree=False, compact_nodes=False).query(xy, k=k)
+        dist, near = nearest(xy, k)
         others_first = np.argsort(near == np.arange(m)[:, None], axis=1, kind="stable")
         near = np.take_along_axis(near, others_first, 1)
         dist = np.take_along_axis(dist, others_first, 1)
@@ -201,8 +197,7 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
     rows = np.arange(2 * n)
     branch = ends.branched(tolerance)
     paired = (ends.nearest[ends.nearest] == rows) & (ends.gap <= tolerance) & ~branch & ~branch[ends.nearest]
-    links = coo_matrix((np.ones(int(paired.sum())), (rows[paired] // 2, ends.nearest[paired] // 2)), shape=(n, n))
-    count, label = connected_components(links, directed=False)
+    count, label = components(n, np.column_stack([rows[paired] // 2, ends.nearest[paired] // 2]))
     loose = rows[~paired]
     if not len(loose):
         return np.ones(n, bool), [], []
@@ -212,7 +207,7 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
     chain_start = np.searchsorted(label[by_chain], np.arange(count + 1))
     # Each loose end's nearest loose end on another curve (never its own curve's other end).
     k = min(len(loose), 3)
-    dist, near = cKDTree(ends.xy[loose]).query(ends.xy[loose], k=k)
+    dist, near = nearest(ends.xy[loose], k)
     dist, near = dist.reshape(-1, k), loose[near.reshape(-1, k)]
     foreign = (near // 2) != (loose // 2)[:, None]
     first = np.argmax(foreign, axis=1)
@@ -228,7 +223,7 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
     np.minimum.at(chain_lo, label, lo)
     np.maximum.at(chain_hi, label, hi)
     extent = np.hypot(*(chain_hi - chain_lo).T)
-    all_ends = cKDTree(ends.xy) if branch.any() else None
+    near_of = within_of(ends.xy, tolerance) if branch.any() else None
     problems: list[SketchProblem] = []
     left_out: list[NDArray[np.intp]] = []
     branches_seen: dict[tuple[int, ...], int] = {}
@@ -237,18 +232,20 @@ def _open_chains(pieces: Pieces, ends: Ends, tolerance: float, report: Report,
         members = ends.idx[by_chain[chain_start[c]:chain_start[c + 1]]]
         left_out.append(members)
         if branch[e]:
-            _branch(ends, all_ends, e, tolerance, report, layer, members, branches_seen, problems)
+            _branch(ends, near_of, e, tolerance, report, layer, members, branches_seen, problems)
         else:
             problems.append(_open_end(ends, e, int(other[p]), float(gap[p]), float(extent[c]), tolerance, report,
                                       layer, members))
     return ~open_chain[label], problems, left_out
 
 
-def _branch(ends: Ends, tree: cKDTree, i: int, tolerance: float, report: Report, layer: str | None,
-            members: NDArray[np.intp], seen: dict[tuple[int, ...], int], problems: list[SketchProblem]) -> None:
-    """Three or more ends meet near end ``i``, the chain ``members`` one of those meeting there: a
-    problem, or the chain added to the one already made for that spot (``seen``: its index)."""
-    meeting = tuple(sorted(tree.query_ball_point(ends.xy[i], tolerance)))
+def _branch(ends: Ends, near_of: Callable[[NDArray[np.float64]], list[int]], i: int, tolerance: float,
+            report: Report, layer: str | None, members: NDArray[np.intp], seen: dict[tuple[int, ...], int],
+            problems: list[SketchProblem]) -> None:
+    """Three or more ends meet near end ``i`` (``near_of``: the ends within ``tolerance`` of a point), the
+    chain ``members`` one of those meeting there: a problem, or the chain added to the one already made
+    for that spot (``seen``: its index)."""
+    meeting = tuple(near_of(ends.xy[i]))
     if meeting in seen:
         k = seen[meeting]
         problems[k] = replace(problems[k], entities=problems[k].entities + _names(report, members))

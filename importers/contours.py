@@ -28,7 +28,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
@@ -37,6 +36,7 @@ from linkstress.errors import SketchError
 from linkstress.importers.circles import with_circle
 from linkstress.importers.chaining import Ends, Report, Rings, chain, close_pairs, closed_rings
 from linkstress.importers.flatten import Pieces
+from linkstress.importers.neighbours import pairs_within
 from linkstress.importers.primitives import Origin
 from linkstress.importers.problems import SketchProblem
 
@@ -161,7 +161,7 @@ def dangling_pieces(ends: Ends, tolerance: float) -> tuple[NDArray[np.intp], NDA
     n = len(ends.idx)
     if n == 0:
         return ends.idx, ends.idx
-    pairs = cKDTree(ends.xy).query_pairs(tolerance, output_type="ndarray")  # a piece's own ends too: a ring of one
+    pairs = pairs_within(ends.xy, tolerance)  # a piece's own ends too: a ring of one
     neighbours = [[] for _ in range(2 * n)]
     for a, b in pairs.tolist():
         neighbours[a].append(b)

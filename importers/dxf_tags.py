@@ -13,6 +13,7 @@ and the caller reads it with ezdxf's recover mode instead.
 from __future__ import annotations
 
 import itertools
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -33,6 +34,15 @@ _OPTIONAL = (5, 8, 210, 220, 230, 67, 60, 70, 30, 31)
 _CODE_RANGE = (-9999, 9999)
 # Codes that make an entity not simple: app data and embedded objects (arbitrary codes inside).
 _FOREIGN = (101, 102)
+
+
+_DXF_UNICODE = re.compile(r"(\\U\+[A-Fa-f0-9]{4})")
+
+
+def decode_dxf_unicode(text: str) -> str:
+    """``text`` with each ``\\U+XXXX`` (how DXF R12 writes a character beyond ASCII) decoded, exactly
+    as ezdxf's ``decode_dxf_unicode`` does (a piece that starts ``\\U+`` is taken as hex, even a short one)."""
+    return "".join(chr(int(part[3:], 16)) if part.startswith("\\U+") else part for part in _DXF_UNICODE.split(text))
 
 
 class DamagedDXF(Exception):

@@ -11,13 +11,16 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-from ezdxf.math import BSpline
 from numpy.typing import ArrayLike, NDArray
 
 from linkstress.errors import SketchError
 from linkstress.importers.units import DrawingUnit
+
+if TYPE_CHECKING:
+    from ezdxf.math import BSpline  # made by ezdxf for a SPLINE entity only
 
 Origin = tuple[str, str | None, str | None, int | None, str | None]
 """Where a curve or point came from: (kind, DXF handle, layer, CSV line number, place), ``place``

@@ -22,7 +22,6 @@ from types import MappingProxyType
 
 import numpy as np
 import shapely
-from ezdxf import decode_dxf_unicode
 from numpy.typing import NDArray
 from shapely.geometry import Point, Polygon
 
@@ -30,8 +29,8 @@ from linkstress.errors import SketchError
 from linkstress.importers.chaining import close_pairs
 from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
+from linkstress.importers.dxf_tags import decode_dxf_unicode
 from linkstress.importers.flatten import Tolerance, flatten
-from linkstress.importers.ilogic_csv import read_csv
 from linkstress.importers.library_notes import library_notes, noted, with_notes
 from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, no_curves, with_damage
 from linkstress.importers.problems import SketchProblem, listed
@@ -168,8 +167,12 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     notes: list[str] = []
     try:
         with library_notes(notes):
-            read = read_dxf if _is_dxf(path, data) else read_csv
-            raw = read(path, data, units, override_units)
+            if _is_dxf(path, data):
+                raw = read_dxf(path, data, units, override_units)
+            else:
+                from linkstress.importers.ilogic_csv import read_csv  # imported for a CSV sketch only
+
+                raw = read_csv(path, data, units, override_units)
             sketch = _build(path, raw, tolerance, sagitta, layers, exclude_layers)
     except SketchError as error:
         message = str(error) if raw is None else with_damage(str(error), raw.fixes)

@@ -19,6 +19,8 @@ from linkstress.errors import InputError
 
 COMMAND_MODULES = ("import_", "analyze", "validate", "sections", "regress", "bench")
 """In the order of the help's list: the main path (sketch, analysis, FEA check) first."""
+COMMANDS = {name.removesuffix("_"): name for name in COMMAND_MODULES}
+"""Each command's name and its module (``import`` lives in ``import_``: ``import`` is a Python keyword)."""
 MAIN_PATH = (
     "linkstress import validation/cases/six_bar/six_bar.dxf --plot six_bar.png",
     "linkstress analyze validation/cases/six_bar/scene.toml --html six_bar.html",
@@ -26,7 +28,9 @@ MAIN_PATH = (
 )
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser: with every command, or with ``command``'s alone (a command module
+    imports what its command runs on, so a run imports its own module only)."""
     parser = argparse.ArgumentParser(
         prog="linkstress",
         description=(
@@ -44,7 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"linkstress {__version__}")
     subparsers = parser.add_subparsers(title="commands", metavar="COMMAND")
-    for name in COMMAND_MODULES:
+    for name in [COMMANDS[command]] if command in COMMANDS else COMMAND_MODULES:
         importlib.import_module(f"linkstress.commands.{name}").register(subparsers)
     return parser
 
@@ -54,8 +58,9 @@ def main(argv: list[str] | None = None) -> int:
         # Past a file-size limit the kernel would kill the process mid-write; ignored, the write
         # fails with EFBIG instead and the output module reports it and leaves no file.
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    given = sys.argv[1:] if argv is None else argv
+    parser = build_parser(given[0] if given else None)
+    args = parser.parse_args(given)
     if not hasattr(args, "run"):
         parser.print_help()
         return 2

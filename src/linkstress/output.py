@@ -8,9 +8,7 @@ long sweep's records are encoded as they come and never all held at once.
 
 from __future__ import annotations
 
-import json
 import os
-import tempfile
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import BinaryIO
@@ -57,6 +55,8 @@ def _same_file(a: Path, b: Path) -> bool:
 
 def json_bytes(data: object, option: str) -> bytes:
     """JSON text of ``data``; NaN and infinity are refused (they are never valid output)."""
+    import json  # here and below: json and tempfile load only for a run that writes files
+
     try:
         return (json.dumps(data, indent=1, allow_nan=False) + "\n").encode("utf-8")
     except ValueError:
@@ -71,6 +71,8 @@ def json_stream(
     two spaces in. ``after`` gives the keys that follow the list, once it is written."""
 
     def write(stream: BinaryIO) -> None:
+        import json
+
         stream.write(f"{{\n {json.dumps(key)}: [".encode())
         separator = "\n  "
         for item in items:
@@ -115,6 +117,8 @@ def write_all(outputs: Sequence[tuple[Path, Content]]) -> None:
 
 def _staged(path: Path, content: Content) -> str:
     """``content`` in a temporary file in ``path``'s folder, with the permissions of an ordinary new file."""
+    import tempfile
+
     try:
         handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.resolve().parent)
     except OSError as error:
