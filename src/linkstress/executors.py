@@ -20,9 +20,7 @@ from __future__ import annotations
 
 import os
 import re
-import uuid
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TypeVar
@@ -69,6 +67,8 @@ class LocalExecutor:
     def map(self, work: Callable[[Task], Result], tasks: Sequence[Task], labels: Sequence[str] = ()) -> Iterator[Result]:
         """``work(task)`` for each task, in order (``labels`` name them for a cluster's reports)."""
         if self.jobs > 1 and len(tasks) > 1:
+            from concurrent.futures import ProcessPoolExecutor  # multiprocessing: only when processes run
+
             with ProcessPoolExecutor(max_workers=self.jobs) as pool:
                 yield from pool.map(work, tasks)
             return
@@ -90,7 +90,7 @@ class DaskExecutor:
         from distributed import KilledWorker
 
         labels = list(labels) or [f"task {k}" for k in range(len(tasks))]
-        run = uuid.uuid4().hex[:12]
+        run = os.urandom(6).hex()
         keys = [f"linkstress-{k}-{run}" for k in range(len(tasks))]
         futures = [self.client.submit(work, task, key=key, pure=False) for task, key in zip(tasks, keys)]
         try:

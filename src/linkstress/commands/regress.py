@@ -70,11 +70,11 @@ def add_scheduler_option(parser: argparse.ArgumentParser, tasks: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    check_jobs(args.jobs)
+    scheduler, source = scheduler_choice(args.scheduler)
+    check_jobs(args.jobs, source)
     check_outputs({"--json": args.json}, [])
     if args.update and args.json is not None:
         raise InputError("--json: not with --update (which rewrites the references and checks nothing); run regress again after it")
-    scheduler, source = scheduler_choice(args.scheduler)
     cases = find_cases(args.cases or default_cases())
     for case in cases:
         read_reference(case)  # a broken reference.json stops the run before any case runs
