@@ -1,6 +1,6 @@
 """regress, validate and analyze --peaks on a Dask cluster give what they give on this machine.
 
-One cluster serves the module: a distributed.LocalCluster of two worker processes (processes=True:
+One cluster serves the module: ``local_cluster(2)``, two worker processes (processes=True:
 every task and result is pickled and crosses a process boundary, as on a real cluster, and a worker
 is a process that can be killed). The shipped cases are copied into a temporary folder first, so a
 run reads nothing from the source tree.
@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 
 from linkstress.cli import main
-from linkstress.executors import CONNECT_SECONDS, DaskExecutor
+from linkstress.executors import CONNECT_SECONDS, DaskExecutor, local_cluster
 from linkstress.validation.regression import packed_case, run_case, run_packed_case
 
 distributed = pytest.importorskip("distributed")
@@ -34,8 +34,7 @@ QUICK = ("textbook_fourbar", "slider_crank_curved_rod", "banana_coupler")
 
 @pytest.fixture(scope="module")
 def client():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
+    with local_cluster(2) as cluster, distributed.Client(cluster) as client:
         yield client
 
 
@@ -171,7 +170,9 @@ def test_regress_against_a_scheduler_and_worker_started_as_a_user_would(cases, s
     address = f"tcp://127.0.0.1:{port}"
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
-    quiet = {"cwd": elsewhere, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    # the environment docs/cluster.md gives workers: glibc's own malloc thresholds
+    environment = {**os.environ, "DASK_DISTRIBUTED__NANNY__PRE_SPAWN_ENVIRON": '{"MALLOC_TRIM_THRESHOLD_": None}'}
+    quiet = {"cwd": elsewhere, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": environment}
     scheduler = subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **quiet)
     worker = subprocess.Popen([dask, "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-dashboard"], **quiet)
     try:

@@ -37,6 +37,12 @@ LOCAL = "local"
 CONNECT_SECONDS = 5
 """How long to wait for a scheduler to answer before saying it is unreachable."""
 INSTALL = 'pip install "linkstress[cluster]"'
+UNTRIMMED = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+"""Dask's configuration for workers that keep glibc's own malloc thresholds. A nanny sets
+MALLOC_TRIM_THRESHOLD_=65536 in its worker's environment (to hand freed memory back sooner), which
+fixes glibc's mmap threshold at 128 kB: every larger numpy array is then mapped and unmapped anew,
+page faults included. Measured on the six_bar case: 3.4-3.9 s of CPU per run with it, 1.8-1.9 s
+without (docs/cluster.md)."""
 ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9_.-]+):[0-9]{1,5}$")
 """A scheduler's address as ``dask scheduler`` prints it: protocol, host (an IPv6 one in brackets), port."""
 
@@ -150,12 +156,11 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
             f"(e.g. tcp://10.0.0.5:8786), or {LOCAL} for a cluster on this machine"
         )
     try:
-        from distributed import Client, LocalCluster
+        from distributed import Client
     except ImportError:
         raise ClusterError(f"{source}: running on a Dask cluster needs dask and distributed: {INSTALL}") from None
     if scheduler == LOCAL:
-        with LocalCluster(n_workers=cores(), threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-                Client(cluster) as client:
+        with local_cluster(cores()) as cluster, Client(cluster) as client:
             yield DaskExecutor(client, LOCAL)
         return
     try:
@@ -167,3 +172,13 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
         ) from None
     with client:
         yield DaskExecutor(client, scheduler)
+
+
+def local_cluster(workers: int):
+    """A distributed.LocalCluster of ``workers`` processes of one thread each, with glibc's own
+    malloc thresholds (UNTRIMMED), no dashboard; a context manager that closes it."""
+    import dask
+    from distributed import LocalCluster
+
+    with dask.config.set(UNTRIMMED):
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
