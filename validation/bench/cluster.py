@@ -27,6 +27,7 @@ these.
 from __future__ import annotations
 
 import argparse
+import os
 import pickle
 import shutil
 import sys
@@ -109,19 +110,26 @@ def main() -> int:
     parser.add_argument("--cases", type=int, default=20, help="copies of the shipped cases to run (default 20)")
     parser.add_argument("--empty", type=int, default=1000, help="empty tasks for the per-task overhead (default 1000)")
     args = parser.parse_args()
+    from linkstress.threads import cores
     from linkstress.validation.regression import packed_case
 
+    # The machine's load before and after each run: on a shared machine, what the runs competed with.
+    loads = [os.getloadavg()[0]]
     with tempfile.TemporaryDirectory(prefix="linkstress-cluster-bench-") as folder:
         cases = copied_cases(Path(folder), args.cases)
         payload = sum(len(pickle.dumps(packed_case(c))) for c in cases) / len(cases)
         serial = serial_seconds(cases)
+        loads.append(os.getloadavg()[0])
         one = cluster_seconds(cases, 1, args.empty)
+        loads.append(os.getloadavg()[0])
         two = cluster_seconds(cases, 2, args.empty)
+        loads.append(os.getloadavg()[0])
     n = len(cases)
     cost = one["cases"] / n
     overhead = max(one["overhead"], two["overhead"])
     print(f"{n} regression cases (copies of the shipped {', '.join(sorted({c.name.rsplit('_', 1)[0] for c in cases}))})")
     print(f"mean task payload (a case packed by content, pickled): {payload / 1e3:.0f} kB")
+    print(f"cores: {cores()}; 1-minute load average before and after each run: {', '.join(f'{v:.1f}' for v in loads)}")
     print()
     print("| run | wall time [s] | per case [s] | speed-up over 1 worker |")
     print("|---|---:|---:|---:|")
