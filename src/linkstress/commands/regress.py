@@ -53,20 +53,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--update", action="store_true", help="rewrite each case's reference from this run (stored numbers it reproduces to rounding are kept)")
     parser.add_argument("--jobs", type=int, default=1, metavar="N", help="run N cases in parallel processes")
     parser.add_argument("--verbose", action="store_true", help="list every check, not only each case's closest call")
-    add_scheduler_option(parser, "each case is a task")
+    parser.add_argument(
+        "--scheduler", metavar="ADDRESS",
+        help="run each case as a task on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT), sent by "
+        f"content; {LOCAL}: a cluster of this machine's cores for this run; default: the {SCHEDULER_VARIABLE} "
+        'variable, else this machine (--jobs). Needs pip install "linkstress[cluster]" (docs/cluster.md)',
+    )
     parser.add_argument("--json", type=Path, metavar="OUT",
                         help="also write every case's checks (and any case a cluster ran again) as JSON to OUT; not with --update")
     parser.set_defaults(run=run)
-
-
-def add_scheduler_option(parser: argparse.ArgumentParser, tasks: str) -> None:
-    """``--scheduler ADDRESS``: run the command's tasks (``tasks`` says what they are) on a Dask cluster."""
-    parser.add_argument(
-        "--scheduler", metavar="ADDRESS",
-        help=f"run on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT), {tasks}; {LOCAL}: a cluster of "
-        f"this machine's cores for this run; default: the {SCHEDULER_VARIABLE} variable, else this machine as "
-        'without it. Needs pip install "linkstress[cluster]" (docs/cluster.md)',
-    )
 
 
 def run(args: argparse.Namespace) -> int:
