@@ -54,6 +54,15 @@ def copied_cases(folder: Path, count: int) -> list[Path]:
     return copies
 
 
+def timed_case(packed) -> tuple[bool, float, float]:
+    """A packed case run where it is sent: whether it passed, its wall and CPU time [s] there."""
+    from linkstress.validation.regression import run_packed_case
+
+    wall, cpu = time.perf_counter(), time.process_time()
+    result, _ = run_packed_case(packed)
+    return result.passed, time.perf_counter() - wall, time.process_time() - cpu
+
+
 def nothing(value: int) -> int:
     """An empty task."""
     return value
@@ -77,21 +86,22 @@ def serial_seconds(cases: list[Path]) -> float:
 
 
 def cluster_seconds(cases: list[Path], workers: int, empty: int) -> dict[str, float]:
-    """On a LocalCluster of ``workers`` processes: the cases' wall time [s] (``cases``), an empty
-    task's round trip [s] one at a time (``round_trip``), and the time per task [s] of ``empty``
-    empty tasks submitted at once (``overhead``)."""
+    """On a LocalCluster of ``workers`` processes: the cases' wall time [s] (``cases``), the sums of
+    their wall and CPU times [s] inside the tasks (``task_wall``, ``task_cpu``), an empty task's
+    round trip [s] one at a time (``round_trip``), and the time per task [s] of ``empty`` empty
+    tasks submitted at once (``overhead``)."""
     from distributed import Client
 
     from linkstress.executors import DaskExecutor, local_cluster
-    from linkstress.validation.regression import packed_case, run_packed_case
+    from linkstress.validation.regression import packed_case
 
     with local_cluster(workers) as cluster, Client(cluster) as client:
         client.run(warm_up)
         where = DaskExecutor(client, cluster.scheduler_address)
         start = time.perf_counter()
-        results = list(where.map(run_packed_case, [packed_case(c) for c in cases], [c.name for c in cases]))
+        results = list(where.map(timed_case, [packed_case(c) for c in cases], [c.name for c in cases]))
         seconds = time.perf_counter() - start
-        failed = [r.name for r, _ in results if not r.passed]
+        failed = [c.name for c, (passed, _, _) in zip(cases, results) if not passed]
         if failed:
             raise SystemExit(f"cases failed on the cluster: {', '.join(failed)}")
         trips = 50
@@ -102,7 +112,10 @@ def cluster_seconds(cases: list[Path], workers: int, empty: int) -> dict[str, fl
         start = time.perf_counter()
         client.gather(client.map(nothing, range(empty), pure=False))
         overhead = (time.perf_counter() - start) / empty
-    return {"cases": seconds, "round_trip": round_trip, "overhead": overhead}
+    return {
+        "cases": seconds, "task_wall": sum(r[1] for r in results), "task_cpu": sum(r[2] for r in results),
+        "round_trip": round_trip, "overhead": overhead,
+    }
 
 
 def main() -> int:
@@ -131,11 +144,12 @@ def main() -> int:
     print(f"mean task payload (a case packed by content, pickled): {payload / 1e3:.0f} kB")
     print(f"cores: {cores()}; 1-minute load average before and after each run: {', '.join(f'{v:.1f}' for v in loads)}")
     print()
-    print("| run | wall time [s] | per case [s] | speed-up over 1 worker |")
-    print("|---|---:|---:|---:|")
-    print(f"| this process, one after another | {serial:.1f} | {serial / n:.2f} | |")
-    print(f"| LocalCluster, 1 worker | {one['cases']:.1f} | {one['cases'] / n:.2f} | 1.00 |")
-    print(f"| LocalCluster, 2 workers | {two['cases']:.1f} | {two['cases'] / n:.2f} | {one['cases'] / two['cases']:.2f} |")
+    print("| run | wall time [s] | per case [s] | speed-up over 1 worker | in the tasks: wall, CPU per case [s] |")
+    print("|---|---:|---:|---:|---:|")
+    print(f"| this process, one after another | {serial:.1f} | {serial / n:.2f} | | |")
+    for label, run in (("1 worker", one), ("2 workers", two)):
+        print(f"| LocalCluster, {label} | {run['cases']:.1f} | {run['cases'] / n:.2f} | {one['cases'] / run['cases']:.2f} | "
+              f"{run['task_wall'] / n:.2f}, {run['task_cpu'] / n:.2f} |")
     print()
     print(f"empty task, one at a time (round trip): {1e3 * one['round_trip']:.2f} ms (1 worker), "
           f"{1e3 * two['round_trip']:.2f} ms (2 workers)")
