@@ -104,6 +104,23 @@ def test_a_case_travels_by_content_with_a_sketch_outside_its_folder(client, tmp_
     assert (result.name, result.error, result.checks) == ("slider_crank_curved_rod", "", run_case(CASES / "slider_crank_curved_rod").checks)
 
 
+def test_update_on_a_cluster_writes_the_reference_beside_the_scene_here(client, tmp_path):
+    # Two copies of a case whose stored reference lacks its validation: updated here and on the
+    # cluster, both get the same new reference, written in their own folder on this machine.
+    for where in ("here", "there"):
+        shutil.copytree(CASES / "slider_crank_curved_rod", tmp_path / where / "slider_crank_curved_rod")
+        reference = tmp_path / where / "slider_crank_curved_rod" / "reference.json"
+        stored = json.loads(reference.read_text())
+        del stored["validation"]
+        reference.write_text(json.dumps(stored))
+    run_cli(["regress", str(tmp_path / "here"), "--update"], 0)
+    text = run_cli(["regress", str(tmp_path / "there"), "--update", "--scheduler", client.scheduler.address], 0)
+    assert text == "slider_crank_curved_rod: reference rewritten\n"
+    here, there = ((tmp_path / w / "slider_crank_curved_rod" / "reference.json").read_bytes() for w in ("here", "there"))
+    assert there == here
+    assert "validation" in json.loads(there)
+
+
 def test_validate_on_a_cluster_writes_the_serial_json_and_text(client, tmp_path):
     # banana_coupler: three profiled links (three tasks), three positions on one mesh each
     scene = CASES / "banana_coupler" / "scene.toml"
