@@ -7,6 +7,7 @@ content (its scene, sketches and reference)."""
 from __future__ import annotations
 
 import argparse
+import math
 from functools import partial
 from pathlib import Path
 
@@ -102,18 +103,23 @@ def retried_lines(retried: list[Retry]) -> str:
 
 def regress_json(results: list[CaseResult], scheduler: str | None, retried: list[Retry]) -> dict:
     """docs/design.md's regress JSON: every case's verdict and checks, the scheduler that ran them
-    (null: this machine) and the cases it ran again."""
+    (null: this machine) and the cases it ran again. A check's ``worst`` is null where it is not a
+    number (a value the run no longer gives counts as infinitely far off)."""
     cases = [
         {
             "case": r.name, "passed": r.passed, "error": r.error,
             "checks": [
-                {"what": c.what, "worst": float(c.worst), "allowed": float(c.allowed), "passed": c.passed, "detail": c.detail}
+                {"what": c.what, "worst": _finite(c.worst), "allowed": float(c.allowed), "passed": c.passed, "detail": c.detail}
                 for c in r.checks
             ],
         }
         for r in results
     ]
     return {"cases": cases, "scheduler": scheduler, "retried": [r.record() for r in retried]}
+
+
+def _finite(value: float) -> float | None:
+    return float(value) if math.isfinite(value) else None
 
 
 def progress(items, total: int):
