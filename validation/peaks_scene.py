@@ -22,9 +22,12 @@ from numpy.typing import NDArray
 
 from linkstress.analysis import Plan
 from linkstress.dynamics.machine_forces import MachineForces
+from linkstress.executors import DaskExecutor, LocalExecutor
 from linkstress.fatigue import NodeFatigue, criteria_available, node_fatigue
 from linkstress.members import link_members
-from linkstress.scene import Scene
+from linkstress.loads import LinkLoadCase
+from linkstress.scene import Scene, SceneLink
+from linkstress.threads import blas_alone
 from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.peaks import PeakCheck, SweepPeaks, coarser_peak, peak_mesh, sweep_peaks
 from linkstress.validation.fea.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
@@ -96,42 +99,66 @@ class LinkPeaks:
         return out
 
 
-def scene_peaks(scene: Scene, plan: Plan, forces: MachineForces) -> dict[str, LinkPeaks]:
+def scene_peaks(
+    scene: Scene, plan: Plan, forces: MachineForces, executor: LocalExecutor | DaskExecutor | None = None
+) -> dict[str, LinkPeaks]:
     """The peaks (and fatigue) of every link of ``plan.peaks`` over the sweep's feasible positions;
-    none where no position is feasible. Raises FEAError (an InputError) naming a link that cannot be
-    meshed or solved."""
+    none where no position is feasible. Each link is a task of ``executor`` (default: here, one
+    after another). Raises FEAError (an InputError) naming a link that cannot be meshed or solved."""
     feasible = np.flatnonzero(forces.feasible)
     if not len(feasible):
         return {}
     size = scene.analysis.mesh_size if scene.analysis is not None else None
     order = scene.analysis.element_order if scene.analysis is not None else 2
     note = cycle_note(scene.motion.angle_deg, forces.feasible)
-    out = {}
-    for name in plan.peaks:
-        link = scene.links[name]
-        profile, loads = link.profile, forces.link_loads[name]
+    tasks = [
+        PeaksTask(name, scene.links[name], forces.link_loads[name], feasible, len(forces.feasible), size, order, note,
+                  plan.fatigue_criterion)
+        for name in plan.peaks
+    ]
+    where = executor or LocalExecutor()
+    return dict(zip(plan.peaks, where.map(link_peaks, tasks, [f"link {name}" for name in plan.peaks])))
+
+
+@dataclass(frozen=True)
+class PeaksTask:
+    """What one link's peaks need, all of it data: the ``link``, its ``loads`` over the sweep of
+    ``n_positions``, the ``feasible`` positions (indices), the mesh ``size`` [m] (None: default)
+    and element ``order``, the sweep's ``cycle_note`` and the fatigue ``criterion``."""
+
+    name: str
+    link: SceneLink
+    loads: LinkLoadCase
+    feasible: NDArray[np.intp]
+    n_positions: int
+    size: float | None
+    order: int
+    cycle_note: str
+    criterion: str
+
+
+def link_peaks(task: PeaksTask) -> LinkPeaks:
+    """One link's peaks over the sweep and its fatigue (a task: runs wherever the executor sends it,
+    with BLAS on one thread as in ``run_analysis``)."""
+    with blas_alone():
+        link, loads, feasible = task.link, task.loads, task.feasible
+        profile = link.profile
         members = link_members(profile, loads.frame_joints, link.members)
-        mesh = peak_mesh(profile, loads.frame_joints, members, size, order)
+        mesh = peak_mesh(profile, loads.frame_joints, members, task.size, task.order)
         cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG)
         sweep = sweep_peaks(cases, loads, feasible)
         start = time.perf_counter()
         check = coarser_peak(sweep, loads, mesh)
         check_seconds = time.perf_counter() - start
-        fatigue, fatigue_note = None, note
-        strength = link.material.fatigue_strength
-        criterion = plan.fatigue_criterion
-        if strength is None:
-            fatigue_note = (
-                f"no fatigue check: materials.{link.material.name} gives no endurance_limit and ultimate_strength"
-            )
-        elif criterion not in criteria_available(strength):
-            fatigue_note = (
-                f"no fatigue check: the {criterion} criterion needs materials.{link.material.name}.yield_strength"
-            )
-        else:
-            fatigue = node_fatigue(sweep.largest, sweep.smallest, strength, criterion)
-        out[name] = LinkPeaks(name, len(forces.feasible), sweep, check, mesh, fatigue, criterion, fatigue_note, check_seconds)
-    return out
+    fatigue, fatigue_note = None, task.cycle_note
+    strength = link.material.fatigue_strength
+    if strength is None:
+        fatigue_note = f"no fatigue check: materials.{link.material.name} gives no endurance_limit and ultimate_strength"
+    elif task.criterion not in criteria_available(strength):
+        fatigue_note = f"no fatigue check: the {task.criterion} criterion needs materials.{link.material.name}.yield_strength"
+    else:
+        fatigue = node_fatigue(sweep.largest, sweep.smallest, strength, task.criterion)
+    return LinkPeaks(task.name, task.n_positions, sweep, check, mesh, fatigue, task.criterion, fatigue_note, check_seconds)
 
 
 def cycle_note(angles_deg: NDArray[np.float64], feasible: NDArray[np.bool_]) -> str:

@@ -21,6 +21,9 @@ more than ``fea_error_pct`` percentage points, and must stay under the case's ``
 from __future__ import annotations
 
 import json
+import os
+import tempfile
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -161,6 +164,55 @@ def run_case(case: Path, update: bool = False) -> CaseResult:
         tolerances, stored.get("limits", {}),
     )
     return result
+
+
+@dataclass(frozen=True)
+class PackedCase:
+    """A case carried by content, for a worker that cannot see this machine's files: ``files`` maps
+    each path (relative to the folder that holds them all, '/'-separated) to its bytes, ``folder``
+    is the case folder's path there and ``name`` its name."""
+
+    name: str
+    folder: str
+    files: dict[str, bytes]
+
+
+def packed_case(case: Path) -> PackedCase:
+    """``case``'s scene file, reference and every sketch its scene names (``[links.NAME] sketch``,
+    relative to the scene's folder, inside it or not), by content. A scene that is not valid TOML
+    travels alone: the worker reports it as the case's error, as a local run would."""
+    scene = case / SCENE_FILE
+    paths = [scene, *([case / REFERENCE_FILE] if (case / REFERENCE_FILE).is_file() else [])]
+    try:
+        links = tomllib.loads(scene.read_text(encoding="utf-8-sig")).get("links", {})
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError):
+        links = {}
+    sketches = {entry.get("sketch") for entry in links.values() if isinstance(entry, dict)} if isinstance(links, dict) else set()
+    paths += sorted(case / s for s in sketches if isinstance(s, str) and (case / s).is_file())
+    # Lexical, as the scene reader joins the scene's folder and a sketch's relative path; the root is
+    # one level above the files' common folder, so that the case folder keeps its name (the case's).
+    absolute = [Path(os.path.abspath(p)) for p in paths]
+    root = Path(os.path.commonpath([p.parent for p in absolute])).parent
+    return PackedCase(
+        case.name,
+        Path(os.path.abspath(case)).relative_to(root).as_posix(),
+        {p.relative_to(root).as_posix(): p.read_bytes() for p in absolute},
+    )
+
+
+def run_packed_case(packed: PackedCase, update: bool = False) -> tuple[CaseResult, bytes | None]:
+    """``run_case`` on a case carried by content, unpacked in a temporary folder that is removed
+    after; with ``update`` the rewritten reference's bytes too (None when the case could not run),
+    for the caller to write where the case lives."""
+    with tempfile.TemporaryDirectory(prefix="linkstress-case-") as folder:
+        for relative, data in packed.files.items():
+            path = Path(folder, relative)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_bytes(data)
+        case = Path(folder, packed.folder)
+        result = run_case(case, update)
+        reference = (case / REFERENCE_FILE).read_bytes() if update and not result.error else None
+    return result, reference
 
 
 def rewritten(stored: dict, values: dict) -> dict:

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -23,6 +22,7 @@ from tqdm import tqdm
 
 from linkstress.analysis import AnalysisResult, Plan, run_analysis
 from linkstress.errors import GeometryError
+from linkstress.executors import DaskExecutor, LocalExecutor
 from linkstress.members import link_members
 from linkstress.scene import Scene
 from linkstress.validation.compare import LinkComparison, choose_stations, compare_link, default_mesh
@@ -119,11 +119,13 @@ def validate_scene(
     levels: int = 3,
     mesh_size: float | None = None,
     jobs: int = 1,
+    executor: LocalExecutor | DaskExecutor | None = None,
 ) -> ValidationResult:
     """Analyse ``scene`` and compare every link of ``plan.validate`` with its FEA at up to
     ``positions`` feasible positions, with the elements of the scene's ``[analysis] element_order``
-    (default 2); ``levels`` >= 3 makes each a mesh refinement study; ``jobs``
-    > 1 runs the links in that many processes. A progress bar shows on a terminal."""
+    (default 2); ``levels`` >= 3 makes each a mesh refinement study; each link is a task of
+    ``executor`` (default: ``jobs`` local processes when > 1, else here). A progress bar shows on a
+    terminal."""
     analysis = run_analysis(scene, plan)
     chosen = compared_positions(analysis, positions)
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
@@ -133,11 +135,8 @@ def validate_scene(
          plan.body_load_near_holes, scene.links[name].members)
         for name in plan.validate
     ]
-    if jobs > 1 and len(tasks) > 1:
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
-            outcomes = list(_progress(pool.map(_compare, tasks), len(tasks)))
-    else:
-        outcomes = [_compare(task) for task in _progress(tasks, len(tasks))]
+    where = executor or LocalExecutor(jobs)
+    outcomes = list(_progress(where.map(_compare, tasks, [f"link {name}" for name in plan.validate]), len(tasks)))
     comparisons = {name: result for name, result, _, _ in outcomes if result is not None}
     errors = {name: error for name, _, error, _ in outcomes if error}
     seconds = {name: elapsed for name, _, _, elapsed in outcomes}

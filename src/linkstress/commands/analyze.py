@@ -17,6 +17,7 @@ import numpy as np
 from linkstress.analysis import PEAK_MESH_LEVELS, AnalysisResult, Plan, plan_for, run_analysis
 from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError
+from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_choice
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.peak_records import peak_summaries
 from linkstress.report.records import stream_position_records
@@ -55,6 +56,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         epilog=examples(
             "linkstress analyze validation/cases/six_bar/scene.toml --html six.html",
             "linkstress analyze validation/cases/bell_crank/scene.toml --peaks",
+            "linkstress analyze validation/cases/bell_crank/scene.toml --peaks --scheduler tcp://10.0.0.5:8786",
         ),
         formatter_class=HelpFormatter,
     )
@@ -71,6 +73,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "one mesh and factorisation per link) and, where its material gives endurance_limit and ultimate_strength, "
         "its fatigue safety factor over the sweep; as [analysis] peaks = true",
     )
+    parser.add_argument(
+        "--scheduler", metavar="ADDRESS",
+        help="compute the FEA peaks on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT), a task per "
+        f"link; local: a cluster of this machine's cores for this run; default: the {SCHEDULER_VARIABLE} variable "
+        "(ignored when no peaks are computed). Needs --peaks or [analysis] peaks = true, and "
+        'pip install "linkstress[cluster]" (docs/cluster.md)',
+    )
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -85,28 +94,59 @@ def run(args: argparse.Namespace) -> int:
         plan = plan.with_peaks()
     if plan.peaks or args.peaks:
         check_peaks(scene, plan)
+    if args.scheduler is not None and not plan.peaks:
+        raise InputError(
+            f"{OPTION}: only the FEA peaks run on a cluster and this run computes none: add --peaks (or "
+            "[analysis] peaks = true), or leave out --scheduler"
+        )
     check_work(scene, plan)
     if args.explain:
         print(plan.describe())
         return 0
+    # The variable alone is ignored without peaks: set for a shell, it must not stop a plain analyze.
+    scheduler, source = scheduler_choice(args.scheduler) if plan.peaks else (None, "")
+    retried: list[Retry] = []
     # Overflow is reported by refuse_non_finite, naming the keys, rather than as numpy warnings.
     with np.errstate(all="ignore"):
-        result = run_analysis(scene, plan)
+        if scheduler is None:
+            result = run_analysis(scene, plan)
+        else:
+            result, retried = analysis_on_cluster(scene, plan, scheduler, source)
     refuse_non_finite(result)
     # Every output is staged before any is renamed into place, so a failure leaves none half-done; the
     # JSON is encoded into its staged file as its records are made, a block of positions at a time.
     files = []
     if args.json is not None:
         records = stream_position_records(result, stations=args.stations)
-        after = (lambda: {"links": peak_summaries(result)}) if result.peaks else None
+        cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in retried]}
+        after = (lambda: {"links": peak_summaries(result), **cluster}) if result.peaks else None
         files.append((args.json, json_stream("positions", records, "--json", after)))
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 
         files.append((args.html, analysis_html(result).encode("utf-8")))
-    print(report(result))
+    print(report(result) + "".join(f"\nretried: {r.task} ({r.reason})" for r in retried))
     write_all(files)
     return 0
+
+
+def analysis_on_cluster(scene: Scene, plan: Plan, scheduler: str, source: str) -> tuple[AnalysisResult, list[Retry]]:
+    """``run_analysis`` with the FEA peaks' links as tasks on the Dask cluster at ``scheduler`` (named
+    by ``source`` in messages), connected to before anything is computed; the tasks it ran again."""
+    import time
+    from dataclasses import replace
+
+    from linkstress.executors import executor
+    from linkstress.validation.peaks_scene import scene_peaks
+
+    with executor(scheduler, source) as where:
+        result = run_analysis(scene, replace(plan, peaks=()))
+        if result.forces is None:
+            return replace(result, plan=plan), []
+        start = time.perf_counter()
+        peaks = scene_peaks(scene, plan, result.forces, where)
+        seconds = {**result.seconds, "peaks": time.perf_counter() - start}
+    return replace(result, plan=plan, peaks=peaks, seconds=seconds), where.retried
 
 
 def check_peaks(scene: Scene, plan: Plan) -> None:

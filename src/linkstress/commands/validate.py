@@ -22,6 +22,7 @@ from linkstress.analysis import plan_for
 from linkstress.commands import HelpFormatter, examples
 from linkstress.commands.analyze import check_work, refuse_non_finite, scene_sketches
 from linkstress.errors import InputError
+from linkstress.executors import SCHEDULER_VARIABLE, executor, scheduler_choice
 from linkstress.output import check_outputs, json_bytes, write_all
 from linkstress.scene import Scene, load_scene
 
@@ -46,6 +47,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         epilog=examples(
             "linkstress validate validation/cases/banana_coupler/scene.toml --positions 4",
             "linkstress validate validation/cases/seed_ansys_fourbar/scene.toml --json seed.json --vtu seed_fields",
+            "linkstress validate validation/cases/six_bar/scene.toml --scheduler tcp://10.0.0.5:8786",
         ),
         formatter_class=HelpFormatter,
     )
@@ -62,6 +64,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--mesh-size", type=float, default=None, metavar="M",
                         help="element size away from holes and cuts [m] (default: from the link's depth)")
     parser.add_argument("--jobs", type=int, default=1, metavar="N", help="solve N links at once in parallel processes")
+    parser.add_argument(
+        "--scheduler", metavar="ADDRESS",
+        help="solve the links on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT), a task per link; "
+        f"local: a cluster of this machine's cores for this run; default: the {SCHEDULER_VARIABLE} variable, else "
+        'this machine (--jobs). Needs pip install "linkstress[cluster]" (docs/cluster.md)',
+    )
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -90,16 +98,18 @@ def run(args: argparse.Namespace) -> int:
     check_materials(scene, plan.validate)
     check_meshes(scene, plan.validate, args.mesh_size, args.mesh_levels)
     check_work(scene, plan)
-    with np.errstate(all="ignore"):
-        result = validate_scene(scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, args.jobs)
+    scheduler, source = scheduler_choice(args.scheduler)
+    with executor(scheduler, source, args.jobs) as where, np.errstate(all="ignore"):
+        result = validate_scene(scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, executor=where)
     refuse_non_finite(result.analysis)
+    cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in where.retried]}
     # Every output is made before any is written, so a failure leaves none half-done.
     files = []
     if args.json is not None:
-        files.append((args.json, json_bytes(validation_json(result), "--json")))
+        files.append((args.json, json_bytes({**validation_json(result), **cluster}, "--json")))
     if args.html is not None:
         files.append((args.html, validation_html(result).encode("utf-8")))
-    print(validation_text(result))
+    print(validation_text(result) + "".join(f"\nretried: {r.task} ({r.reason})" for r in where.retried))
     write_all(files)
     if args.vtu is not None:
         args.vtu.mkdir(parents=True, exist_ok=True)
@@ -119,12 +129,15 @@ def check_flags(args: argparse.Namespace) -> None:
         raise InputError(f"--positions: must be 1 to {MAX_COMPARED_POSITIONS} (each is an FEA load case), got {args.positions}")
     if args.mesh_size is not None and not (math.isfinite(args.mesh_size) and args.mesh_size > 0):
         raise InputError(f"--mesh-size: must be a finite size > 0 m, got {args.mesh_size!r}")
-    check_jobs(args.jobs)
+    check_jobs(args.jobs, scheduler_choice(args.scheduler)[1])
 
 
-def check_jobs(jobs: int) -> None:
+def check_jobs(jobs: int, scheduler: str = "") -> None:
     """``--jobs``: 1 to JOBS_PER_PROCESSOR per processor (more processes only compete for them, and
-    each holds its own FEA stack in memory)."""
+    each holds its own FEA stack in memory); 1 when a scheduler is given (``scheduler``: the option or
+    variable that gave it): the cluster's workers are the parallel processes then."""
+    if scheduler and jobs != 1:
+        raise InputError(f"--jobs: not with {scheduler} (the cluster's workers run the tasks in parallel); give one of them")
     most = JOBS_PER_PROCESSOR * (os.cpu_count() or 1)
     if not 1 <= jobs <= most:
         raise InputError(f"--jobs: must be 1 to {most} ({JOBS_PER_PROCESSOR} per processor of this machine), got {jobs}")
