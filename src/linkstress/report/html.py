@@ -1,4 +1,5 @@
-"""One self-contained HTML file per run: figures inline (base64 PNG), no network, no scripts.
+"""One self-contained HTML file per run: figures inline (base64 PNG), the interactive view of the
+mechanism inline (its data and script in the page), no network.
 
 The page states the exact loads that were applied and the versions that produced it, so that
 everything in it can be reproduced from the scene file alone.
@@ -24,6 +25,7 @@ from linkstress.report.figures import (
     sweep_figure,
 )
 from linkstress.report.maxima import link_figures, worst_position
+from linkstress.report.mechanism_view import view_html
 from linkstress.report.records import link_columns
 from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings
 from linkstress.safety import link_safety_factors
@@ -39,6 +41,8 @@ th, td { border: 1px solid #ccc; padding: 0.2em 0.6em; text-align: right; }
 th { background: #f2f2f2; } td.text, th.text { text-align: left; }
 img { max-width: 100%; display: block; margin: 0.5em 0; }
 .note { color: #555; font-size: 0.9em; }
+.view-controls { display: flex; align-items: center; gap: 0.6em; margin: 0.5em 0; }
+#view-slider { flex: 1; }
 """
 
 
@@ -134,6 +138,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
         *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
         *(f"<p><b>{html.escape(line)}</b></p>" for line in _warning_lines(result)),
+        "<h2>Mechanism, position by position</h2>", view_html(result),
         "<h2>Loads applied</h2>", loads_html(result),
         "<h2>Mechanism</h2>",
     ]

@@ -43,7 +43,7 @@ def peaks_table(result: AnalysisResult) -> str:
         notes += [f"  {name}: {text}" for text in (s["peak_note"], s["fatigue_note"]) if text]
     headers = (
         "link", "FEA peak [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "beam max [Pa]", "peak / beam",
-        "peak check", "yield safety factor (FEA peak)", "fatigue safety factor", "critical point (x, y) [m], drawing",
+        "peak check", "yield safety factor (FEA peak)", "fatigue safety factor", "critical point (x, y) [m], drawing frame",
     )
     return "\n".join([
         "FEA peak stresses over the sweep (plane-stress FEA of each link, its unit load cases superposed at every "
