@@ -32,6 +32,8 @@ from linkstress.safety import link_safety_factors
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
 MAX_DRAWN_POSITIONS = 4
+STRESS_HEADERS = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
+                  "pin hole estimate [Pa]", "curved")
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1000px; color: #222; }
@@ -221,11 +223,9 @@ def _stress_table(result: AnalysisResult) -> str:
         where += [f"{name}: {line}" for line in lines]
     if not rows:
         return ""
-    headers = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
-               "pin hole estimate [Pa]", "curved")
     items = "".join(f"<li>{html.escape(line)}</li>" for line in where)
     return (
-        "<h3>Largest stresses over the sweep</h3>" + table_html(headers, rows)
+        "<h3>Largest stresses over the sweep</h3>" + table_html(STRESS_HEADERS, rows)
         + '<p class="note">Where each figure comes from (its input angle; its point in the ground frame at that '
         f"input):</p><ul class=\"note\">{items}</ul>"
     )
