@@ -23,7 +23,7 @@ from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
-from linkstress.report.figures import LABEL_ZORDER, boxed_label, sparse_x_ticks, stress_along_figure
+from linkstress.report.figures import LABEL_ZORDER, boxed_label, stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
@@ -418,13 +418,12 @@ def fea_contour_figure(c: LinkComparison, k: int, angle_deg: float) -> Figure:
     peak = c.fea.von_mises_peak_at[k]
     for x in c.stations:
         ax.axvline(x, color="white", lw=0.4, alpha=0.6)
-    ax.plot(*peak, marker="*", color="red", ms=14, zorder=LABEL_ZORDER)
+    ax.plot(*peak, marker="*", color="red", ms=14, zorder=LABEL_ZORDER - 1)
     # Offset toward the link's middle: at a pin near the end the label would leave the axes.
     side = 1 if peak[0] <= float(np.mean(ax.get_xlim())) else -1
     boxed_label(ax, f"peak {c.fea_peak[k] / 1e6:.4g} MPa", peak, offset=(10 * side, 10), color="red",
                 ha="left" if side > 0 else "right")
     ax.set_aspect("equal")
-    sparse_x_ticks(ax)
     ax.set_xlabel("x along the member [m], member frame")
     ax.set_ylabel("y [m], member frame")
     ax.set_title(f"{c.name} at input angle {angle_deg:.4g} deg: FEA von Mises (white lines: comparison cuts)")

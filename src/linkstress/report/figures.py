@@ -18,14 +18,15 @@ from numpy.typing import NDArray  # noqa: E402
 from linkstress.analysis import AnalysisResult  # noqa: E402
 
 LINK_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf")
-TICK_BINS = 5
-"""At most this many intervals between x ticks: labels such as "0.325" stay apart on a narrow axis."""
+TICK_GAP_PX = 4.0
+"""Tick labels closer than this (at the saved resolution) run together to the eye ("0.3250.350")."""
 LABEL_ZORDER = 10
 """Above every line and fill of a figure: a label on a marked point is never hidden by a curve or cut."""
 
 
 def png_bytes(fig: Figure, dpi: int = 110) -> bytes:
-    """The figure as PNG; the figure is closed."""
+    """The figure as PNG, its x tick labels spread apart (``spread_x_ticks``); the figure is closed."""
+    spread_x_ticks(fig, dpi)
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi)
     plt.close(fig)
@@ -38,9 +39,35 @@ def outside_legend(ax, **options) -> None:
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8, **options)
 
 
-def sparse_x_ticks(ax) -> None:
-    """At most TICK_BINS + 1 x tick labels, so that they never run together."""
-    ax.xaxis.set_major_locator(MaxNLocator(TICK_BINS))
+def spread_x_ticks(fig: Figure, dpi: int = 110) -> None:
+    """Fewer x ticks on every linear x axis of ``fig`` whose tick labels, drawn at ``dpi``, come
+    closer than TICK_GAP_PX: matplotlib's own count allows about three characters a label, and
+    "-0.025" has six."""
+    fig.set_dpi(dpi)
+    for ax in fig.axes:
+        if ax.get_xscale() != "linear":
+            continue
+        fig.canvas.draw()
+        gaps = x_tick_gaps(ax, fig.canvas.get_renderer())
+        bins = len(gaps) - 1
+        while bins >= 1 and min(gaps, default=TICK_GAP_PX) < TICK_GAP_PX:
+            ax.xaxis.set_major_locator(MaxNLocator(bins, steps=[1, 2, 5, 10], min_n_ticks=1))
+            fig.canvas.draw()
+            gaps = x_tick_gaps(ax, fig.canvas.get_renderer())
+            bins = min(bins, len(gaps)) - 1
+
+
+def x_tick_gaps(ax, renderer) -> list[float]:
+    """The gaps [pixels] between neighbouring x tick labels that ``ax`` shows (ticks inside its view),
+    as last drawn."""
+    low, high = sorted(ax.get_xlim())
+    span = 1e-9 * (high - low)
+    shown = [
+        label for at, label in zip(ax.get_xticks(), ax.get_xticklabels())
+        if low - span <= at <= high + span and label.get_visible() and label.get_text()
+    ]
+    boxes = sorted((label.get_window_extent(renderer) for label in shown), key=lambda box: box.x0)
+    return [b.x0 - a.x1 for a, b in zip(boxes, boxes[1:])]
 
 
 def boxed_label(ax, text: str, at, offset=(8, 8), **options) -> None:
@@ -92,7 +119,6 @@ def mechanism_figure(result: AnalysisResult, k: int) -> Figure:
         ax.plot(*where, marker="*", color="k", ms=12)
         boxed_label(ax, f"max {name}", where, offset=(6, 6), fontsize=8)
     ax.set_aspect("equal")
-    sparse_x_ticks(ax)
     ax.set_xlabel("x [m], ground frame")
     ax.set_ylabel("y [m], ground frame")
     ax.set_title(f"input angle {result.scene.motion.angle_deg[k]:.4g} deg")
@@ -121,7 +147,6 @@ def mechanism_sweep_figure(result: AnalysisResult, positions: list[int]) -> Figu
             if np.ptp(path, axis=0).max() > 0:
                 ax.plot(path[:, 0], path[:, 1], ":", color="0.4", lw=0.8)
     ax.set_aspect("equal")
-    sparse_x_ticks(ax)
     ax.set_xlabel("x [m], ground frame")
     ax.set_ylabel("y [m], ground frame")
     angles = result.scene.motion.angle_deg[positions]
@@ -190,7 +215,6 @@ def stress_along_figure(
     bottom.plot(x, stress.forces.shear[0], label="V [N]")
     bottom.plot(x, stress.forces.moment[0], label="M [N m]")
     bottom.set_xlabel("x along the member [m], member frame")
-    sparse_x_ticks(bottom)
     outside_legend(bottom)
     bottom.grid(alpha=0.3)
     return fig
@@ -239,7 +263,6 @@ def sweep_figure(result: AnalysisResult) -> Figure:
         ax.plot(angle[ok], np.degrees(loop.transmission_angle[ok]), ".-", ms=3, label=name)
     ax.set_ylabel("transmission angle [deg]")
     ax.set_xlabel("input angle [deg]")
-    sparse_x_ticks(ax)
     outside_legend(ax)
     ax.grid(alpha=0.3)
     return fig
