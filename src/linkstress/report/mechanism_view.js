@@ -50,7 +50,7 @@
   for (const [name, link] of Object.entries(data.links)) {
     drawn[name] = {
       path: element("path", Object.assign({"data-link": name, "fill-rule": "evenodd", stroke: link.colour,
-        "stroke-width": 1.5, fill: "none"}, stroke)),
+        "stroke-width": 1.5, fill: "transparent"}, stroke)),
       label: element("text", {"data-label": name, "font-size": 0.03 * size, fill: "#222",
         "text-anchor": "middle"}),
     };
@@ -66,7 +66,7 @@
   }
   const arrows = (data.forces || []).map(function (force) {
     return element("path", Object.assign({"data-force": force.label, stroke: "crimson", "stroke-width": 2,
-      fill: "none"}, stroke));
+      fill: "transparent"}, stroke));
   });
 
   // An arrow from p - scale F to the joint p, with a head at the joint.
