@@ -47,7 +47,11 @@
 
   const stroke = {"vector-effect": "non-scaling-stroke"};
   const drawn = {};
-  for (const [name, link] of Object.entries(data.links)) {
+  // Uncoloured links (the ground, unstressed links) underneath, so that they hide no stress colour.
+  const order = Object.entries(data.links).sort(function (a, b) {
+    return Boolean(a[1].von_mises_mpa) - Boolean(b[1].von_mises_mpa);
+  });
+  for (const [name, link] of order) {
     drawn[name] = {
       path: element("path", Object.assign({"data-link": name, "fill-rule": "evenodd", stroke: link.colour,
         "stroke-width": 1.5, fill: "transparent"}, stroke)),
@@ -122,7 +126,8 @@
         parts.max.setAttribute("cy", (-link.max_at_m[k][1]).toFixed(digits));
         rows.push(row([name, "largest von Mises", value.toFixed(data.stress_scale.decimals) + " MPa"], "td"));
       } else if (link.closed) {
-        parts.path.setAttribute("fill", "#e8e8e8");
+        parts.path.setAttribute("fill", "#d8d8d8");
+        parts.path.setAttribute("fill-opacity", "0.5");
       }
     }
     for (const [name, circle] of Object.entries(joints)) {

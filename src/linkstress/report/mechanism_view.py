@@ -33,6 +33,8 @@ SIMPLIFY_FRACTION = 2e-4
 """Ring vertices that move the outline less than this fraction of the mechanism's size (a fifth of
 a pixel on a 1000-pixel drawing) are left out of the view: a hole's hundreds of vertices become a
 few dozen."""
+VIEW_MARGIN = 0.04
+"""Room around the links and force arrows, as a fraction of the mechanism's size."""
 COLOUR_STOPS = 11
 COLOUR_MAP = "viridis"
 
@@ -78,7 +80,7 @@ def view_data(result: AnalysisResult) -> dict:
         "decimals": decimals,
         "size_m": size,
         "links": links,
-        "extent_m": _extent(bounds, size, result.forces is not None),
+        "extent_m": _extent(bounds, size),
     }
     if result.stresses:
         largest = max(float(np.max(s.max_von_mises[frames[ok]], initial=0.0)) for s in result.stresses.values()) / 1e6
@@ -94,20 +96,28 @@ def view_data(result: AnalysisResult) -> dict:
             "colours": [matplotlib.colors.to_hex(c) for c in colours],
         }
     if result.forces is not None:
-        data.update(_force_data(result, frames, ok, size, decimals))
+        forces, tails = _force_data(result, frames, ok, size, decimals)
+        data.update(forces)
+        if bounds is not None:
+            bounds = np.array([np.minimum(bounds[0], tails.min(axis=0)), np.maximum(bounds[1], tails.max(axis=0))])
+            data["extent_m"] = _extent(bounds, size)
     return data
 
 
-def _force_data(result: AnalysisResult, frames, ok, size: float, decimals: int) -> dict:
-    """Joints and joint forces at the shown positions, and the arrows' scale [m/N]."""
+def _force_data(result: AnalysisResult, frames, ok, size: float, decimals: int) -> tuple[dict, NDArray[np.float64]]:
+    """Joints and joint forces at the shown positions and the arrows' scale [m/N]; and where the
+    arrows start (joint - scale x force) at the feasible shown positions (n, 2) [m], ground frame."""
     arrows = joint_forces(result)
     paths = joint_paths(result)
     forces = np.stack([force[frames] for _, _, force in arrows])
     magnitude = np.hypot(forces[..., 0], forces[..., 1])
     largest = float(np.max(magnitude[:, ok], initial=0.0))
+    scale = FORCE_ARROW_FRACTION * size / largest if largest > 0 else 0.0
     digits = _digits(largest)
     used = dict.fromkeys(joint for _, joint, _ in arrows)
-    return {
+    at = np.stack([paths[joint][frames] for _, joint, _ in arrows])
+    tails = (at - scale * forces)[:, ok].reshape(-1, 2)
+    data = {
         "joints": {joint: _per_frame(np.round(paths[joint][frames], decimals), ok) for joint in used},
         "forces": [
             {"label": label, "joint": joint, "force_n": _per_frame(np.round(force[frames], digits), ok)}
@@ -115,8 +125,9 @@ def _force_data(result: AnalysisResult, frames, ok, size: float, decimals: int) 
         ],
         "largest_force_n": round(largest, digits),
         "force_decimals": digits,
-        "force_scale_m_per_n": FORCE_ARROW_FRACTION * size / largest if largest > 0 else 0.0,
+        "force_scale_m_per_n": scale,
     }
+    return data, tails
 
 
 def _simplified(ring: NDArray[np.float64], tolerance: float) -> NDArray[np.float64]:
@@ -154,12 +165,12 @@ def _bounds(result: AnalysisResult, rings: dict, frames: NDArray[np.intp]) -> ND
     return np.array([np.min(lows, axis=0), np.max(highs, axis=0)])
 
 
-def _extent(bounds: NDArray[np.float64] | None, size: float, arrows: bool) -> list[float]:
-    """[xmin, ymin, xmax, ymax] [m] of the links' ``bounds`` (``_bounds``), with a margin on every
-    side: room for the force arrows when there are some."""
+def _extent(bounds: NDArray[np.float64] | None, size: float) -> list[float]:
+    """[xmin, ymin, xmax, ymax] [m] of ``bounds`` ([[xmin, ymin], [xmax, ymax]]) with a margin of
+    VIEW_MARGIN of the mechanism's ``size`` on every side."""
     if bounds is None:
         return [0.0, 0.0, size, size]
-    margin = (FORCE_ARROW_FRACTION if arrows else 0.05) * size
+    margin = VIEW_MARGIN * size
     return [float(v) for v in (*(bounds[0] - margin), *(bounds[1] + margin))]
 
 
