@@ -187,7 +187,6 @@ def test_the_mechanism_figures_marked_maxima_are_labelled_above_the_links_and_ar
     plt.close(fig)
 
 
-@pytest.mark.slow
 def test_the_fea_peak_label_is_not_hidden_by_the_comparison_cuts():
     from dataclasses import replace
 
