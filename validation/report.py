@@ -23,7 +23,7 @@ from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
-from linkstress.report.figures import stress_along_figure
+from linkstress.report.figures import LABEL_ZORDER, boxed_label, stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
@@ -410,21 +410,23 @@ def fea_contour_figure(c: LinkComparison, k: int, angle_deg: float) -> Figure:
     mesh = c.fea.plane.mesh
     corners = mesh.nvertices  # the P2 mesh lists its corner nodes first
     values = c.fea.nodal_von_mises[k, c.fea.model.scalar.nodal_dofs[0][:corners]] / 1e6
-    fig, ax = plt.subplots(figsize=(7.5, 3.8))
+    fig, ax = plt.subplots(figsize=(7.5, 3.8), layout="constrained")
     triangles = Triangulation(mesh.p[0, :corners], mesh.p[1, :corners], mesh.t.T)
     # A pin's peak can be a hundred times the rest: cap the scale so the link's own field shows.
     shading = ax.tripcolor(triangles, values, shading="gouraud", cmap="viridis", vmax=float(np.percentile(values, 99)))
     fig.colorbar(shading, ax=ax, label="von Mises [MPa] (capped at the 99th percentile)", extend="max")
     peak = c.fea.von_mises_peak_at[k]
-    ax.plot(*peak, marker="*", color="red", ms=14)
-    ax.annotate(f"peak {c.fea_peak[k] / 1e6:.4g} MPa", peak, textcoords="offset points", xytext=(8, 8), color="red")
     for x in c.stations:
         ax.axvline(x, color="white", lw=0.4, alpha=0.6)
+    ax.plot(*peak, marker="*", color="red", ms=14, zorder=LABEL_ZORDER - 1)
+    # Offset toward the link's middle: at a pin near the end the label would leave the axes.
+    side = 1 if peak[0] <= float(np.mean(ax.get_xlim())) else -1
+    boxed_label(ax, f"peak {c.fea_peak[k] / 1e6:.4g} MPa", peak, offset=(10 * side, 10), color="red",
+                ha="left" if side > 0 else "right")
     ax.set_aspect("equal")
-    ax.set_xlabel("x along the member [m]")
-    ax.set_ylabel("y [m]")
+    ax.set_xlabel("x along the member [m], member frame")
+    ax.set_ylabel("y [m], member frame")
     ax.set_title(f"{c.name} at input angle {angle_deg:.4g} deg: FEA von Mises (white lines: comparison cuts)")
-    fig.tight_layout()
     return fig
 
 

@@ -12,7 +12,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from linkstress.analysis import DEFAULT_STATIONS
-from linkstress.report.html import figure_tag, page, table_html, versions_html  # its figures module selects Agg
+from linkstress.report.figures import boxed_label, outside_legend  # selects Agg
+from linkstress.report.html import figure_tag, page, table_html, versions_html
 from linkstress.tables import format_table
 from linkstress.validation.bench.peaks import FIELD_BOUND, PEAK_BOUND, RATIO_TARGET, SETTING, SUPERPOSITION_TARGET
 from linkstress.validation.bench.suite import NOMINAL_BOUND, SPEEDUP, BenchResult, converged_setting
@@ -309,7 +310,7 @@ def _none_pct(value):
 
 def speed_error_figure(case: CaseStudy):
     """Log-log time against nominal error, one marker per method and setting, the Pareto front joined."""
-    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    fig, ax = plt.subplots(figsize=(7.5, 5.0), layout="constrained")
     for family, (marker, colour) in STYLES.items():
         points = [(m.seconds, max(100 * m.nominal_error, PLOT_FLOOR)) for m in case.methods if m.method == family]
         if points:
@@ -323,8 +324,8 @@ def speed_error_figure(case: CaseStudy):
     converged = case.find("FEA P2", converged_setting())
     for m, text, side in ((default, f"beam, {DEFAULT_STATIONS} stations (default)", 1), (converged, "validate's converged FEA", -1)):
         if m is not None:
-            ax.annotate(text, (m.seconds, max(100 * m.nominal_error, PLOT_FLOOR)), textcoords="offset points",
-                        xytext=(6 * side, 6), ha="left" if side > 0 else "right", fontsize=8)
+            boxed_label(ax, text, (m.seconds, max(100 * m.nominal_error, PLOT_FLOOR)), offset=(6 * side, 6),
+                        ha="left" if side > 0 else "right", fontsize=8)
     ax.axhline(100 * NOMINAL_BOUND, color="tab:red", lw=0.8, ls="--", label=f"{100 * NOMINAL_BOUND:g} %")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -332,8 +333,7 @@ def speed_error_figure(case: CaseStudy):
     ax.set_ylabel("nominal von Mises error against the reference [%]")
     ax.set_title(f"{case.title}: speed against error")
     ax.grid(True, which="both", lw=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
+    outside_legend(ax)
     return fig
 
 

@@ -12,19 +12,71 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 from numpy.typing import NDArray  # noqa: E402
 
 from linkstress.analysis import AnalysisResult  # noqa: E402
 
 LINK_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf")
+TICK_GAP_PX = 4.0
+"""Tick labels closer than this (at the saved resolution) run together to the eye ("0.3250.350")."""
+LABEL_ZORDER = 10
+"""Above every line and fill of a figure: a label on a marked point is never hidden by a curve or cut."""
 
 
 def png_bytes(fig: Figure, dpi: int = 110) -> bytes:
-    """The figure as PNG; the figure is closed."""
+    """The figure as PNG, its x tick labels spread apart (``spread_x_ticks``); the figure is closed."""
+    spread_x_ticks(fig, dpi)
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi)
     plt.close(fig)
     return buffer.getvalue()
+
+
+def outside_legend(ax, **options) -> None:
+    """The axes' legend to the right of the plot, where it covers no data (the figure's layout makes
+    room for it)."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8, **options)
+
+
+def spread_x_ticks(fig: Figure, dpi: int = 110) -> None:
+    """Fewer x ticks on every linear x axis of ``fig`` whose tick labels, drawn at ``dpi``, come
+    closer than TICK_GAP_PX: matplotlib's own count allows about three characters a label, and
+    "-0.025" has six."""
+    fig.set_dpi(dpi)
+    for ax in fig.axes:
+        if ax.get_xscale() != "linear":
+            continue
+        fig.canvas.draw()
+        gaps = x_tick_gaps(ax, fig.canvas.get_renderer())
+        bins = len(gaps) - 1
+        while bins >= 1 and min(gaps, default=TICK_GAP_PX) < TICK_GAP_PX:
+            ax.xaxis.set_major_locator(MaxNLocator(bins, steps=[1, 2, 5, 10], min_n_ticks=1))
+            fig.canvas.draw()
+            gaps = x_tick_gaps(ax, fig.canvas.get_renderer())
+            bins = min(bins, len(gaps)) - 1
+
+
+def x_tick_gaps(ax, renderer) -> list[float]:
+    """The gaps [pixels] between neighbouring x tick labels that ``ax`` shows (ticks inside its view),
+    as last drawn."""
+    low, high = sorted(ax.get_xlim())
+    span = 1e-9 * (high - low)
+    shown = [
+        label for at, label in zip(ax.get_xticks(), ax.get_xticklabels())
+        if low - span <= at <= high + span and label.get_visible() and label.get_text()
+    ]
+    boxes = sorted((label.get_window_extent(renderer) for label in shown), key=lambda box: box.x0)
+    return [b.x0 - a.x1 for a, b in zip(boxes, boxes[1:])]
+
+
+def boxed_label(ax, text: str, at, offset=(8, 8), **options) -> None:
+    """``text`` beside the point ``at``, offset by ``offset`` points, on a white box above every
+    other artist: readable over lines, fills and cut marks."""
+    ax.annotate(
+        text, at, textcoords="offset points", xytext=offset, zorder=LABEL_ZORDER,
+        bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="0.6", lw=0.5, alpha=0.9), **options,
+    )
 
 
 def _to_ground(result: AnalysisResult, name: str, k: int, local: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -34,7 +86,7 @@ def _to_ground(result: AnalysisResult, name: str, k: int, local: NDArray[np.floa
     return motion.origin[k] + local @ np.array([[c, s], [-s, c]])
 
 
-def _link_rings(result: AnalysisResult, name: str) -> list[NDArray[np.float64]]:
+def link_rings(result: AnalysisResult, name: str) -> list[NDArray[np.float64]]:
     """The link's outline rings in its member frame, or the polyline through its joints."""
     link = result.scene.links[name]
     frame = result.kinematics.links[name].frame_joints
@@ -46,12 +98,12 @@ def _link_rings(result: AnalysisResult, name: str) -> list[NDArray[np.float64]]:
 
 def mechanism_figure(result: AnalysisResult, k: int) -> Figure:
     """Every link at position ``k`` with its outline, and the joint forces as arrows."""
-    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    fig, ax = plt.subplots(figsize=(7.5, 5.5), layout="constrained")
     names = list(result.scene.links)
     points = []
     for index, name in enumerate(names):
         colour = LINK_COLOURS[index % len(LINK_COLOURS)]
-        for ring_index, ring in enumerate(_link_rings(result, name)):
+        for ring_index, ring in enumerate(link_rings(result, name)):
             xy = _to_ground(result, name, k, ring)
             points.append(xy)
             style = dict(color=colour, lw=1.6 if ring_index == 0 else 1.0)
@@ -65,26 +117,25 @@ def mechanism_figure(result: AnalysisResult, k: int) -> Figure:
     for name in result.stresses:
         where = result.max_location(name)[k]
         ax.plot(*where, marker="*", color="k", ms=12)
-        ax.annotate(f"max {name}", where, textcoords="offset points", xytext=(6, 6), fontsize=8)
+        boxed_label(ax, f"max {name}", where, offset=(6, 6), fontsize=8)
     ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
+    ax.set_xlabel("x [m], ground frame")
+    ax.set_ylabel("y [m], ground frame")
     ax.set_title(f"input angle {result.scene.motion.angle_deg[k]:.4g} deg")
-    ax.legend(fontsize=8, loc="best")
+    outside_legend(ax)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
     return fig
 
 
 def mechanism_sweep_figure(result: AnalysisResult, positions: list[int]) -> Figure:
     """Every link's outline at each of ``positions`` (faint to dark in sweep order) and the paths
     of all joints over the feasible sweep."""
-    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    fig, ax = plt.subplots(figsize=(7.5, 5.5), layout="constrained")
     names = list(result.scene.links)
     shades = np.linspace(0.25, 1.0, len(positions))
     for index, name in enumerate(names):
         colour = LINK_COLOURS[index % len(LINK_COLOURS)]
-        rings = _link_rings(result, name)
+        rings = link_rings(result, name)
         for shade, k in zip(shades, positions):
             xy = _to_ground(result, name, k, rings[0])
             ax.plot(xy[:, 0], xy[:, 1], color=colour, lw=0.8, alpha=float(shade),
@@ -96,24 +147,40 @@ def mechanism_sweep_figure(result: AnalysisResult, positions: list[int]) -> Figu
             if np.ptp(path, axis=0).max() > 0:
                 ax.plot(path[:, 0], path[:, 1], ":", color="0.4", lw=0.8)
     ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
+    ax.set_xlabel("x [m], ground frame")
+    ax.set_ylabel("y [m], ground frame")
     angles = result.scene.motion.angle_deg[positions]
     ax.set_title(f"{len(positions)} positions, input {angles[0]:.4g} to {angles[-1]:.4g} deg (dotted: joint paths)")
-    ax.legend(fontsize=8, loc="best")
+    outside_legend(ax)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
     return fig
 
 
-def _force_arrows(ax, result: AnalysisResult, k: int, size: float) -> None:
-    """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing."""
+def joint_forces(result: AnalysisResult) -> list[tuple[str, str, NDArray[np.float64]]]:
+    """Every joint force of the analysis as (label, joint, force): ``label`` "loop.Fij" (force of
+    link i on link j), ``joint`` "loop.NAME" of the joint it acts at (``joint_paths``), ``force``
+    (P, 2) [N], ground frame."""
     arrows = []
     for loop_name, mech in result.forces.mechanisms.items():
         joints = result.kinematics.loops[loop_name].joints
         at = {"F12": "O2", "F32": "A", "F43": "B", "F14": "O4" if "O4" in joints else "B"}
-        for label, force in mech.forces.items():
-            arrows.append((f"{loop_name}.{label}", joints[at[label]].position[k], force[k]))
+        arrows += [(f"{loop_name}.{label}", f"{loop_name}.{at[label]}", force) for label, force in mech.forces.items()]
+    return arrows
+
+
+def joint_paths(result: AnalysisResult) -> dict[str, NDArray[np.float64]]:
+    """Every loop's joints as "loop.NAME": position (P, 2) [m], ground frame."""
+    return {
+        f"{loop_name}.{name}": joint.position
+        for loop_name, loop in result.kinematics.loops.items()
+        for name, joint in loop.joints.items()
+    }
+
+
+def _force_arrows(ax, result: AnalysisResult, k: int, size: float) -> None:
+    """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing."""
+    paths = joint_paths(result)
+    arrows = [(label, paths[joint][k], force[k]) for label, joint, force in joint_forces(result)]
     largest = max((np.hypot(*f) for _, _, f in arrows), default=0.0)
     if largest <= 0:
         return
@@ -123,7 +190,7 @@ def _force_arrows(ax, result: AnalysisResult, k: int, size: float) -> None:
             "", xy=p, xytext=p - scale * f,
             arrowprops=dict(arrowstyle="->", color="crimson", lw=1.5),
         )
-        ax.annotate(f"{label} {np.hypot(*f):.4g} N", p - scale * f, fontsize=7, color="crimson")
+        ax.annotate(f"{label} {np.hypot(*f):.4g} N", p - scale * f, fontsize=7, color="crimson", zorder=LABEL_ZORDER)
 
 
 def stress_along_figure(
@@ -134,7 +201,7 @@ def stress_along_figure(
     for this one position (an analysis keeps only per-position reductions)."""
     stress = result.stresses[name].at(slice(k, k + 1))
     x = stress.x
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True, layout="constrained")
     top.plot(x, stress.von_mises[0] / 1e6, label="beam sections", color="#1f77b4")
     if fea_x is not None:
         top.plot(fea_x, np.asarray(fea_von_mises) / 1e6, "o", label="FEA, same fibre", color="#d62728")
@@ -142,15 +209,14 @@ def stress_along_figure(
         top.axvspan(a, b, color="0.85", lw=0)
     top.set_ylabel("von Mises [MPa]")
     top.set_title(f"{name} at input {result.scene.motion.angle_deg[k]:.4g} deg (grey: within a depth of a pin hole)")
-    top.legend(fontsize=8)
+    outside_legend(top)
     top.grid(alpha=0.3)
     bottom.plot(x, stress.forces.normal[0], label="N [N]")
     bottom.plot(x, stress.forces.shear[0], label="V [N]")
     bottom.plot(x, stress.forces.moment[0], label="M [N m]")
-    bottom.set_xlabel("x along the member [m]")
-    bottom.legend(fontsize=8)
+    bottom.set_xlabel("x along the member [m], member frame")
+    outside_legend(bottom)
     bottom.grid(alpha=0.3)
-    fig.tight_layout()
     return fig
 
 
@@ -173,7 +239,7 @@ def sweep_figure(result: AnalysisResult) -> Figure:
     ok = result.feasible
     angle = result.scene.motion.angle_deg
     panels = 1 + (result.forces is not None) + bool(result.stresses)
-    fig, axes = plt.subplots(panels, 1, figsize=(7.5, 2.6 * panels), sharex=True, squeeze=False)
+    fig, axes = plt.subplots(panels, 1, figsize=(7.5, 2.6 * panels), sharex=True, squeeze=False, layout="constrained")
     axes = list(axes[:, 0])
     if result.forces is not None:
         ax = axes.pop(0)
@@ -183,21 +249,20 @@ def sweep_figure(result: AnalysisResult) -> Figure:
             if mech.driving_force is not None:
                 ax.plot(angle[ok], mech.driving_force[ok], ".-", ms=3, label=f"{name} P14 [N]")
         ax.set_ylabel("driving torque [N m]")
-        ax.legend(fontsize=8)
+        outside_legend(ax)
         ax.grid(alpha=0.3)
     if result.stresses:
         ax = axes.pop(0)
         for name, stress in result.stresses.items():
             ax.plot(angle[ok], stress.max_von_mises[ok] / 1e6, ".-", ms=3, label=name)
         ax.set_ylabel("max von Mises [MPa]")
-        ax.legend(fontsize=8)
+        outside_legend(ax)
         ax.grid(alpha=0.3)
     ax = axes.pop(0)
     for name, loop in result.kinematics.loops.items():
         ax.plot(angle[ok], np.degrees(loop.transmission_angle[ok]), ".-", ms=3, label=name)
     ax.set_ylabel("transmission angle [deg]")
     ax.set_xlabel("input angle [deg]")
-    ax.legend(fontsize=8)
+    outside_legend(ax)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
     return fig

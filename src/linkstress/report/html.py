@@ -1,4 +1,5 @@
-"""One self-contained HTML file per run: figures inline (base64 PNG), no network, no scripts.
+"""One self-contained HTML file per run: figures inline (base64 PNG), the interactive view of the
+mechanism inline (its data and script in the page), no network.
 
 The page states the exact loads that were applied and the versions that produced it, so that
 everything in it can be reproduced from the scene file alone.
@@ -24,12 +25,15 @@ from linkstress.report.figures import (
     sweep_figure,
 )
 from linkstress.report.maxima import link_figures, worst_position
+from linkstress.report.mechanism_view import view_html
 from linkstress.report.records import link_columns
 from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings
 from linkstress.safety import link_safety_factors
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
 MAX_DRAWN_POSITIONS = 4
+STRESS_HEADERS = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
+                  "pin hole estimate [Pa]", "curved")
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1000px; color: #222; }
@@ -39,6 +43,8 @@ th, td { border: 1px solid #ccc; padding: 0.2em 0.6em; text-align: right; }
 th { background: #f2f2f2; } td.text, th.text { text-align: left; }
 img { max-width: 100%; display: block; margin: 0.5em 0; }
 .note { color: #555; font-size: 0.9em; }
+.view-controls { display: flex; align-items: center; gap: 0.6em; margin: 0.5em 0; }
+#view-slider { flex: 1; }
 """
 
 
@@ -134,6 +140,7 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
         *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
         *(f"<p><b>{html.escape(line)}</b></p>" for line in _warning_lines(result)),
+        "<h2>Mechanism, position by position</h2>", view_html(result),
         "<h2>Loads applied</h2>", loads_html(result),
         "<h2>Mechanism</h2>",
     ]
@@ -216,11 +223,9 @@ def _stress_table(result: AnalysisResult) -> str:
         where += [f"{name}: {line}" for line in lines]
     if not rows:
         return ""
-    headers = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
-               "pin hole estimate [Pa]", "curved")
     items = "".join(f"<li>{html.escape(line)}</li>" for line in where)
     return (
-        "<h3>Largest stresses over the sweep</h3>" + table_html(headers, rows)
+        "<h3>Largest stresses over the sweep</h3>" + table_html(STRESS_HEADERS, rows)
         + '<p class="note">Where each figure comes from (its input angle; its point in the ground frame at that '
         f"input):</p><ul class=\"note\">{items}</ul>"
     )

@@ -7,6 +7,11 @@ from linkstress.analysis import AnalysisResult
 from linkstress.report.peak_records import peak_summaries
 from linkstress.tables import format_table
 
+PEAK_HEADERS = (
+    "link", "FEA peak [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "beam max [Pa]", "peak / beam",
+    "peak check", "yield safety factor (FEA peak)", "fatigue safety factor", "critical point (x, y) [m], drawing frame",
+)
+
 
 def peaks_table(result: AnalysisResult) -> str:
     """Per link: the FEA peak over the sweep (where and when), the beam's largest nominal value
@@ -41,14 +46,10 @@ def peaks_table(result: AnalysisResult) -> str:
             )
         notes.append(line)
         notes += [f"  {name}: {text}" for text in (s["peak_note"], s["fatigue_note"]) if text]
-    headers = (
-        "link", "FEA peak [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "beam max [Pa]", "peak / beam",
-        "peak check", "yield safety factor (FEA peak)", "fatigue safety factor", "critical point (x, y) [m], drawing",
-    )
     return "\n".join([
         "FEA peak stresses over the sweep (plane-stress FEA of each link, its unit load cases superposed at every "
         "position; von Mises anywhere in the link: pin holes, fillets, curved crowns)",
-        format_table(headers, rows),
+        format_table(PEAK_HEADERS, rows),
         *notes,
         "peak check: the peak's change at its worst position over the last two mesh refinements (limit 5 % each); a "
         "peak that has not settled gives no safety factor. fatigue: over the sweep, per point, the alternating and mean of the "

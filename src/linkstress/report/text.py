@@ -30,6 +30,8 @@ from linkstress.scene import Scene
 from linkstress.tables import format_table
 
 MAX_ROWS = 40
+STRESS_HEADERS = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
+                  "pin hole estimate [Pa]", "equilibrium check")
 
 
 def report(result: AnalysisResult) -> str:
@@ -216,8 +218,7 @@ def stress_table(result: AnalysisResult) -> str:
                 uncovered_notes.append(_uncovered_note(name, uncovered, int(ok.sum()), name in result.peaks))
         rows.append(tuple(row))
         where += [f"  {name}: {line}" for line in figure_lines(figures)]
-    headers = ["link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
-               "pin hole estimate [Pa]", "equilibrium check"]
+    headers = list(STRESS_HEADERS)
     if factors:
         headers += ["yield safety factor", "at pin holes (estimate)"]
     lines = [
