@@ -30,6 +30,25 @@ def test_in_parallel_runs_every_block_exactly_once():
     assert (seen == 1).all()
 
 
+def test_in_parallel_called_from_inside_a_block_runs_there_instead_of_waiting_for_the_pool(monkeypatch):
+    import linkstress.threads as threads
+
+    monkeypatch.setattr(threads, "cores", lambda: 2)
+    threads._pool.cache_clear()
+    seen = np.zeros((4, 8), int)
+
+    def inner(cell):
+        seen[cell] += 1
+
+    def outer(row):
+        # every outer block holds a pool thread; nested pool waits would deadlock with 2 threads
+        in_parallel(inner, [(row, k) for k in range(8)])
+
+    in_parallel(outer, [0, 1, 2, 3])
+    threads._pool.cache_clear()
+    assert (seen == 1).all()
+
+
 def test_in_parallel_raises_what_a_block_raised():
     def work(k):
         if k == 3:

@@ -11,6 +11,7 @@ thread while an analysis runs.
 from __future__ import annotations
 
 import os
+import threading
 from collections.abc import Callable, Sequence
 from contextlib import AbstractContextManager
 from functools import lru_cache
@@ -24,17 +25,24 @@ if TYPE_CHECKING:
 
 Block = TypeVar("Block")
 
+POOL_PREFIX = "linkstress-pool"
+"""Name prefix of the pool's threads, so that a block can tell it runs on one."""
+
 
 def in_parallel(work: Callable[[Block], None], blocks: Sequence[Block], threads: bool = True) -> None:
     """``work(block)`` for every block, on a thread per core where ``threads`` and there is more
     than one block (small work runs faster on the calling thread alone). The blocks' writes must
-    not overlap; an exception in any block is raised here. Not to be called from inside a block: it
-    would wait for threads that its caller holds."""
-    if not threads or len(blocks) <= 1 or cores() == 1:
+    not overlap; an exception in any block is raised here. Called from inside a block, it runs its
+    blocks on that block's thread: waiting for the pool there could wait for threads its caller holds."""
+    if not threads or len(blocks) <= 1 or cores() == 1 or _in_pool():
         for block in blocks:
             work(block)
         return
     list(_pool().map(work, blocks))
+
+
+def _in_pool() -> bool:
+    return threading.current_thread().name.startswith(POOL_PREFIX)
 
 
 def even_blocks(count: int, pieces: int) -> list[slice]:
@@ -59,7 +67,7 @@ def _pool() -> ThreadPoolExecutor:
     # here, as a run of a single block (one position) needs no pool and concurrent.futures costs ~5 ms
     from concurrent.futures import ThreadPoolExecutor
 
-    return ThreadPoolExecutor(cores(), thread_name_prefix="linkstress")
+    return ThreadPoolExecutor(cores(), thread_name_prefix=POOL_PREFIX)
 
 
 if hasattr(os, "register_at_fork"):
