@@ -41,8 +41,18 @@ _DXF_UNICODE = re.compile(r"(\\U\+[A-Fa-f0-9]{4})")
 
 def decode_dxf_unicode(text: str) -> str:
     """``text`` with each ``\\U+XXXX`` (how DXF R12 writes a character beyond ASCII) decoded, exactly
-    as ezdxf's ``decode_dxf_unicode`` does (a piece that starts ``\\U+`` is taken as hex, even a short one)."""
-    return "".join(chr(int(part[3:], 16)) if part.startswith("\\U+") else part for part in _DXF_UNICODE.split(text))
+    as ezdxf's ``decode_dxf_unicode`` does (a piece that starts ``\\U+`` is taken as hex, even a short one);
+    a piece that is not hex at all (``\\U+zzzz``) stays as written."""
+    return "".join(_decoded(part) for part in _DXF_UNICODE.split(text))
+
+
+def _decoded(part: str) -> str:
+    if not part.startswith("\\U+"):
+        return part
+    try:
+        return chr(int(part[3:], 16))
+    except ValueError:
+        return part
 
 
 class DamagedDXF(Exception):

@@ -99,3 +99,22 @@ def test_a_stray_line_on_a_links_own_layer_refuses_that_link_in_a_scene_with_the
     assert sketch.link("coupler").layer == "coupler"
     assert main(["import", str(tmp_path / "asm.dxf"), "--scene", str(tmp_path / "scene.toml")]) == 2
     assert "layer 'crank': open curve: LINE" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("version", ["R2000", "R2013"])
+def test_a_layer_named_with_a_unicode_escape_that_is_not_hex_reads_as_written(tmp_path, version):
+    doc = ezdxf.new(version, units=4)
+    bar(doc.modelspace(), "\\U+zzzz", 0.0, 0.0, 100.0)
+    path = tmp_path / "odd.dxf"
+    doc.saveas(path)
+    sketch = read_sketch(path, layers=["\\U+zzzz"])
+    assert [link.layer for link in sketch.links] == ["\\U+zzzz"]
+
+
+def test_a_layer_option_with_a_unicode_escape_that_is_not_hex_is_refused_by_name(tmp_path):
+    doc = ezdxf.new("R2000", units=4)
+    bar(doc.modelspace(), "crank", 0.0, 0.0, 100.0)
+    path = tmp_path / "bar.dxf"
+    doc.saveas(path)
+    with pytest.raises(SketchError, match=r"no layer '\\\\U\+zzzz' in the drawing"):
+        read_sketch(path, layers=["\\U+zzzz"])
