@@ -224,9 +224,11 @@ def test_binary_dxf_goes_to_ezdxf(tmp_path):
 def test_dxf_unicode_decodes_as_ezdxf_decodes():
     for text in ["plain", "\\U+039Bcrank", "a\\U+00e9b\\U+00E9", "\\U+12", "x\\U+12", "\\\\U+0041", "\\U+D800"]:
         assert decode_dxf_unicode(text) == ezdxf.decode_dxf_unicode(text)
-    for decode in (decode_dxf_unicode, ezdxf.decode_dxf_unicode):
-        with pytest.raises(ValueError):
-            decode("\\U+zzzz")  # not hex after the escape: both refuse it alike
+    # not hex after the escape: ezdxf raises; ours keeps it as written, so that a layer name or a
+    # --layers value like it is a name, never a traceback
+    with pytest.raises(ValueError):
+        ezdxf.decode_dxf_unicode("\\U+zzzz")
+    assert decode_dxf_unicode("\\U+zzzz") == "\\U+zzzz"
 
 
 def test_reading_the_seed_sketch_imports_neither_ezdxf_nor_scipy():
