@@ -145,3 +145,16 @@ def test_with_peaks_the_flag_points_to_the_fea_peak_table(tmp_path, capsys):
     assert main(["analyze", str(scene), "--peaks"]) == 0
     notes = [line for line in capsys.readouterr().out.splitlines() if line.startswith("* ")]
     assert notes and all("the FEA peak table below gives the stress there" in n for n in notes)
+
+
+def test_the_html_safety_table_names_the_pin_holes_no_factor_covers(tmp_path):
+    report = tmp_path / "report.html"
+    assert main(["analyze", str(seed_scene(tmp_path, "yield_strength = 250e6\n")), "--html", str(report)]) == 0
+    text = report.read_text()
+    table = text.split("<h3>Safety factors against yield</h3>", 1)[1].split("</table>", 1)[0]
+    rows = {row.split("</td>", 1)[0]: row for row in table.split('<tr><td class="text">')[1:]}
+    assert "pin holes NO factor covers" in table
+    assert rows["crank"].endswith('<td class="text">joint 0 (at 1 of 1 positions)</td></tr>')
+    assert rows["output"].endswith('<td class="text">joint 0 (at 1 of 1 positions)</td></tr>')
+    assert rows["coupler"].endswith('<td class="text">-</td></tr>')
+    assert "analyze --peaks gives the FEA peak there" in text

@@ -87,3 +87,11 @@ def link_safety_factors(result: AnalysisResult) -> dict[str, SafetyFactors]:
 def finite_or_none(values: NDArray[np.float64]) -> list[float | None]:
     """JSON-ready values: None where a factor is infinite (no stress, or no estimate there)."""
     return [v if np.isfinite(v) else None for v in values.tolist()]
+
+
+def uncovered_pin_holes(stress: SectionStresses | StressSummary, feasible: NDArray[np.bool_]) -> list[tuple[int, int]]:
+    """(joint, positions) of each loaded pin hole whose estimate is outside the Kt tables at some
+    ``feasible`` position: there no yield safety factor covers the hole (beam theory is silent at a
+    hole, and no estimate stands in for it)."""
+    counts = [(hole.joint, int((hole.outside & (hole.nominal > 0))[feasible].sum())) for hole in stress.pin_holes]
+    return [(joint, count) for joint, count in counts if count]

@@ -28,7 +28,7 @@ from linkstress.report.maxima import link_figures, worst_position
 from linkstress.report.mechanism_view import view_html
 from linkstress.report.records import link_columns
 from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings
-from linkstress.safety import link_safety_factors
+from linkstress.safety import link_safety_factors, uncovered_pin_holes
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
 MAX_DRAWN_POSITIONS = 4
@@ -265,11 +265,13 @@ def _safety_table(result: AnalysisResult) -> str:
     """Per link whose material gives a yield strength, the sweep's lowest safety factors against it,
     each with the input angle it comes from (and the joint of the pin hole)."""
     rows = []
+    ok = result.feasible
     for name, factors in link_safety_factors(result).items():
         figures = link_figures(result, name, factors)
         if figures is None:
             return ""
         section, pin = figures.section_factor, figures.pin_hole_factor
+        uncovered = uncovered_pin_holes(result.stresses[name], ok)
         rows.append((
             name, factors.yield_strength,
             _finite(section.value),
@@ -277,17 +279,21 @@ def _safety_table(result: AnalysisResult) -> str:
             "-" if pin is None else _finite(pin.value),
             "-" if pin is None else pin.input_angle_deg,
             "-" if pin is None else pin.joint,
+            "; ".join(f"joint {joint} (at {count} of {int(ok.sum())} positions)" for joint, count in uncovered) or "-",
         ))
     if not rows:
         return ""
     headers = ("link", "yield strength [Pa]", "lowest, sections", "at input [deg]", "lowest, pin holes (ESTIMATE)",
-               "at input [deg]", "at the pin hole of joint")
+               "at input [deg]", "at the pin hole of joint", "pin holes NO factor covers")
     return (
         "<h3>Safety factors against yield</h3>"
         + table_html(headers, rows)
         + '<p class="note">The material\'s yield_strength over the largest section von Mises (beam theory, nominal '
         "near pin holes and junctions, curved-beam on curved members) and over the largest pin-hole estimate Kt x "
-        "nominal, each at the input angle given.</p>"
+        "nominal, each at the input angle given. A loaded pin hole outside the Kt tables has no estimate, and beam theory "
+        "is silent at a hole: no factor here covers it (last column); "
+        + ("the FEA peaks below give the stress there." if result.peaks else "analyze --peaks gives the FEA peak there.")
+        + "</p>"
     )
 
 

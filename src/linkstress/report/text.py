@@ -25,7 +25,7 @@ from linkstress.kinematics.linkage_class import (
 from linkstress.report.maxima import LinkFigures, link_figures
 from linkstress.report.peak_text import peaks_table
 from linkstress.report.records import link_columns
-from linkstress.safety import link_safety_factors
+from linkstress.safety import link_safety_factors, uncovered_pin_holes
 from linkstress.scene import Scene
 from linkstress.tables import format_table
 
@@ -211,7 +211,7 @@ def stress_table(result: AnalysisResult) -> str:
         ]
         if factors:
             row += _factor_cells(factors.get(name), ok)
-            uncovered = uncovered_holes(stress, ok)
+            uncovered = uncovered_pin_holes(stress, ok)
             if name in factors and uncovered:
                 joints = ", ".join(str(joint) for joint, _ in uncovered)
                 row[-1] = f"{row[-1]} (joint {joints}: no estimate *)"
@@ -239,13 +239,6 @@ def stress_table(result: AnalysisResult) -> str:
         )
     lines += uncovered_notes
     return "\n".join(lines)
-
-
-def uncovered_holes(stress, ok) -> list[tuple[int, int]]:
-    """(joint, positions) of each loaded pin hole whose estimate is outside the Kt tables at some
-    feasible position: there no figure of the table covers the hole."""
-    counts = [(hole.joint, int((hole.outside & (hole.nominal > 0))[ok].sum())) for hole in stress.pin_holes]
-    return [(joint, count) for joint, count in counts if count]
 
 
 def _uncovered_note(name: str, holes: list[tuple[int, int]], feasible: int, peaks: bool) -> str:
