@@ -7,8 +7,7 @@ import math
 
 import numpy as np
 import pytest
-import shapely
-from shapely.geometry import LineString, Point, Polygon, box
+from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import split, unary_union
 
 from linkstress.builders import stadium, straight_bar
@@ -317,3 +316,13 @@ def test_two_joints_at_one_point_are_refused_naming_them():
     doubled = LinkProfile(bar.outline, np.array([[0.0, 0.0], [SPAN, 0.0], [SPAN, 0.0]]), 0.008, STRUCTURAL_STEEL, name="bar")
     with pytest.raises(GeometryError, match=r"link 'bar': joints 1 and 2 are at the same point \(0.2, 0\) m"):
         link_members(doubled, (0, 1))
+
+
+def test_the_centreline_median_is_numpys_median_for_odd_and_even_counts():
+    from linkstress.centreline import median
+
+    rng = np.random.default_rng(7)
+    for count in range(1, 30):
+        values = rng.normal(size=count)
+        assert median(values) == float(np.median(values))
+    assert median(np.array([3.0, 1.0, 2.0, 10.0])) == 2.5

@@ -38,7 +38,7 @@ from linkstress.kinematics.crossings import (
     BranchPoint,
     find_crossings,
 )
-from linkstress.kinematics.blocks import angle_of, dot_into, empty_arrays, set_columns, solve_in_blocks
+from linkstress.kinematics.blocks import angle_of, dot_into, empty_arrays, solve_in_blocks
 from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.results import FloatArray, JointMotion, LinkMotion, LoopMotion, fixed_link
 
