@@ -257,3 +257,16 @@ def test_a_plain_analyze_imports_no_dask():
     done = subprocess.run([sys.executable, "-c", program, str(CASES / "seed_ansys_fourbar" / "scene.toml")],
                           capture_output=True, text=True, check=True)
     assert done.stdout.strip().splitlines()[-1] == "[]"
+
+
+def _threads_on_worker() -> tuple[str | None, int]:
+    import os
+
+    from linkstress.threads import cores
+
+    return os.environ.get("LINKSTRESS_THREADS"), cores()
+
+
+def test_the_workers_linkstress_starts_run_one_thread_each(client):
+    # a worker per core, each with a thread per core, would put cores^2 threads on the cores
+    assert set(client.run(_threads_on_worker).values()) == {("1", 1)}

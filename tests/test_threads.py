@@ -177,3 +177,24 @@ def test_the_joint_forces_of_a_long_sweep_solved_on_every_core_equal_those_solve
     for name, force in whole.mechanisms["main"].forces.items():
         np.testing.assert_array_equal(split.mechanisms["main"].forces[name], force)
     np.testing.assert_array_equal(split.mechanisms["main"].driving_torque, whole.mechanisms["main"].driving_torque)
+
+
+def test_linkstress_threads_caps_the_cores_a_process_uses(monkeypatch):
+    from linkstress.threads import cores
+
+    monkeypatch.delenv("LINKSTRESS_THREADS", raising=False)
+    available = cores()
+    monkeypatch.setenv("LINKSTRESS_THREADS", "1")
+    assert cores() == 1
+    monkeypatch.setenv("LINKSTRESS_THREADS", str(available + 5))
+    assert cores() == available  # never more than the machine gives
+
+
+@pytest.mark.parametrize("value", ["0", "two", "-1", "1.5"])
+def test_a_bad_linkstress_threads_stops_any_command_with_exit_2_naming_it(value, monkeypatch, capsys):
+    from linkstress.cli import main
+
+    monkeypatch.setenv("LINKSTRESS_THREADS", value)
+    assert main(["analyze", str(SEED)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "LINKSTRESS_THREADS" in err and "whole number" in err

@@ -65,6 +65,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
+        from linkstress.threads import thread_limit
+
+        thread_limit()  # a bad LINKSTRESS_THREADS stops the run before any work, by name
         return int(args.run(args))
     except InputError as error:
         print(f"linkstress: error: {error}", file=sys.stderr)

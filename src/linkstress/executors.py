@@ -37,8 +37,13 @@ LOCAL = "local"
 CONNECT_SECONDS = 5
 """How long to wait for a scheduler to answer before saying it is unreachable."""
 INSTALL = 'pip install "linkstress[cluster]"'
-UNTRIMMED = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
-"""Dask's configuration for workers that keep glibc's own malloc thresholds. A nanny sets
+WORKER_ENVIRON = {
+    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+    "distributed.nanny.pre-spawn-environ.LINKSTRESS_THREADS": "1",
+}
+"""Dask's configuration for the workers linkstress starts: one thread each (``linkstress.threads``
+would otherwise run a thread per core in every worker process, and a cluster has a worker per core),
+and glibc's own malloc thresholds. A nanny sets
 MALLOC_TRIM_THRESHOLD_=65536 in its worker's environment (to hand freed memory back sooner), which
 fixes glibc's mmap threshold at 128 kB: every larger numpy array is then mapped and unmapped anew,
 page faults included. Measured on the six_bar case: 3.4-3.9 s of CPU per run with it, 1.8-1.9 s
@@ -176,10 +181,11 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
 
 
 def local_cluster(workers: int):
-    """A distributed.LocalCluster of ``workers`` processes of one thread each, with glibc's own
-    malloc thresholds (UNTRIMMED), no dashboard; a context manager that closes it."""
+    """A distributed.LocalCluster of ``workers`` processes of one thread each (linkstress's own
+    threads too), with glibc's own malloc thresholds (``WORKER_ENVIRON``), no dashboard; a context
+    manager that closes it."""
     import dask
     from distributed import LocalCluster
 
-    with dask.config.set(UNTRIMMED):
+    with dask.config.set(WORKER_ENVIRON):
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)

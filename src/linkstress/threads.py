@@ -20,6 +20,8 @@ from typing import TYPE_CHECKING, TypeVar
 import numpy as np
 from threadpoolctl import ThreadpoolController
 
+from linkstress.errors import InputError
+
 if TYPE_CHECKING:
     from concurrent.futures import ThreadPoolExecutor
 
@@ -57,8 +59,26 @@ def blas_alone() -> AbstractContextManager:
 
 
 def cores() -> int:
-    """The cores this process may run on."""
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    """The cores this process may run on, or fewer where ``LINKSTRESS_THREADS`` asks for fewer (a Dask
+    worker beside others on one machine runs on one: a thread per core in every worker would put
+    workers x cores threads on the machine's cores)."""
+    available = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    limit = thread_limit()
+    return available if limit is None else min(available, limit)
+
+
+THREADS_VARIABLE = "LINKSTRESS_THREADS"
+
+
+def thread_limit() -> int | None:
+    """The environment's ``LINKSTRESS_THREADS`` (a whole number >= 1), None when unset; an
+    ``InputError`` naming the variable when it is set to anything else."""
+    text = os.environ.get(THREADS_VARIABLE, "").strip()
+    if not text:
+        return None
+    if not text.isdigit() or int(text) < 1:
+        raise InputError(f"{THREADS_VARIABLE}={text[:40]!r}: must be a whole number of threads, 1 or more (or unset)")
+    return int(text)
 
 
 @lru_cache(maxsize=1)
