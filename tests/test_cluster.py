@@ -267,6 +267,11 @@ def _threads_on_worker() -> tuple[str | None, int]:
     return os.environ.get("LINKSTRESS_THREADS"), cores()
 
 
-def test_the_workers_linkstress_starts_run_one_thread_each(client):
+def test_the_workers_linkstress_starts_run_one_thread_each_and_this_process_keeps_its_own():
     # a worker per core, each with a thread per core, would put cores^2 threads on the cores
-    assert set(client.run(_threads_on_worker).values()) == {("1", 1)}
+    before = os.environ.get("LINKSTRESS_THREADS")
+    with local_cluster(1) as cluster, distributed.Client(cluster) as client:
+        assert set(client.run(_threads_on_worker).values()) == {("1", 1)}
+        # a nanny sets its worker's environment in this process's os.environ: undone once started
+        assert os.environ.get("LINKSTRESS_THREADS") == before
+    assert os.environ.get("LINKSTRESS_THREADS") == before

@@ -180,12 +180,32 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
         yield DaskExecutor(client, scheduler)
 
 
-def local_cluster(workers: int):
+@contextmanager
+def local_cluster(workers: int) -> Iterator[object]:
     """A distributed.LocalCluster of ``workers`` processes of one thread each (linkstress's own
-    threads too), with glibc's own malloc thresholds (``WORKER_ENVIRON``), no dashboard; a context
-    manager that closes it."""
+    threads too), with glibc's own malloc thresholds (``WORKER_ENVIRON``), no dashboard, closed on
+    leaving the context."""
     import dask
     from distributed import LocalCluster
 
-    with dask.config.set(WORKER_ENVIRON):
-        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+    # A nanny sets its worker's environment in this process's os.environ before it spawns it, and
+    # leaves it there: this process would then run linkstress on one thread too. Undone once the
+    # workers are up and when the cluster closes (a worker restarted in between sets it again).
+    names = [key.rsplit(".", 1)[1] for key in WORKER_ENVIRON]
+    saved = {name: os.environ.get(name) for name in names}
+    try:
+        with dask.config.set(WORKER_ENVIRON), LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster:
+            _restore(saved)
+            yield cluster
+    finally:
+        _restore(saved)
+
+
+def _restore(environ: dict[str, str | None]) -> None:
+    for name, value in environ.items():
+        if value is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = value
