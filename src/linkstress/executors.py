@@ -183,8 +183,8 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
 @contextmanager
 def local_cluster(workers: int) -> Iterator[object]:
     """A distributed.LocalCluster of ``workers`` processes of one thread each (linkstress's own
-    threads too), with glibc's own malloc thresholds (``WORKER_ENVIRON``), no dashboard, closed on
-    leaving the context."""
+    threads too), with glibc's own malloc thresholds (``WORKER_ENVIRON``) and its HTTP server on a
+    free port (two clusters at once must not fight for Dask's 8787), closed on leaving the context."""
     import dask
     from distributed import LocalCluster
 
@@ -195,7 +195,7 @@ def local_cluster(workers: int) -> Iterator[object]:
     saved = {name: os.environ.get(name) for name in names}
     try:
         with dask.config.set(WORKER_ENVIRON), LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0"
         ) as cluster:
             _restore(saved)
             yield cluster
