@@ -29,19 +29,15 @@ LAZY_UPWARD = {"src/linkstress/analysis.py": {"linkstress.validation.peaks_scene
 """Core modules allowed one import from above, inside a function (an optional, heavy stage)."""
 
 
-def layer_of_file(path: Path) -> str:
-    relative = path.relative_to(ROOT).as_posix()
-    if relative.startswith("src/linkstress/commands/") or relative in ("src/linkstress/cli.py", "src/linkstress/__main__.py"):
-        return "commands"
-    if relative.startswith("src/"):
-        return "core"
-    if relative.startswith("importers/"):
-        return "importers"
-    if relative.startswith("validation/fea/"):
-        return "fea"
-    if relative.startswith("validation/bench/"):
-        return "bench"
-    return "validation"
+FOLDERS = {"src/linkstress": "linkstress", "importers": "linkstress.importers", "validation": "linkstress.validation"}
+"""Source folder -> import name, as pyproject.toml's package-dir maps them."""
+
+
+def module_of_file(path: Path) -> str:
+    """The import name of the module in ``path``."""
+    relative = path.relative_to(ROOT).with_suffix("").as_posix()
+    folder = next(f for f in FOLDERS if relative.startswith(f + "/"))
+    return ".".join([FOLDERS[folder], *relative[len(folder) + 1:].split("/")])
 
 
 def layer_of_module(name: str) -> str | None:
@@ -53,7 +49,7 @@ def layer_of_module(name: str) -> str | None:
         return "validation"
     if name.startswith("linkstress.importers"):
         return "importers"
-    if name.startswith("linkstress.commands") or name == "linkstress.cli":
+    if name.startswith("linkstress.commands") or name in ("linkstress.cli", "linkstress.__main__"):
         return "commands"
     if name.startswith("linkstress"):
         return "core"
@@ -84,7 +80,7 @@ SOURCES = sorted(
 
 @pytest.mark.parametrize("path", SOURCES, ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_a_module_imports_only_from_its_own_layer_or_below(path):
-    own = layer_of_file(path)
+    own = layer_of_module(module_of_file(path))
     allowed_lazy = LAZY_UPWARD.get(path.relative_to(ROOT).as_posix(), set())
     upward = [
         name
