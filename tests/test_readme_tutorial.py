@@ -4,6 +4,7 @@ with peaks, validate; the figures the tutorial quotes are the ones the run gives
 from __future__ import annotations
 
 import json
+import os
 import re
 import shlex
 import tomllib
@@ -66,8 +67,6 @@ def run(tmp_path_factory):
     (folder / "docs").symlink_to(REPO / "docs")
     steps = commands()
     assert [s[0] for s in steps] == ["import", "analyze", "validate"]
-    import os
-
     here = os.getcwd()
     os.chdir(folder)
     try:

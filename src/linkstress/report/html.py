@@ -27,7 +27,7 @@ from linkstress.report.figures import (
 from linkstress.report.maxima import link_figures, worst_position
 from linkstress.report.mechanism_view import view_html
 from linkstress.report.records import link_columns
-from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings
+from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings, uncovered_text
 from linkstress.safety import link_safety_factors, uncovered_pin_holes
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
@@ -279,7 +279,7 @@ def _safety_table(result: AnalysisResult) -> str:
             "-" if pin is None else _finite(pin.value),
             "-" if pin is None else pin.input_angle_deg,
             "-" if pin is None else pin.joint,
-            "; ".join(f"joint {joint} (at {count} of {int(ok.sum())} positions)" for joint, count in uncovered) or "-",
+            uncovered_text(uncovered, int(ok.sum())) or "-",
         ))
     if not rows:
         return ""

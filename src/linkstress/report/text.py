@@ -241,9 +241,14 @@ def stress_table(result: AnalysisResult) -> str:
     return "\n".join(lines)
 
 
+def uncovered_text(holes: list[tuple[int, int]], feasible: int) -> str:
+    """The pin holes no factor covers (``uncovered_pin_holes``), in words: where and how often."""
+    return ", ".join(f"joint {joint} (at {count} of {feasible} positions)" for joint, count in holes)
+
+
 def _uncovered_note(name: str, holes: list[tuple[int, int]], feasible: int, peaks: bool) -> str:
     """Why a link's yield safety factor covers its sections only, and where the holes' stress is."""
-    listed = ", ".join(f"joint {joint} (at {count} of {feasible} positions)" for joint, count in holes)
+    listed = uncovered_text(holes, feasible)
     where = ("the FEA peak table below gives the stress there, holes included" if peaks
              else "run analyze --peaks (or validate) for the FEA peak there, holes included")
     return (f"* {name}: no yield safety factor covers the pin holes at {listed}: they are outside the Kt tables, "
