@@ -94,8 +94,8 @@ def test_the_written_and_edited_scene_is_the_scene_the_tutorial_describes(run):
 
 def test_the_figures_the_tutorial_quotes_are_those_of_the_run(run):
     folder, _ = run
-    links = json.loads((folder / "analysis.json").read_text())["links"]
-    positions = json.loads((folder / "analysis.json").read_text())["positions"]
+    analysis = json.loads((folder / "analysis.json").read_text())
+    links, positions = analysis["links"], analysis["positions"]
     rocker = links["rocker"]
     beam = max(p["links"]["rocker"]["max_von_mises_pa"] for p in positions)
     beam_factor = min(p["links"]["rocker"]["yield_safety_factor"] for p in positions)
