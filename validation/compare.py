@@ -52,9 +52,10 @@ from linkstress.validation.fea.convergence import (
     RESULTANT_CONVERGED_CHANGE,
     ConvergenceStudy,
     convergence_study,
+    join_studies,
 )
 from linkstress.validation.fea.errors import FEAError
-from linkstress.validation.fea.link import CutResultants, LinkFEAResult, solve_link
+from linkstress.validation.fea.link import CutResultants, LinkFEAResult, join_cut_resultants, join_results, solve_link
 from linkstress.validation.fea.mesh import MeshSettings
 
 COMPARISON_STATIONS = 15
@@ -290,6 +291,10 @@ class MemberBeam:
         """Points (Pc, S, 2) [m] of the critical fibres."""
         return self.cuts.origin[None] + self.fibre_v[..., None] * self.cuts.normal[None]
 
+    def at(self, rows: NDArray[np.intp]) -> "MemberBeam":
+        """The same member at the positions ``rows`` (indices into the Pc)."""
+        return replace(self, forces=self.forces[:, rows], von_mises=self.von_mises[rows], fibre_v=self.fibre_v[rows])
+
 
 @dataclass(frozen=True)
 class MemberComparison:
@@ -452,6 +457,138 @@ def default_mesh(
     return MeshSettings(size=size, hole_size=min(hole, size / 2), stations=tuple(stations.tolist()))
 
 
+@dataclass(frozen=True)
+class LinkBeams:
+    """The beam side of a link's comparison at Pc positions: ``sections`` at ``stations`` (S,) [m]
+    along the member of its frame joints, the same as ``along``, and ``members`` each along its own
+    axis; ``note``: why the stations are not the usual ones ("" when they are); ``seconds`` to make them."""
+
+    stations: NDArray[np.float64]
+    sections: SectionStresses
+    along: MemberBeam
+    members: tuple[MemberBeam, ...]
+    note: str
+    seconds: float
+
+    @property
+    def away(self) -> NDArray[np.bool_]:
+        """(S,): the frame member's stations compared as nominal, a section depth from the holes."""
+        return ~self.sections.near_hole
+
+    @property
+    def compared(self) -> tuple[MemberBeam, ...]:
+        """The frame's member, then each member: what the FEA is compared along."""
+        return (self.along, *self.members)
+
+    def nominal_points(self) -> NDArray[np.float64]:
+        """(Q, 2) [m, member frame]: the critical fibres of the nominal stations at every position,
+        each once: the points a refinement study follows."""
+        return np.unique(np.concatenate([
+            self.along.fibres[:, self.away].reshape(-1, 2), *(b.fibres[:, b.away].reshape(-1, 2) for b in self.members)
+        ]), axis=0)
+
+    def at(self, rows: NDArray[np.intp]) -> tuple[MemberBeam, ...]:
+        """``compared`` at the positions ``rows`` (indices into the Pc)."""
+        return tuple(b.at(rows) for b in self.compared)
+
+
+def link_beams(
+    link: LinkProfile,
+    loads: LinkLoadCase,
+    stations: NDArray[np.float64] | None = None,
+    body_load_near_holes: bool = False,
+    station_note: str = "",
+    members: Sequence[Member] = (),
+) -> LinkBeams:
+    """The beam along the link's frame member at ``stations`` (default ``choose_stations``) and along
+    each of ``members`` at its own (``member_beam``), for every position of ``loads``."""
+    start = time.perf_counter()
+    if stations is None:
+        chosen = choose_stations(link, loads.frame_joints)
+        stations, station_note = chosen.x, chosen.note
+    stations = np.asarray(stations, float)
+    on_frame = [m for m in members if m.joints == tuple(loads.frame_joints)]
+    beam = section_stresses(link, loads, stations, body_load_near_holes, member=on_frame[0] if on_frame else None)
+    forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
+    # The stations are on the frame's member (its sections normal to its axis, vertical when straight).
+    along = MemberBeam(beam.cuts.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y)
+    beams = tuple(member_beam(link, loads, m, body_load_near_holes) for m in members)
+    return LinkBeams(stations, beam, along, beams, station_note, time.perf_counter() - start)
+
+
+def comparison_mesh(link: LinkProfile, loads: LinkLoadCase, beams: LinkBeams, mesh: MeshSettings | None = None,
+                    members: Sequence[Member] = ()) -> MeshSettings:
+    """``mesh`` (default ``default_mesh``) with the cut segments of every compared member meshed."""
+    mesh = mesh or default_mesh(link, loads.frame_joints, beams.stations, members=members)
+    segments = np.concatenate([b.cuts.ends for b in beams.compared])
+    return replace(mesh, stations=(), cuts=segments.tolist())
+
+
+@dataclass(frozen=True)
+class LinkFEA:
+    """The FEA side of a link's comparison at Pc positions: the finest ``fea``, the refinement
+    ``study`` (None with one mesh) and, along each compared member (``LinkBeams.compared``), the
+    ``resultants`` over its cuts and the ``von_mises`` (Pc, S) [Pa] at its beam's critical fibres;
+    ``seconds`` spent."""
+
+    fea: LinkFEAResult
+    study: ConvergenceStudy | None
+    resultants: tuple[CutResultants, ...]
+    von_mises: tuple[NDArray[np.float64], ...]
+    seconds: float
+
+
+def solve_compared(
+    link: LinkProfile,
+    loads: LinkLoadCase,
+    mesh: MeshSettings,
+    beams: Sequence[MemberBeam],
+    points: NDArray[np.float64],
+    levels: int = 3,
+) -> LinkFEA:
+    """The FEA of ``link`` under ``loads`` on ``mesh`` (``comparison_mesh``), a refinement study of
+    ``levels`` >= 3 following the nominal ``points`` (Q, 2) [m], or one mesh with 1, sampled along
+    the compared ``beams`` (``LinkBeams.compared``, at the same positions as ``loads``)."""
+    start = time.perf_counter()
+    study = None
+    if levels >= 3:
+        axes = [np.concatenate(parts) for parts in zip(*(b.axes for b in beams))]
+        study = convergence_study(link, loads, mesh, points, levels=levels, cut_axes=axes)
+        fea = study.finest
+    else:
+        fea = solve_link(link, loads, mesh)
+    compared = [compare_member(fea, b) for b in beams]
+    return LinkFEA(
+        fea, study, tuple(c.fea_resultants for c in compared), tuple(c.fea_von_mises for c in compared),
+        time.perf_counter() - start,
+    )
+
+
+def join_link_fea(parts: Sequence[LinkFEA]) -> LinkFEA:
+    """One link's FEA side over the positions of ``parts`` in their order, each solved at a block
+    of positions on the same meshes: what one solve of them all gives; times add up."""
+    if len(parts) == 1:
+        return parts[0]
+    return LinkFEA(
+        join_results([p.fea for p in parts]),
+        None if parts[0].study is None else join_studies([p.study for p in parts]),
+        tuple(join_cut_resultants(r) for r in zip(*(p.resultants for p in parts))),
+        tuple(np.concatenate(v) for v in zip(*(p.von_mises for p in parts))),
+        sum(p.seconds for p in parts),
+    )
+
+
+def link_comparison(name: str, positions: NDArray[np.intp], beams: LinkBeams, fea: LinkFEA) -> LinkComparison:
+    """Link ``name``'s ``beams`` against its ``fea`` at the sweep ``positions``."""
+    members = tuple(
+        MemberComparison(b, r, v) for b, r, v in zip(beams.members, fea.resultants[1:], fea.von_mises[1:])
+    )
+    return LinkComparison(
+        name, np.asarray(positions), beams.stations, beams.away, beams.sections, fea.fea, fea.resultants[0],
+        fea.von_mises[0], beams.seconds, fea.seconds, fea.study, beams.note, members,
+    )
+
+
 def compare_link(
     name: str,
     link: LinkProfile,
@@ -470,36 +607,8 @@ def compare_link(
     ``stations`` are not the usual ones (``choose_stations``). ``members`` (``link_members``): each is
     compared along its own axis too, over its cut segments (``member_stations``, meshed as cuts) and
     at its beam's critical fibres; the link's errors are then the worst over them."""
-    frame_joints = loads.frame_joints
-    if stations is None:
-        chosen = choose_stations(link, frame_joints)
-        stations, station_note = chosen.x, chosen.note
-    stations = np.asarray(stations, float)
     selected = loads.at(positions)
-    start = time.perf_counter()
-    on_frame = [m for m in members if m.joints == tuple(frame_joints)]
-    beam = section_stresses(link, selected, stations, body_load_near_holes, member=on_frame[0] if on_frame else None)
-    forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
-    # The stations are on the frame's member (its sections normal to its axis, vertical when straight).
-    along = MemberBeam(beam.cuts.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y)
-    beams = [member_beam(link, selected, m, body_load_near_holes) for m in members]
-    beam_seconds = time.perf_counter() - start
-    mesh = mesh or default_mesh(link, frame_joints, stations, members=members)
-    segments = np.concatenate([b.cuts.ends for b in (along, *beams)])
-    mesh = replace(mesh, stations=(), cuts=segments.tolist())
-    start = time.perf_counter()
-    away = ~beam.near_hole
-    study = None
-    if levels >= 3:
-        nominal = np.concatenate([along.fibres[:, away].reshape(-1, 2), *(b.fibres[:, b.away].reshape(-1, 2) for b in beams)])
-        axes = [np.concatenate(parts) for parts in zip(*(b.axes for b in (along, *beams)))]
-        study = convergence_study(link, selected, mesh, np.unique(nominal, axis=0), levels=levels, cut_axes=axes)
-        fea = study.finest
-    else:
-        fea = solve_link(link, selected, mesh)
-    fea_seconds = time.perf_counter() - start
-    frame = compare_member(fea, along)
-    return LinkComparison(
-        name, np.asarray(positions), stations, away, beam, fea, frame.fea_resultants, frame.fea_von_mises,
-        beam_seconds, fea_seconds, study, station_note, tuple(compare_member(fea, b) for b in beams),
-    )
+    beams = link_beams(link, selected, stations, body_load_near_holes, station_note, members)
+    mesh = comparison_mesh(link, selected, beams, mesh, members)
+    fea = solve_compared(link, selected, mesh, beams.compared, beams.nominal_points(), levels)
+    return link_comparison(name, positions, beams, fea)

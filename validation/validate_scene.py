@@ -12,6 +12,7 @@ safety factor.
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from dataclasses import dataclass, field, replace
@@ -25,8 +26,21 @@ from linkstress.errors import GeometryError
 from linkstress.executors import DaskExecutor, LocalExecutor
 from linkstress.members import link_members
 from linkstress.scene import Scene
-from linkstress.validation.compare import LinkComparison, choose_stations, compare_link, default_mesh
+from linkstress.validation.compare import (
+    LinkBeams,
+    LinkComparison,
+    LinkFEA,
+    choose_stations,
+    comparison_mesh,
+    default_mesh,
+    join_link_fea,
+    link_beams,
+    link_comparison,
+    solve_compared,
+)
 from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.mesh import MeshSettings
+from linkstress.validation.fea.plane_stress import SOLVE_COLUMNS
 
 REACTION_LIMIT = 1e-4
 """Largest support reaction, relative to the applied load, for loads in equilibrium. Not zero: the
@@ -41,6 +55,10 @@ refinement steps) unless the scene gives a mesh size. Measured by ``linkstress b
 "Speed against error"): on the default meshes P1's nominal error is several times P2's and its cut
 resultants miss the RESULTANT_LIMIT check on the seed case."""
 MAX_POSITIONS = 36
+MIN_BLOCK = 64
+"""Fewest positions in a block when a link's positions are split to fill idle workers: each block
+meshes and factorises its link anew, which cost as much as about 110 positions' solves on the
+six_bar coupler (1.7 s for its three meshes against 0.0155 s per position)."""
 """Positions of a sweep compared by default (evenly spread over the feasible ones)."""
 POSE_RESOLUTION = 1e-9
 """Two positions whose state (cosines and sines of angles, origins [m], input speed [rad/s] and
@@ -112,6 +130,28 @@ def compared_positions(analysis: AnalysisResult, limit: int) -> NDArray[np.intp]
     return np.unique(ok[np.linspace(0, len(ok) - 1, limit).round().astype(int)])
 
 
+def position_blocks(count: int, links: int, workers: int, size: int | None = None) -> list[NDArray[np.intp]]:
+    """Blocks (indices into a link's ``count`` compared positions, in order) to solve as separate
+    tasks: of ``size`` positions if given, else one block when the ``links`` fill the ``workers``,
+    else as many as give each link its share of the idle workers, of at least MIN_BLOCK positions.
+    A size is rounded up to a multiple of SOLVE_COLUMNS, so the blocks' results join into those of
+    one solve bit for bit."""
+    if size is None:
+        size = count if links >= workers else max(MIN_BLOCK, math.ceil(count / (workers // links)))
+    size = max(SOLVE_COLUMNS, math.ceil(size / SOLVE_COLUMNS) * SOLVE_COLUMNS)
+    return [np.arange(k, min(k + size, count)) for k in range(0, count, size)] or [np.arange(0)]
+
+
+@dataclass(frozen=True)
+class LinkWork:
+    """One link's side of a validation made here: its ``beams`` and its ``mesh`` (cuts included) at
+    the compared positions; ``seconds`` spent on them."""
+
+    beams: LinkBeams
+    mesh: MeshSettings
+    seconds: float
+
+
 def validate_scene(
     scene: Scene,
     plan: Plan,
@@ -120,49 +160,84 @@ def validate_scene(
     mesh_size: float | None = None,
     jobs: int = 1,
     executor: LocalExecutor | DaskExecutor | None = None,
+    block: int | None = None,
 ) -> ValidationResult:
     """Analyse ``scene`` and compare every link of ``plan.validate`` with its FEA at up to
     ``positions`` feasible positions, with the elements of the scene's ``[analysis] element_order``
-    (default 2); ``levels`` >= 3 makes each a mesh refinement study; each link is a task of
-    ``executor`` (default: ``jobs`` local processes when > 1, else here). A progress bar shows on a
-    terminal."""
+    (default 2); ``levels`` >= 3 makes each a mesh refinement study. The beams are sectioned here;
+    each link's FEA runs as tasks of ``executor`` (default: ``jobs`` local processes when > 1, else
+    here), one per block of its positions (``position_blocks``: ``block`` positions each, or as the
+    executor's workers call for), and the blocks are joined into what one solve gives. A progress
+    bar shows on a terminal."""
     analysis = run_analysis(scene, plan)
     chosen = compared_positions(analysis, positions)
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
     order = scene.analysis.element_order if scene.analysis is not None else 2
-    tasks = [
-        (name, scene.links[name].profile, analysis.forces.link_loads[name], chosen, levels, size, order,
-         plan.body_load_near_holes, scene.links[name].members)
-        for name in plan.validate
-    ]
     where = executor or LocalExecutor(jobs)
-    outcomes = list(_progress(where.map(_compare, tasks, [f"link {name}" for name in plan.validate]), len(tasks)))
-    comparisons = {name: result for name, result, _, _ in outcomes if result is not None}
-    errors = {name: error for name, _, error, _ in outcomes if error}
-    seconds = {name: elapsed for name, _, _, elapsed in outcomes}
-    return ValidationResult(analysis, chosen, comparisons, errors, seconds)
+    errors: dict[str, str] = {}
+    work: dict[str, LinkWork] = {}
+    for name in plan.validate:
+        try:
+            work[name] = _link_work(scene, plan, analysis, name, chosen, size, order)
+        except (FEAError, GeometryError) as error:
+            errors[name] = str(error)
+    blocks = position_blocks(len(chosen), len(work), where.workers, block)
+    tasks, labels, owners = [], [], []
+    for name, w in work.items():
+        loads = analysis.forces.link_loads[name].at(chosen)
+        for rows in blocks:
+            tasks.append((scene.links[name].profile, loads.at(rows), w.mesh, w.beams.at(rows), w.beams.nominal_points(), levels))
+            labels.append(f"link {name}" if len(blocks) == 1 else f"link {name}, positions {chosen[rows[0]]}-{chosen[rows[-1]]}")
+            owners.append(name)
+    outcomes: dict[str, list] = {name: [] for name in work}
+    for name, outcome in zip(owners, _progress(where.map(_solve_block, tasks, labels), len(tasks))):
+        outcomes[name].append(outcome)
+    comparisons, seconds = {}, {}
+    for name, w in work.items():
+        failed = [message for _, message, _ in outcomes[name] if message]
+        seconds[name] = w.seconds + sum(elapsed for _, _, elapsed in outcomes[name])
+        if failed:
+            errors[name] = failed[0]
+            continue
+        try:
+            fea = join_link_fea([part for part, _, _ in outcomes[name]])
+        except FEAError as error:
+            errors[name] = str(error)
+            continue
+        comparisons[name] = link_comparison(name, chosen, w.beams, fea)
+    ordered = {name: errors[name] for name in plan.validate if name in errors}
+    return ValidationResult(analysis, chosen, comparisons, ordered, {name: seconds.get(name, 0.0) for name in plan.validate})
 
 
-def _compare(task) -> tuple[str, LinkComparison | None, str, float]:
-    """One link's comparison, or the reason it could not run (top level: runs in a worker process)."""
-    name, link, loads, chosen, levels, size, order, body_load_near_holes, member_pairs = task
+def _link_work(scene: Scene, plan: Plan, analysis: AnalysisResult, name: str, chosen: NDArray[np.intp],
+               size: float | None, order: int) -> LinkWork:
+    """Link ``name``'s beams at the ``chosen`` positions and its mesh settings (elements of ``order``,
+    ``size`` [m] or the default); FEAError or GeometryError when it has nothing to compare."""
     start = time.perf_counter()
     if not len(chosen):
-        return name, None, "no feasible position to compare", 0.0
+        raise FEAError("no feasible position to compare")
+    link, loads = scene.links[name].profile, analysis.forces.link_loads[name]
+    stations = choose_stations(link, loads.frame_joints, members=scene.links[name].members)
+    members = link_members(link, loads.frame_joints, scene.links[name].members)
+    mesh = replace(default_mesh(link, loads.frame_joints, stations.x, size, members), order=order)
+    if order == 1 and size is None:
+        mesh = mesh.refined(LINEAR_REFINEMENT)
+    selected = loads.at(chosen)
+    beams = link_beams(link, selected, stations.x, plan.body_load_near_holes, stations.note, members)
+    mesh = comparison_mesh(link, selected, beams, mesh, members)
+    return LinkWork(beams, mesh, time.perf_counter() - start)
+
+
+def _solve_block(task) -> tuple[LinkFEA | None, str, float]:
+    """One block of a link's FEA, or why it could not run, and its time (top level: runs in a worker)."""
+    link, loads, mesh, beams, points, levels = task
+    start = time.perf_counter()
     try:
-        stations = choose_stations(link, loads.frame_joints, members=member_pairs)
-        members = link_members(link, loads.frame_joints, member_pairs)
-        mesh = replace(default_mesh(link, loads.frame_joints, stations.x, size, members), order=order)
-        if order == 1 and size is None:
-            mesh = mesh.refined(LINEAR_REFINEMENT)
-        comparison = compare_link(
-            name, link, loads, chosen, mesh, levels, stations.x, body_load_near_holes, stations.note, members,
-        )
-        return name, comparison, "", time.perf_counter() - start
+        return solve_compared(link, loads, mesh, beams, points, levels), "", time.perf_counter() - start
     except (FEAError, GeometryError) as error:
-        return name, None, str(error), time.perf_counter() - start
+        return None, str(error), time.perf_counter() - start
 
 
 def _progress(items, total: int):
-    """A progress bar over the links on a terminal (tqdm); silent otherwise."""
-    return tqdm(items, total=total, desc="FEA", unit="link", disable=not sys.stderr.isatty())
+    """A progress bar over the tasks on a terminal (tqdm); silent otherwise."""
+    return tqdm(items, total=total, desc="FEA", unit="task", disable=not sys.stderr.isatty())

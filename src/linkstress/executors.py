@@ -76,6 +76,11 @@ class LocalExecutor:
     retried: list[Retry] = field(default_factory=list)
     """Always empty: here nothing runs twice."""
 
+    @property
+    def workers(self) -> int:
+        """How many tasks run at once."""
+        return self.jobs
+
     def map(self, work: Callable[[Task], Result], tasks: Sequence[Task], labels: Sequence[str] = ()) -> Iterator[Result]:
         """``work(task)`` for each task, in order (``labels`` name them for a cluster's reports)."""
         if self.jobs > 1 and len(tasks) > 1:
@@ -95,6 +100,11 @@ class DaskExecutor:
     client: object
     scheduler: str
     retried: list[Retry] = field(default_factory=list)
+
+    @property
+    def workers(self) -> int:
+        """How many tasks the cluster runs at once now: its workers' threads."""
+        return max(1, sum(self.client.nthreads().values()))
 
     def map(self, work: Callable[[Task], Result], tasks: Sequence[Task], labels: Sequence[str] = ()) -> Iterator[Result]:
         """``work(task)`` for each task on the cluster, results in order; afterwards ``retried``

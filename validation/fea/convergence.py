@@ -18,6 +18,7 @@ uncertainty due to discretization in CFD applications", J. Fluids Eng. 130 (2008
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,7 +28,7 @@ from linkstress.loads import LinkLoadCase
 from linkstress.profile import LinkProfile
 from linkstress.stress_state import von_mises
 from linkstress.validation.fea.errors import FEAError
-from linkstress.validation.fea.link import LinkFEAResult, solve_link
+from linkstress.validation.fea.link import LinkFEAResult, join_results, solve_link
 from linkstress.validation.fea.mesh import MeshSettings
 
 CONVERGED_CHANGE = 0.005
@@ -213,20 +214,40 @@ def convergence_study(
         values.append(von_mises(result.stress_at(points)) if len(points) else np.zeros((result.n_positions, 0)))
         peaks.append(result.von_mises_peak)
         resultants.append(_resultants(result, settings.stations, cut_axes))
-    values_arr = np.array(values)
-    change = _relative(np.abs(values_arr[-1] - values_arr[-2]), values_arr[-1])
+    return _study(
+        tuple(meshes), np.array(spacing), np.array(dofs), np.array(seconds), np.array(values), tolerance, result,
+        np.array(peaks), np.array(resultants),
+    )
+
+
+def join_studies(parts: Sequence[ConvergenceStudy]) -> ConvergenceStudy:
+    """One study over the positions of ``parts`` in their order, each of the same link on the same
+    meshes at a block of positions: what one study of them all gives (its changes and Richardson
+    estimates are per position); times add up. FEAError when the blocks' meshes differ."""
+    first = parts[0]
+    if any(p.settings != first.settings or not np.array_equal(p.dofs, first.dofs) for p in parts):
+        raise FEAError(f"link {first.finest.link.name!r}: its blocks of positions were meshed differently; solve it in one block")
+    return _study(
+        first.settings, first.spacing, first.dofs, np.sum([p.seconds for p in parts], axis=0),
+        np.concatenate([p.values for p in parts], axis=1), first.tolerance, join_results([p.finest for p in parts]),
+        np.concatenate([p.peaks for p in parts], axis=1), np.concatenate([p.resultants for p in parts], axis=2),
+    )
+
+
+def _study(settings, spacing, dofs, seconds, values, tolerance, finest, peaks, resultants) -> ConvergenceStudy:
+    """The study of these levels, its changes and Richardson estimate made from their values."""
     return ConvergenceStudy(
-        settings=tuple(meshes),
-        spacing=np.array(spacing),
-        dofs=np.array(dofs),
-        seconds=np.array(seconds),
-        values=values_arr,
-        change=change,
+        settings=settings,
+        spacing=spacing,
+        dofs=dofs,
+        seconds=seconds,
+        values=values,
+        change=_relative(np.abs(values[-1] - values[-2]), values[-1]),
         tolerance=tolerance,
-        richardson=richardson(values_arr[-3:], np.array(spacing[-3:])),
-        finest=result,
-        peaks=np.array(peaks),
-        resultants=np.array(resultants),
+        richardson=richardson(values[-3:], spacing[-3:]),
+        finest=finest,
+        peaks=peaks,
+        resultants=resultants,
     )
 
 

@@ -12,7 +12,8 @@ the gross applied load, as a check of the kinetics.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 from functools import cached_property
 from pathlib import Path
 
@@ -212,6 +213,45 @@ class LinkFEAResult:
                 f"(meshed: {meshed.tolist()})"
             )
         return gap.argmin(axis=1)
+
+
+def same_mesh(parts: Sequence[LinkFEAResult]) -> None:
+    """Raise FEAError unless every one of ``parts`` (one link, blocks of positions) has the same mesh."""
+    first = parts[0].plane.mesh
+    for part in parts[1:]:
+        mesh = part.plane.mesh
+        if not (np.array_equal(mesh.p, first.p) and np.array_equal(mesh.t, first.t)):
+            raise FEAError(
+                f"link {parts[0].link.name!r}: its blocks of positions were meshed differently ({first.t.shape[1]} and "
+                f"{mesh.t.shape[1]} elements): gmsh gave another mesh for the same settings; solve it in one block"
+            )
+
+
+def join_results(parts: Sequence[LinkFEAResult]) -> LinkFEAResult:
+    """One result over the positions of ``parts`` in their order, each the same link on the same mesh
+    solved at a block of positions: what one solve of them all gives (``SOLVE_COLUMNS``); the mesh
+    and solve times add up. FEAError when the blocks' meshes differ."""
+    same_mesh(parts)
+    return replace(
+        parts[0],
+        displacement=np.concatenate([p.displacement for p in parts], axis=1),
+        nodal_stress=np.concatenate([p.nodal_stress for p in parts]),
+        reactions=np.concatenate([p.reactions for p in parts]),
+        reaction_ratio=np.concatenate([p.reaction_ratio for p in parts]),
+        applied_load=np.concatenate([p.applied_load for p in parts]),
+        mesh_seconds=sum(p.mesh_seconds for p in parts),
+        solve_seconds=sum(p.solve_seconds for p in parts),
+    )
+
+
+def join_cut_resultants(parts: Sequence[CutResultants]) -> CutResultants:
+    """The resultants over the same cuts at the positions of ``parts``, in their order."""
+    return replace(
+        parts[0],
+        normal=np.concatenate([p.normal for p in parts]),
+        shear=np.concatenate([p.shear for p in parts]),
+        moment=np.concatenate([p.moment for p in parts]),
+    )
 
 
 def link_model(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> PlaneStressModel:

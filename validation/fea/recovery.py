@@ -23,7 +23,7 @@ from scipy.spatial import cKDTree
 from skfem import BilinearForm, asm
 
 from linkstress.validation.fea.errors import FEAError
-from linkstress.validation.fea.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix
+from linkstress.validation.fea.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix, solve_columns
 
 OUTSIDE_TOLERANCE = 0.05
 """How far outside an element (in its reference coordinates) a point may be and still be evaluated
@@ -46,7 +46,7 @@ class StressRecovery:
     def nodal_stress(self, displacement: NDArray[np.float64]) -> NDArray[np.float64]:
         """Recovered stress (P, scalar dofs, 3) [Pa] at the nodes for displacements (dofs, P) [m]."""
         u = np.asarray(displacement, float).reshape(self.model.n_dofs, -1)
-        return np.stack([self.mass.solve(b @ u) for b in self.projections], axis=-1).transpose(1, 0, 2)
+        return np.stack([solve_columns(self.mass, b @ u) for b in self.projections], axis=-1).transpose(1, 0, 2)
 
 
 def stress_recovery(model: PlaneStressModel) -> StressRecovery:

@@ -63,10 +63,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="mesh refinement levels per link: 3 or more for a convergence study, 1 for one mesh")
     parser.add_argument("--mesh-size", type=float, default=None, metavar="M",
                         help="element size away from holes and cuts [m] (default: from the link's depth)")
-    parser.add_argument("--jobs", type=int, default=1, metavar="N", help="solve N links at once in parallel processes")
+    parser.add_argument("--jobs", type=int, default=1, metavar="N", help="run N FEA tasks at once in parallel processes")
+    parser.add_argument(
+        "--positions-per-task", type=int, default=None, metavar="N",
+        help="solve each link's compared positions in tasks of N (rounded up to a multiple of 8), each meshing and "
+        "factorising the link once; the results are the same as one task's. Default: a task per link, or, with more "
+        "workers (--jobs, --scheduler) than links, blocks of at least 64 positions that fill them",
+    )
     parser.add_argument(
         "--scheduler", metavar="ADDRESS",
-        help="solve the links on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT), a task per link; "
+        help="solve on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT), a task per link or block of "
+        "positions (--positions-per-task); "
         f"local: a cluster of this machine's cores for this run; default: the {SCHEDULER_VARIABLE} variable, else "
         'this machine (--jobs). Needs pip install "linkstress[cluster]" (docs/cluster.md)',
     )
@@ -100,7 +107,10 @@ def run(args: argparse.Namespace) -> int:
     check_work(scene, plan)
     scheduler, source = scheduler_choice(args.scheduler)
     with executor(scheduler, source, args.jobs) as where, np.errstate(all="ignore"):
-        result = validate_scene(scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, executor=where)
+        result = validate_scene(
+            scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, executor=where,
+            block=args.positions_per_task,
+        )
     refuse_non_finite(result.analysis)
     cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in where.retried]}
     # Every output is made before any is written, so a failure leaves none half-done.
@@ -127,6 +137,11 @@ def check_flags(args: argparse.Namespace) -> None:
         )
     if args.positions is not None and not 1 <= args.positions <= MAX_COMPARED_POSITIONS:
         raise InputError(f"--positions: must be 1 to {MAX_COMPARED_POSITIONS} (each is an FEA load case), got {args.positions}")
+    if args.positions_per_task is not None and not 1 <= args.positions_per_task <= MAX_COMPARED_POSITIONS:
+        raise InputError(
+            f"--positions-per-task: must be 1 to {MAX_COMPARED_POSITIONS} (positions of a link solved as one task), "
+            f"got {args.positions_per_task}"
+        )
     if args.mesh_size is not None and not (math.isfinite(args.mesh_size) and args.mesh_size > 0):
         raise InputError(f"--mesh-size: must be a finite size > 0 m, got {args.mesh_size!r}")
     check_jobs(args.jobs, scheduler_choice(args.scheduler)[1])
