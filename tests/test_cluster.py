@@ -134,6 +134,26 @@ def test_validate_on_a_cluster_writes_the_serial_json_and_text(client, tmp_path)
     assert remote_text == text
 
 
+def test_validate_in_blocks_of_positions_on_a_cluster_writes_the_serial_json_and_text(client, tmp_path):
+    # banana_coupler's three links at 12 positions, each in blocks of 8 and 4: six tasks, joined
+    scene = CASES / "banana_coupler" / "scene.toml"
+    flags = ["--positions", "12", "--mesh-levels", "1"]
+    text = run_cli(["validate", str(scene), *flags, "--json", str(tmp_path / "serial.json")], 0)
+    remote_text = run_cli([
+        "validate", str(scene), *flags, "--json", str(tmp_path / "remote.json"), "--positions-per-task", "8",
+        "--scheduler", client.scheduler.address,
+    ], 0)
+    serial, remote = (json.loads((tmp_path / f"{n}.json").read_text()) for n in ("serial", "remote"))
+    assert (remote.pop("scheduler"), remote.pop("retried")) == (client.scheduler.address, [])
+    assert without_timing(remote) == without_timing(serial)
+    assert len(remote["positions_compared"]) == 12
+    assert remote_text == text
+
+
+def test_a_cluster_reports_its_workers_threads_to_size_the_blocks(client):
+    assert DaskExecutor(client, client.scheduler.address).workers == 2
+
+
 def test_analyze_peaks_on_a_cluster_writes_the_serial_json(client, tmp_path):
     # the seed four-bar at its one position: three stressed links, a task each
     scene = CASES / "seed_ansys_fourbar" / "scene.toml"

@@ -98,6 +98,11 @@ class LinkFEAResult:
     mesh_seconds: float
     solve_seconds: float
 
+    def __getstate__(self) -> dict:
+        # What the cached properties hold (von Mises, the cut integrator) is remade where it is
+        # needed: a result sent from a worker need not carry it too.
+        return {name: self.__dict__[name] for name in self.__dataclass_fields__}
+
     @property
     def dofs(self) -> int:
         return self.model.n_dofs
