@@ -17,10 +17,13 @@ import subprocess
 import sys
 import threading
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
 
+import linkstress
+from linkstress import executors
 from linkstress.cli import main
 from linkstress.executors import CONNECT_SECONDS, DaskExecutor, local_cluster
 from linkstress.validation.regression import packed_case, run_case, run_packed_case
@@ -225,6 +228,57 @@ def test_regress_against_a_scheduler_and_worker_started_as_a_user_would(cases, s
             process.wait(timeout=30)
     assert (done.returncode, done.stderr) == (0, "")
     assert done.stdout == serial[0]
+
+
+@contextmanager
+def scheduler_with_workers(*preludes: str):
+    """A `dask scheduler` on a free port and one worker process per Python ``prelude`` run before the
+    worker starts (no nanny: the worker is that process); yields the scheduler's address."""
+    port = free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    scheduler = subprocess.Popen(
+        [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **quiet
+    )
+    start = "import sys; sys.argv[0] = 'dask-worker'; from distributed.cli.dask_worker import main; main()"
+    workers = [
+        subprocess.Popen([sys.executable, "-c", f"{prelude}; {start}", address, "--no-nanny", "--nthreads", "1", "--no-dashboard"], **quiet)
+        for prelude in preludes
+    ]
+    try:
+        with distributed.Client(address, timeout=30) as watcher:
+            if preludes:
+                watcher.wait_for_workers(len(preludes), timeout=60)
+        yield address
+    finally:
+        for process in (*workers, scheduler):
+            process.terminate()
+            process.wait(timeout=30)
+
+
+def test_a_worker_that_cannot_import_linkstress_is_refused_before_any_task(capsys):
+    # a task it cannot unpickle would kill it; with no nanny to restart it, the run would wait forever
+    with scheduler_with_workers("import sys; sys.modules['linkstress'] = None", "pass") as address:
+        started = time.perf_counter()
+        assert main(["regress", str(CASES / "textbook_fourbar"), "--scheduler", address]) == 2
+        assert time.perf_counter() - started < 20
+    err = capsys.readouterr().err
+    assert "--scheduler: worker tcp://127.0.0.1:" in err and f"of {address} cannot import linkstress" in err
+    assert 'pip install "linkstress[cluster]"' in err and "Traceback" not in err
+
+
+def test_a_worker_with_another_version_of_linkstress_is_refused_naming_both(capsys):
+    with scheduler_with_workers("import linkstress; linkstress.__version__ = '0.0.1'") as address:
+        assert main(["regress", str(CASES / "textbook_fourbar"), "--scheduler", address]) == 2
+    err = capsys.readouterr().err
+    assert f"runs linkstress 0.0.1, this machine {linkstress.__version__}" in err
+
+
+def test_a_scheduler_without_workers_is_refused_instead_of_waiting(capsys, monkeypatch):
+    monkeypatch.setattr(executors, "WORKER_SECONDS", 1)
+    with scheduler_with_workers() as address:
+        assert main(["validate", str(CASES / "banana_coupler" / "scene.toml"), "--scheduler", address]) == 2
+    assert f"the scheduler at {address} has no worker after 1 s: start some with `dask worker {address}`" in capsys.readouterr().err
 
 
 def test_a_malformed_address_is_refused_naming_the_option(capsys):

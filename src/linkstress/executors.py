@@ -36,6 +36,8 @@ OPTION = "--scheduler"
 LOCAL = "local"
 CONNECT_SECONDS = 5
 """How long to wait for a scheduler to answer before saying it is unreachable."""
+WORKER_SECONDS = 30
+"""How long to wait for a scheduler's first worker before saying it has none."""
 INSTALL = 'pip install "linkstress[cluster]"'
 WORKER_ENVIRON = {
     "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
@@ -187,7 +189,36 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
             "check the address and that `dask scheduler` runs there and its port is open (docs/cluster.md)"
         ) from None
     with client:
+        check_workers(client, scheduler, source)
         yield DaskExecutor(client, scheduler)
+
+
+def check_workers(client, scheduler: str, source: str = OPTION) -> None:
+    """Refuse a cluster with no worker after WORKER_SECONDS, or whose workers cannot import
+    linkstress or run another version of it (ClusterError naming the worker and ``source``). A
+    worker that cannot unpickle a task dies of it: a nanny restarts it to die again, and without
+    one the task would wait forever; another version would not give this machine's numbers."""
+    import pydoc
+
+    from linkstress import __version__
+
+    try:
+        client.wait_for_workers(1, timeout=WORKER_SECONDS)
+    except TimeoutError:
+        raise ClusterError(
+            f"{source}: the scheduler at {scheduler} has no worker after {WORKER_SECONDS} s: start some with "
+            f"`dask worker {scheduler}` (docs/cluster.md)"
+        ) from None
+    # pydoc.locate imports linkstress on each worker and hands back its version: a function of the
+    # standard library, which every worker can unpickle.
+    found = client.run(pydoc.locate, "linkstress.__version__", on_error="return")
+    for worker, version in sorted(found.items()):
+        if version != __version__:
+            runs = f"runs linkstress {version}" if isinstance(version, str) else "cannot import linkstress"
+            raise ClusterError(
+                f"{source}: worker {worker} of {scheduler} {runs}, this machine {__version__}: install the same "
+                f"version in every worker's environment ({INSTALL}, or the same checkout)"
+            )
 
 
 @contextmanager
