@@ -39,17 +39,17 @@ CONNECT_SECONDS = 5
 WORKER_SECONDS = 30
 """How long to wait for a scheduler's first worker before saying it has none."""
 INSTALL = 'pip install "linkstress[cluster]"'
-WORKER_ENVIRON = {
-    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
-    "distributed.nanny.pre-spawn-environ.LINKSTRESS_THREADS": "1",
-}
-"""Dask's configuration for the workers linkstress starts: one thread each (``linkstress.threads``
-would otherwise run a thread per core in every worker process, and a cluster has a worker per core),
-and glibc's own malloc thresholds. A nanny sets
-MALLOC_TRIM_THRESHOLD_=65536 in its worker's environment (to hand freed memory back sooner), which
-fixes glibc's mmap threshold at 128 kB: every larger numpy array is then mapped and unmapped anew,
-page faults included. Measured on the six_bar case: 3.4-3.9 s of CPU per run with it, 1.8-1.9 s
-without (docs/cluster.md)."""
+WORKER_THREADS = {"LINKSTRESS_THREADS": "1"}
+"""The environment of the workers linkstress starts: one thread each (``linkstress.threads`` would
+otherwise run a thread per core in every worker process, and a cluster has a worker per core). Set
+in the worker processes alone (a nanny's ``env``, which wins over this process's variables);
+Dask's ``pre-spawn-environ`` would set it in this process's own environment too."""
+MALLOC_DEFAULTS = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+"""Dask's configuration for glibc's own malloc thresholds in the workers linkstress starts. A nanny
+sets MALLOC_TRIM_THRESHOLD_=65536 in its worker's environment (to hand freed memory back sooner),
+which fixes glibc's mmap threshold at 128 kB: every larger numpy array is then mapped and unmapped
+anew, page faults included. Measured on the six_bar case: 3.4-3.9 s of CPU per run with it, 1.8-1.9
+s without (docs/cluster.md)."""
 ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9_.-]+):[0-9]{1,5}$")
 """A scheduler's address as ``dask scheduler`` prints it: protocol, host (an IPv6 one in brackets),
 port (1 to 65535, checked apart)."""
@@ -224,29 +224,13 @@ def check_workers(client, scheduler: str, source: str = OPTION) -> None:
 @contextmanager
 def local_cluster(workers: int) -> Iterator[object]:
     """A distributed.LocalCluster of ``workers`` processes of one thread each (linkstress's own
-    threads too), with glibc's own malloc thresholds (``WORKER_ENVIRON``) and its HTTP server on a
-    free port (two clusters at once must not fight for Dask's 8787), closed on leaving the context."""
+    threads too: ``WORKER_THREADS``), with glibc's own malloc thresholds (``MALLOC_DEFAULTS``) and
+    its HTTP server on a free port (two clusters at once must not fight for Dask's 8787), closed on
+    leaving the context."""
     import dask
     from distributed import LocalCluster
 
-    # A nanny sets its worker's environment in this process's os.environ before it spawns it, and
-    # leaves it there: this process would then run linkstress on one thread too. Undone once the
-    # workers are up and when the cluster closes (a worker restarted in between sets it again).
-    names = [key.rsplit(".", 1)[1] for key in WORKER_ENVIRON]
-    saved = {name: os.environ.get(name) for name in names}
-    try:
-        with dask.config.set(WORKER_ENVIRON), LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0"
-        ) as cluster:
-            _restore(saved)
-            yield cluster
-    finally:
-        _restore(saved)
-
-
-def _restore(environ: dict[str, str | None]) -> None:
-    for name, value in environ.items():
-        if value is None:
-            os.environ.pop(name, None)
-        else:
-            os.environ[name] = value
+    with dask.config.set(MALLOC_DEFAULTS), LocalCluster(
+        n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0", env=WORKER_THREADS
+    ) as cluster:
+        yield cluster
