@@ -281,6 +281,47 @@ def test_a_scheduler_without_workers_is_refused_instead_of_waiting(capsys, monke
     assert f"the scheduler at {address} has no worker after 1 s: start some with `dask worker {address}`" in capsys.readouterr().err
 
 
+def tls_settings(folder: Path) -> dict[str, str]:
+    """A self-signed certificate for 127.0.0.1 (openssl) and Dask's TLS settings that use it for
+    the scheduler, the worker and the client, as environment variables."""
+    openssl = shutil.which("openssl") or pytest.skip("no openssl to make a certificate")
+    cert, key = folder / "cert.pem", folder / "key.pem"
+    subprocess.run(
+        [openssl, "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-keyout", str(key), "-out", str(cert), "-days", "1",
+         "-subj", "/CN=localhost", "-addext", "subjectAltName=IP:127.0.0.1"],
+        check=True, capture_output=True,
+    )
+    settings = {"DASK_DISTRIBUTED__COMM__TLS__CA_FILE": str(cert), "DASK_DISTRIBUTED__COMM__REQUIRE_ENCRYPTION": "True"}
+    for role in ("SCHEDULER", "WORKER", "CLIENT"):
+        settings |= {f"DASK_DISTRIBUTED__COMM__TLS__{role}__CERT": str(cert), f"DASK_DISTRIBUTED__COMM__TLS__{role}__KEY": str(key)}
+    return settings
+
+
+def test_regress_on_a_tls_scheduler_with_dasks_tls_settings_and_a_clear_refusal_without(cases, serial, tmp_path):
+    dask = shutil.which("dask", path=str(Path(sys.executable).parent)) or pytest.skip("no dask command beside python")
+    environment = {**os.environ, **tls_settings(tmp_path)}
+    port = free_port()
+    address = f"tls://127.0.0.1:{port}"
+    quiet = {"cwd": tmp_path, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": environment}
+    scheduler = subprocess.Popen(
+        [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--protocol", "tls", "--no-dashboard"], **quiet
+    )
+    worker = subprocess.Popen([dask, "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-dashboard"], **quiet)
+    command = [sys.executable, "-m", "linkstress", "regress", str(cases), "--scheduler", address]
+    try:
+        done = subprocess.run(command, capture_output=True, text=True, cwd=tmp_path, timeout=300, env=environment)
+        plain = {k: v for k, v in os.environ.items() if not k.startswith("DASK_DISTRIBUTED__COMM__TLS")}
+        refused = subprocess.run(command, capture_output=True, text=True, cwd=tmp_path, timeout=60, env=plain)
+    finally:
+        for process in (worker, scheduler):
+            process.terminate()
+            process.wait(timeout=30)
+    assert (done.returncode, done.stderr) == (0, "")
+    assert done.stdout == serial[0]
+    assert refused.returncode == 2 and "Traceback" not in refused.stderr
+    assert "--scheduler: a tls:// scheduler needs Dask's TLS settings here: distributed.comm.tls.ca-file" in refused.stderr
+
+
 def test_a_malformed_address_is_refused_naming_the_option(capsys):
     assert main(["regress", str(CASES / "textbook_fourbar"), "--scheduler", "10.0.0.5:8786"]) == 2
     err = capsys.readouterr().err

@@ -181,6 +181,8 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
         with local_cluster(cores()) as cluster, Client(cluster) as client:
             yield DaskExecutor(client, LOCAL)
         return
+    if scheduler.startswith("tls://"):
+        check_tls(source)
     try:
         client = Client(scheduler, timeout=CONNECT_SECONDS)
     except (OSError, TimeoutError) as error:
@@ -191,6 +193,19 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
     with client:
         check_workers(client, scheduler, source)
         yield DaskExecutor(client, scheduler)
+
+
+def check_tls(source: str = OPTION) -> None:
+    """Refuse a ``tls://`` scheduler when Dask's configuration gives this machine no TLS context
+    (a CA file, and a client certificate and key): Dask would fail with a TypeError."""
+    from distributed.security import Security
+
+    if Security().get_connection_args("client").get("ssl_context") is None:
+        raise ClusterError(
+            f"{source}: a tls:// scheduler needs Dask's TLS settings here: distributed.comm.tls.ca-file, "
+            "distributed.comm.tls.client.cert and .key (e.g. the variables DASK_DISTRIBUTED__COMM__TLS__CA_FILE, "
+            "DASK_DISTRIBUTED__COMM__TLS__CLIENT__CERT and DASK_DISTRIBUTED__COMM__TLS__CLIENT__KEY; docs/cluster.md)"
+        )
 
 
 def check_workers(client, scheduler: str, source: str = OPTION) -> None:
