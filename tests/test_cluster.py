@@ -27,6 +27,7 @@ from linkstress import executors
 from linkstress.cli import main
 from linkstress.executors import CONNECT_SECONDS, DaskExecutor, local_cluster
 from linkstress.validation.regression import packed_case, run_case, run_packed_case
+from test_validate_blocks import without_timing
 
 distributed = pytest.importorskip("distributed")
 
@@ -65,15 +66,6 @@ def run_cli(argv: list[str], code: int) -> str:
     with redirect_stdout(text):
         assert main(argv) == code
     return text.getvalue()
-
-
-def without_timing(data):
-    """``data`` less every key that holds a time (its name has "seconds")."""
-    if isinstance(data, dict):
-        return {k: without_timing(v) for k, v in data.items() if "seconds" not in k}
-    if isinstance(data, list):
-        return [without_timing(v) for v in data]
-    return data
 
 
 def test_regress_on_a_cluster_gives_the_serial_verdicts_numbers_and_report(client, cases, serial, tmp_path, monkeypatch):
@@ -212,22 +204,32 @@ def test_regress_against_a_scheduler_and_worker_started_as_a_user_would(cases, s
     elsewhere.mkdir()
     # the environment docs/cluster.md gives workers: glibc's own malloc thresholds
     environment = {**os.environ, "DASK_DISTRIBUTED__NANNY__PRE_SPAWN_ENVIRON": '{"MALLOC_TRIM_THRESHOLD_": None}'}
-    quiet = {"cwd": elsewhere, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": environment}
-    scheduler = subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **quiet)
-    worker = subprocess.Popen([dask, "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-dashboard"], **quiet)
-    try:
+    with running(
+        [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+        [dask, "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
+        cwd=elsewhere, env=environment,
+    ):
         with distributed.Client(address, timeout=30) as watcher:
             watcher.wait_for_workers(1, timeout=60)
         done = subprocess.run(
             [sys.executable, "-m", "linkstress", "regress", str(cases), "--scheduler", address],
             capture_output=True, text=True, cwd=tmp_path, timeout=300,
         )
-    finally:
-        for process in (worker, scheduler):
-            process.terminate()
-            process.wait(timeout=30)
     assert (done.returncode, done.stderr) == (0, "")
     assert done.stdout == serial[0]
+
+
+@contextmanager
+def running(*commands: list[str], **options):
+    """Each of ``commands`` as a process (its output discarded; ``options`` for subprocess.Popen),
+    terminated on leaving, the last started first."""
+    processes = [subprocess.Popen(c, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, **options) for c in commands]
+    try:
+        yield processes
+    finally:
+        for process in reversed(processes):
+            process.terminate()
+            process.wait(timeout=30)
 
 
 @contextmanager
@@ -236,24 +238,16 @@ def scheduler_with_workers(*preludes: str):
     worker starts (no nanny: the worker is that process); yields the scheduler's address."""
     port = free_port()
     address = f"tcp://127.0.0.1:{port}"
-    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
-    scheduler = subprocess.Popen(
-        [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **quiet
-    )
     start = "import sys; sys.argv[0] = 'dask-worker'; from distributed.cli.dask_worker import main; main()"
-    workers = [
-        subprocess.Popen([sys.executable, "-c", f"{prelude}; {start}", address, "--no-nanny", "--nthreads", "1", "--no-dashboard"], **quiet)
-        for prelude in preludes
-    ]
-    try:
+    with running(
+        [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+        *([sys.executable, "-c", f"{prelude}; {start}", address, "--no-nanny", "--nthreads", "1", "--no-dashboard"]
+          for prelude in preludes),
+    ):
         with distributed.Client(address, timeout=30) as watcher:
             if preludes:
                 watcher.wait_for_workers(len(preludes), timeout=60)
         yield address
-    finally:
-        for process in (*workers, scheduler):
-            process.terminate()
-            process.wait(timeout=30)
 
 
 def test_a_worker_that_cannot_import_linkstress_is_refused_before_any_task(capsys):
@@ -302,20 +296,15 @@ def test_regress_on_a_tls_scheduler_with_dasks_tls_settings_and_a_clear_refusal_
     environment = {**os.environ, **tls_settings(tmp_path)}
     port = free_port()
     address = f"tls://127.0.0.1:{port}"
-    quiet = {"cwd": tmp_path, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": environment}
-    scheduler = subprocess.Popen(
-        [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--protocol", "tls", "--no-dashboard"], **quiet
-    )
-    worker = subprocess.Popen([dask, "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-dashboard"], **quiet)
     command = [sys.executable, "-m", "linkstress", "regress", str(cases), "--scheduler", address]
-    try:
+    with running(
+        [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--protocol", "tls", "--no-dashboard"],
+        [dask, "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
+        cwd=tmp_path, env=environment,
+    ):
         done = subprocess.run(command, capture_output=True, text=True, cwd=tmp_path, timeout=300, env=environment)
         plain = {k: v for k, v in os.environ.items() if not k.startswith("DASK_DISTRIBUTED__COMM__TLS")}
         refused = subprocess.run(command, capture_output=True, text=True, cwd=tmp_path, timeout=60, env=plain)
-    finally:
-        for process in (worker, scheduler):
-            process.terminate()
-            process.wait(timeout=30)
     assert (done.returncode, done.stderr) == (0, "")
     assert done.stdout == serial[0]
     assert refused.returncode == 2 and "Traceback" not in refused.stderr

@@ -12,7 +12,6 @@ import textwrap
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-import ezdxf
 import numpy as np
 import pytest
 import scipy.sparse as sp
@@ -27,68 +26,27 @@ from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.link import join_results, solve_link
 from linkstress.validation.fea.plane_stress import SOLVE_COLUMNS, factorise_spd, solve_columns
 from linkstress.validation.validate_scene import MIN_BLOCK, position_blocks, validate_scene
+from test_validate import SCENE, write_bars
 
-SCENE = """
-    [materials.steel]
-    density = 7850.0
-    youngs_modulus = 200e9
-    poisson_ratio = 0.3
-    [links.crank]
-    sketch = "bars.dxf"
-    layer = "crank"
-    thickness = 0.01
-    material = "steel"
-    [links.coupler]
-    sketch = "bars.dxf"
-    layer = "coupler"
-    thickness = 0.01
-    material = "steel"
-    [links.output]
-    sketch = "bars.dxf"
-    layer = "output"
-    thickness = 0.01
-    material = "steel"
-    [links.ground]
-    joints = [[0.0, 0.0], [0.6, 0.0]]
-    [mechanisms.main]
-    type = "four-bar"
-    crank = "crank"
-    coupler = "coupler"
-    output = "output"
-    ground = "ground"
-    [motion]
-    input_angle_deg = {start = 0.0, stop = 355.0, num = 72}
-    input_speed_rad_s = 20.0
+SWEEP = SCENE.replace("input_angle_deg = 40.0", "input_angle_deg = {start = 0.0, stop = 355.0, num = 72}") + """
     input_acceleration_rad_s2 = 40.0
     [loads]
     gravity_m_s2 = [0.0, -9.81]
 """
-"""A crank-rocker (0.3 + 0.6 < 0.5 + 0.5: the crank turns fully) of 40 mm steel bars with pin holes,
-72 distinct poses over a turn."""
-
-
-def write_bars(path: Path) -> None:
-    doc = ezdxf.new("R2013", units=6)
-    msp = doc.modelspace()
-    for k, (name, length) in enumerate((("crank", 0.3), ("coupler", 0.5), ("output", 0.5))):
-        y = 0.2 * k
-        msp.add_lwpolyline([(-0.03, y - 0.02), (length + 0.03, y - 0.02), (length + 0.03, y + 0.02), (-0.03, y + 0.02)],
-                           close=True, dxfattribs={"layer": name})
-        for x in (0.0, length):
-            msp.add_circle((x, y), 0.005, dxfattribs={"layer": name})
-            msp.add_point((x, y), dxfattribs={"layer": name})
-    doc.saveas(path)
+"""test_validate's crank-rocker of 40 mm steel bars with pin holes (0.3 + 0.6 < 0.5 + 0.5: the crank
+turns fully), at 72 distinct poses over a turn, accelerating, under gravity."""
 
 
 @pytest.fixture(scope="module")
 def bars(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("bars")
-    write_bars(folder / "bars.dxf")
-    (folder / "scene.toml").write_text(textwrap.dedent(SCENE))
+    write_bars(folder / "bars.dxf", coupler_holes=True)
+    (folder / "scene.toml").write_text(textwrap.dedent(SWEEP))
     return folder / "scene.toml"
 
 
 def without_timing(data):
+    """``data`` less every key that holds a time (its name has "seconds")."""
     if isinstance(data, dict):
         return {k: without_timing(v) for k, v in data.items() if "seconds" not in k}
     if isinstance(data, list):
