@@ -184,9 +184,9 @@ def validate_scene(
     blocks = position_blocks(len(chosen), len(work), where.workers, block)
     tasks, labels, owners = [], [], []
     for name, w in work.items():
-        loads = analysis.forces.link_loads[name].at(chosen)
+        loads, points = analysis.forces.link_loads[name].at(chosen), w.beams.nominal_points()
         for rows in blocks:
-            tasks.append((scene.links[name].profile, loads.at(rows), w.mesh, w.beams.at(rows), w.beams.nominal_points(), levels))
+            tasks.append((scene.links[name].profile, loads.at(rows), w.mesh, w.beams.at(rows), points, levels))
             labels.append(f"link {name}" if len(blocks) == 1 else f"link {name}, positions {chosen[rows[0]]}-{chosen[rows[-1]]}")
             owners.append(name)
     outcomes: dict[str, list] = {name: [] for name in work}
