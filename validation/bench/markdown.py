@@ -38,6 +38,8 @@ python -m linkstress.validation.bench.plot           # the import plot of a many
 python -m linkstress.validation.bench.memory         # analyze's peak memory at 1e4, 1e5, 1e6 positions
 python -m linkstress.validation.bench.startup        # start-up of analyze against a bare import of numpy
 python -m linkstress.validation.fea.verification     # the FEA's analytic verification suite
+python -m linkstress.validation.bench.cluster        # regression cases on a Dask cluster of 1 and 2 local workers
+python -m linkstress.validation.bench.blocks         # validate of one link's long sweep, whole and in blocks on 2 workers
 ```"""
 
 
