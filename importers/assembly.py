@@ -12,9 +12,13 @@ joints through the ground:
   shortest link pivoted on the ground of any loop.
 - Further loops: one that shares a single link with the loops found so far, where that link is
   their crank or output and pivots on the same ground joint, is ``driven_by`` it (a rigid drive).
+- Slider-crank, when no four-bar loop closes: a crank pivoted on the ground, a rod pinned to it, and
+  a slider: a link with that rod's other pin as its one joint (a drawing has no mark for a prismatic
+  joint, so a block with one pin is taken for the slider). It slides along the longer side of its
+  outline's smallest enclosing rectangle, through its pin; a block about as long as it is wide
+  (less than SLIDER_ELONGATION) gives no direction and is refused.
 
-A slider-crank is not recognised: a drawing has no mark for a prismatic joint, so a slider block
-looks like a link with one pin. Everything here is in metres, sketch frame = ground frame.
+Everything here is in metres, sketch frame = ground frame.
 """
 
 from __future__ import annotations
@@ -30,8 +34,9 @@ from linkstress.importers.chaining import close_pairs
 from linkstress.importers.neighbours import components
 from linkstress.importers.sketch import ImportedLink, Sketch
 from linkstress.kinematics.fourbar import FourBar
-from linkstress.kinematics.linkage_class import feasible_input_ranges
+from linkstress.kinematics.linkage_class import feasible_input_ranges, slider_feasible_input_ranges
 from linkstress.kinematics.machine import Drive, Loop, Role
+from linkstress.kinematics.slider_crank import SliderCrank
 from linkstress.kinematics.solve import solve_machine
 from linkstress.scene.model import Scene
 
@@ -41,6 +46,9 @@ ANGLE_DIGITS = 9
 """Decimals of the input angle [deg] written: a 1e-9 deg turn moves a 1 km crank's pin by 2e-8 m."""
 BARE_GROUND = "ground"
 """The name of the ground link when it is not drawn (then no layer is named ground)."""
+SLIDER_ELONGATION = 1.2
+"""A slider block's outline must be at least this much longer than wide (its smallest enclosing
+rectangle) for its longer side to give the line it slides on."""
 
 
 @dataclass(frozen=True)
@@ -82,12 +90,14 @@ class Assembly:
         """One line per loop, for the terminal: its links by role, its branch and how it is driven."""
         lines = []
         for loop in self.loops:
-            roles = ", ".join(
-                f"{role} {getattr(loop, role).link!r}" for role in ("crank", "coupler", "output", "ground")
-            )
+            roles = ", ".join(f"{name} {role.link!r}" for name, role in loop.roles.items())
             drive = f"driven by {loop.driven_by.loop}'s {loop.driven_by.role}" if loop.driven_by else (
                 f"crank drawn at {self.input_angle_deg:.6g} deg")
-            lines.append(f"mechanism {loop.name}: four-bar, {roles}; {loop.branch} branch; {drive}")
+            line = f"mechanism {loop.name}: {loop.kind}, {roles}; {loop.branch} branch; {drive}"
+            if loop.kind == "slider-crank":
+                line += (f"; slider line at {math.degrees(loop.slider_angle):.6g} deg, offset {loop.offset:.6g} m "
+                         f"(along the slider's longer side, through its pin)")
+            lines.append(line)
         return lines
 
 
@@ -123,7 +133,10 @@ def find_assembly(sketch: Sketch) -> Assembly:
         ground_rule = "the ground is not drawn: its pivots are the joints that only one link uses"
     cycles = _cycles(joints, ground if ground is not None else BARE_GROUND)
     if not cycles:
-        raise SketchError(f"no mechanism found: {_what_joins(sketch, joints)}")
+        chains = _slider_chains(joints, ground if ground is not None else BARE_GROUND, links)
+        if not chains:
+            raise SketchError(f"no mechanism found: {_what_joins(sketch, joints)}")
+        return _slider_assembly(sketch, links, joints, chains, ground, ground_rule)
     crank, main, crank_rule = _main_cycle(cycles, joints, links)
     chosen = _chain(main, cycles)
     ground_name = ground if ground is not None else BARE_GROUND
@@ -313,9 +326,14 @@ def _sweep(main: _Cycle, joints: list[Joint], branch: str, angle_deg: float) -> 
     """The main loop's input range [deg] that holds the drawn angle (linkage_class.feasible_input_ranges)."""
     o2, a, b, o4 = (joints[j].at for j in (main.jp, main.kp, main.kq, main.jq))
     lengths = (float(np.hypot(*(q - p))) for p, q in ((o2, a), (a, b), (o4, b)))
-    linkage = FourBar(tuple(o2), tuple(o4), *lengths, branch)
+    return _range_holding(feasible_input_ranges(FourBar(tuple(o2), tuple(o4), *lengths, branch)), angle_deg)
+
+
+def _range_holding(ranges: tuple[tuple[float, float], ...], angle_deg: float) -> tuple[float, float]:
+    """Of the input ``ranges`` [rad], the one that holds ``angle_deg``, in degrees about it: one turn
+    from it when the crank turns fully."""
     angle = math.radians(angle_deg)
-    for start, stop in feasible_input_ranges(linkage):
+    for start, stop in ranges:
         if stop - start >= 2 * math.pi - 1e-12:
             return angle_deg, angle_deg + 360.0
         turns = math.floor((angle - start) / (2 * math.pi))
@@ -337,6 +355,112 @@ def _branch(name: str, a: NDArray[np.float64], b: NDArray[np.float64], o4: NDArr
     return "open" if cross > 0 else "crossed"
 
 
+@dataclass(frozen=True)
+class _SliderChain:
+    """A slider-crank through the ground: crank ``p`` pivoted at joint ``jp``, rod ``k`` pinned to
+    ``p`` at ``kp`` and to the slider ``s`` (a link whose one joint it is) at ``kb``."""
+
+    p: str
+    jp: int
+    kp: int
+    k: str
+    kb: int
+    s: str
+
+
+def _slider_chains(joints: list[Joint], ground: str, links: dict[str, ImportedLink]) -> list[_SliderChain]:
+    """Every crank -> rod -> slider chain from a pivot of ``ground`` to a link with one joint."""
+    at: dict[str, list[int]] = {}
+    for index, joint in enumerate(joints):
+        for name, _ in joint.ends:
+            at.setdefault(name, []).append(index)
+    return [
+        _SliderChain(p, jp, kp, k, kb, s)
+        for jp in at.get(ground, [])
+        for p in _others(joints[jp], ground)
+        for kp in at[p] if kp != jp
+        for k in _others(joints[kp], ground, p)
+        for kb in at[k] if kb not in (jp, kp)
+        for s in _others(joints[kb], ground, p, k) if len(links[s].joints) == 1
+    ]
+
+
+def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: list[Joint], chains: list[_SliderChain],
+                     ground: str | None, ground_rule: str) -> Assembly:
+    """The drawing as one slider-crank (``chains`` from ``_slider_chains``): the crank named as one, else
+    the shortest; its slider line along the slider block's longer side, through its pin."""
+    named = [c for c in chains if _named(links[c.p], CRANK_NAMES)]
+    if named:
+        chain, crank_rule = named[0], f"the link on layer {named[0].p!r}"
+    else:
+        chain = min(chains, key=lambda c: (_length(joints, c.jp, c.kp), c.p, c.k, c.s))
+        crank_rule = (f"no layer is named {', '.join(CRANK_NAMES)}: the shortest link pivoted on the ground; rename "
+                      "its layer crank to choose another")
+    ground_name = ground if ground is not None else BARE_GROUND
+    left = [name for name in links if name not in (chain.p, chain.k, chain.s, ground_name)]
+    if left:
+        raise SketchError(
+            f"link(s) {', '.join(repr(n) for n in left)} are not in the slider-crank {chain.p!r}, {chain.k!r}, {chain.s!r} "
+            f"({_what_joins(sketch, joints)}): leave their layers out with --exclude-layers, or write the scene by hand"
+        )
+    o2, a, b = (joints[j] for j in (chain.jp, chain.kp, chain.kb))
+    u = _slider_direction(links[chain.s], b.at - o2.at)
+    ahead = float((b.at - a.at) @ u)
+    if abs(ahead) <= 1e-9 * _length(joints, chain.kp, chain.kb):
+        raise SketchError(
+            f"the drawing is at a toggle (rod {chain.k!r} square to the slider line at B ({b.at[0]:.6g}, {b.at[1]:.6g}) m), "
+            "where neither branch is drawn; draw the mechanism at another crank angle"
+        )
+    if ground is None:
+        travel = _length(joints, chain.jp, chain.kp) + _length(joints, chain.kp, chain.kb)
+        ground_joints = np.array([o2.at, o2.at + travel * u])
+        ground_role = Role(BARE_GROUND, (0, 1))
+        ground_rule = "the ground is not drawn: the crank's pivot, then a point along the slider line's direction"
+    else:
+        others = [k for k in range(len(links[ground].joints)) if k != o2.index(ground)]
+        if not others:
+            raise SketchError(
+                f"the ground {ground!r} has one joint, the crank's pivot; a slider-crank's ground needs a second one "
+                "(a POINT or hole anywhere on it), or leave its layer out with --exclude-layers"
+            )
+        ground_joints, ground_role = None, Role(ground, (o2.index(ground), others[0]))
+    # Rounded as the crank angle is, and the offset to 1e-12 m: a line drawn through the pivot reads 0.0.
+    slider_angle = math.radians(round(math.degrees(math.atan2(u[1], u[0])), ANGLE_DIGITS))
+    loop = Loop(
+        name="main",
+        kind="slider-crank",
+        crank=Role(chain.p, (o2.index(chain.p), a.index(chain.p))),
+        coupler=Role(chain.k, (a.index(chain.k), b.index(chain.k))),
+        slider=Role(chain.s, (b.index(chain.s), b.index(chain.s))),
+        ground=ground_role,
+        branch="open" if ahead > 0 else "crossed",
+        offset=round(float((b.at - o2.at) @ np.array([-u[1], u[0]])), 12),
+        slider_angle=slider_angle,
+    )
+    angle = round(math.degrees(math.atan2(*(a.at - o2.at)[::-1])), ANGLE_DIGITS)
+    linkage = SliderCrank(tuple(o2.at), _length(joints, chain.jp, chain.kp), _length(joints, chain.kp, chain.kb),
+                          loop.offset, slider_angle, loop.branch)
+    sweep = _range_holding(slider_feasible_input_ranges(linkage), angle)
+    return Assembly(links, ground_name, ground_joints, (loop,), angle, sweep, ground_rule, crank_rule)
+
+
+def _slider_direction(slider: ImportedLink, ahead: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The unit direction of the longer side of ``slider``'s smallest enclosing rectangle, pointing
+    along ``ahead`` (from the crank's pivot to the slider's pin) where the two are not square."""
+    corners = np.asarray(slider.outline.minimum_rotated_rectangle.exterior.coords)[:3]
+    sides = np.diff(corners, axis=0)
+    lengths = np.hypot(*sides.T)
+    if lengths.max() < SLIDER_ELONGATION * lengths.min():
+        raise SketchError(
+            f"link {slider.name!r} is taken for a slider (a link with one pin, at the rod's end), but its outline is "
+            f"about as long as it is wide ({lengths.max():.3g} x {lengths.min():.3g} m): the line it slides on is "
+            f"taken along its longer side, which must be at least {SLIDER_ELONGATION:g} x the shorter; draw the block "
+            "longer along its line, or write the scene by hand (docs/scenes.md)"
+        )
+    u = sides[int(np.argmax(lengths))] / lengths.max()
+    return -u if float(u @ ahead) < 0 else u
+
+
 def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
     """Which links share which joints, for a refusal."""
     shared = [j for j in joints if len({n for n, _ in j.ends if n != BARE_GROUND}) > 1]
@@ -352,8 +476,8 @@ def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
     )
     return (
         f"{pairs}; no closed loop of four links and four joints through a ground (a layer named "
-        f"{', '.join(GROUND_NAMES)}, or fixed pivots that one link alone uses); slider-cranks are not recognised "
-        "from a drawing"
+        f"{', '.join(GROUND_NAMES)}, or fixed pivots that one link alone uses), nor a slider-crank (a crank "
+        "pivoted on the ground, a rod, and a slider block with one pin)"
     )
 
 

@@ -103,25 +103,34 @@ def _links(assembly: Assembly, sketch: str) -> list[str]:
 
 
 def _mechanism(loop: Loop, assembly: Assembly) -> list[str]:
-    lines = ["", f"[mechanisms.{toml_key(loop.name)}]", 'type = "four-bar"']
+    lines = ["", f"[mechanisms.{toml_key(loop.name)}]", f"type = {toml_string(loop.kind)}"]
     if loop.driven_by is not None:
         lines.append(f"driven_by = {toml_string(loop.driven_by.loop + '.' + loop.driven_by.role)}")
-    for role in ("crank", "coupler", "output", "ground"):
-        line = f"{role} = {_role(getattr(loop, role), assembly, role == 'ground')}"
-        if role == "crank" and loop.driven_by is None:
+    for name, role in loop.roles.items():
+        line = f"{name} = {_role(role, assembly, name)}"
+        if name == "crank" and loop.driven_by is None:
             line += f"  # {assembly.crank_rule}"
-        if role == "ground" and loop.driven_by is None:
+        if name == "ground" and loop.driven_by is None:
             line += f"  # {assembly.ground_rule}"
         lines.append(line)
     lines.append(f"branch = {toml_string(loop.branch)}  # as drawn")
+    if loop.kind == "slider-crank":
+        lines += [
+            f"slider_angle_deg = {_number(math.degrees(loop.slider_angle))}  # the slider block's longer side, as drawn",
+            f"offset_m = {_number(loop.offset)}  # the slider line (through its pin) from the crank's pivot, + to its left",
+        ]
     return lines
 
 
-def _role(role: Role, assembly: Assembly, ground: bool) -> str:
+def _role(role: Role, assembly: Assembly, name: str) -> str:
     """A bare name where the role's axis is the link's joints 0 -> 1 and it has two (bare ground: its
-    pivots), else the name with its joints."""
-    count = len(assembly.ground_joints) if ground and assembly.ground_joints is not None else len(
-        assembly.links[role.link].joints)
+    pivots; a slider: its joint 0, and it has one), else the name with its joints."""
+    ground = name == "ground" and assembly.ground_joints is not None
+    count = len(assembly.ground_joints) if ground else len(assembly.links[role.link].joints)
+    if name == "slider":
+        if role.joints == (0, 0) and count == 1:
+            return toml_string(role.link)
+        return f"{{link = {toml_string(role.link)}, joints = [{role.joints[0]}]}}"
     if role.joints == (0, 1) and count == 2:
         return toml_string(role.link)
     return f"{{link = {toml_string(role.link)}, joints = [{role.joints[0]}, {role.joints[1]}]}}"

@@ -70,7 +70,10 @@ def plan_for(scene: Scene) -> Plan:
     """The plan of ``scene``: its [analysis] table, or everything its data allows."""
     moving = scene.moving_links
     without_mass = [n for n in moving if scene.links[n].mass_data is None]
-    stressable = [n for n in moving if scene.links[n].profile is not None and scene.links[n].material is not None]
+    profiled = [n for n in moving if scene.links[n].profile is not None and scene.links[n].material is not None]
+    # A slider block's frame is its one joint: no member between two joints to section.
+    sliders = [n for n in profiled if len(set(scene.links[n].frame_joints)) == 1]
+    stressable = [n for n in profiled if n not in sliders]
     asked = scene.analysis
     notes = []
     if asked is None:
@@ -91,11 +94,18 @@ def plan_for(scene: Scene) -> Plan:
         stresses = tuple(stressable) if asked.stresses else tuple(asked.validate)
         validate = tuple(asked.validate)
         for name in validate:
+            if name in sliders:
+                raise SceneError(
+                    f"analysis.validate: link {name!r} is a slider, with one joint: there is no member between two "
+                    "joints to compare along; leave it out"
+                )
             if name not in stressable:
                 raise SceneError(f"analysis.validate: link {name!r} needs a sketch, a thickness and a material")
         stations = asked.stations or DEFAULT_STATIONS
     for name in moving:
-        if name not in stressable and (asked is None or asked.stresses):
+        if name in sliders and (asked is None or asked.stresses):
+            notes.append(f"no section stresses for {name}: a slider, with one joint, has no member between two to section")
+        elif name not in stressable and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
     body_load_near_holes = asked is not None and asked.body_load_near_holes
     peaks = stresses if asked is not None and asked.peaks else ()
