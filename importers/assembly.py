@@ -12,11 +12,9 @@ joints through the ground:
   shortest link pivoted on the ground of any loop.
 - Further loops: one that shares a single link with the loops found so far, where that link is
   their crank or output and pivots on the same ground joint, is ``driven_by`` it (a rigid drive).
-- Slider-crank, when no four-bar loop closes: a crank pivoted on the ground, a rod pinned to it, and
-  a slider: a link with that rod's other pin as its one joint (a drawing has no mark for a prismatic
-  joint, so a block with one pin is taken for the slider). It slides along the longer side of its
-  outline's smallest enclosing rectangle, through its pin; a block about as long as it is wide
-  (less than SLIDER_ELONGATION) gives no direction and is refused.
+- Slider-crank (``slider_assembly``): a crank pivoted on the ground, a rod, and a block with one pin.
+  It is the main loop when no four-bar loop closes, else a further loop when its crank is a placed
+  loop's crank or output on the same pivot.
 
 Everything here is in metres, sketch frame = ground frame.
 """
@@ -30,9 +28,24 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.errors import SketchError
-from linkstress.importers.chaining import close_pairs
-from linkstress.importers.neighbours import components
+from linkstress.importers.pins import (
+    ANGLE_DIGITS,
+    BARE_GROUND,
+    Joint,
+    others,
+    pin_distance,
+    pins_of,
+    shared_joints,
+    users,
+)
 from linkstress.importers.sketch import ImportedLink, Sketch
+from linkstress.importers.slider_assembly import (
+    SliderChain,
+    driven_sliders,
+    pivot_ground,
+    slider_chains,
+    slider_loop,
+)
 from linkstress.kinematics.fourbar import FourBar
 from linkstress.kinematics.linkage_class import feasible_input_ranges, slider_feasible_input_ranges
 from linkstress.kinematics.machine import Drive, Loop, Role
@@ -42,25 +55,6 @@ from linkstress.scene.model import Scene
 
 GROUND_NAMES = ("ground", "frame", "base")
 CRANK_NAMES = ("crank", "input", "driver")
-ANGLE_DIGITS = 9
-"""Decimals of the input angle [deg] written: a 1e-9 deg turn moves a 1 km crank's pin by 2e-8 m."""
-BARE_GROUND = "ground"
-"""The name of the ground link when it is not drawn (then no layer is named ground)."""
-SLIDER_ELONGATION = 1.2
-"""A slider block's outline must be at least this much longer than wide (its smallest enclosing
-rectangle) for its longer side to give the line it slides on."""
-
-
-@dataclass(frozen=True)
-class Joint:
-    """A pin: ``at`` (2,) [m] the mean of its drawn centres; ``ends`` (link name, joint index) per link."""
-
-    at: NDArray[np.float64]
-    ends: tuple[tuple[str, int], ...]
-
-    def index(self, link: str) -> int:
-        """The joint's index among ``link``'s joints (sorted by x, then y)."""
-        return next(k for name, k in self.ends if name == link)
 
 
 @dataclass(frozen=True)
@@ -133,7 +127,7 @@ def find_assembly(sketch: Sketch) -> Assembly:
         ground_rule = "the ground is not drawn: its pivots are the joints that only one link uses"
     cycles = _cycles(joints, ground if ground is not None else BARE_GROUND)
     if not cycles:
-        chains = _slider_chains(joints, ground if ground is not None else BARE_GROUND, links)
+        chains = slider_chains(joints, ground if ground is not None else BARE_GROUND, links)
         if not chains:
             raise SketchError(f"no mechanism found: {_what_joins(sketch, joints)}")
         return _slider_assembly(sketch, links, joints, chains, ground, ground_rule)
@@ -141,15 +135,21 @@ def find_assembly(sketch: Sketch) -> Assembly:
     chosen = _chain(main, cycles)
     ground_name = ground if ground is not None else BARE_GROUND
     covered = set().union(*(c.moving for c, _ in chosen))
+    sliders = driven_sliders(_grounded(chosen), slider_chains(joints, ground_name, links), covered)
+    covered |= {name for chain, _ in sliders for name in (chain.k, chain.s)}
     left = [name for name in links if name not in covered and name != ground_name]
     if left:
         raise SketchError(
-            f"link(s) {', '.join(repr(n) for n in left)} are in no four-bar loop driven from "
-            f"the main one ({_what_joins(sketch, joints)}); linkstress chains four-bars through a shared crank "
+            f"link(s) {', '.join(repr(n) for n in left)} are in no four-bar loop or slider-crank driven from "
+            f"the main one ({_what_joins(sketch, joints)}); linkstress chains loops through a shared crank "
             "or output pivoted on the ground: leave their layers out with --exclude-layers, or write the scene by hand"
         )
     bare = _bare_pivots(chosen, joints) if ground is None else None
     loops = tuple(_loop(k, cycle, drive, joints, ground_name, bare) for k, (cycle, drive) in enumerate(chosen))
+    loops += tuple(
+        slider_loop(f"loop{len(loops) + k + 1}", chain, joints, links, pivot_ground(chain, joints, links, ground_name, bare), drive)
+        for k, (chain, drive) in enumerate(sliders)
+    )
     main_crank = links[crank]
     o2, a = (main_crank.joints[i] for i in loops[0].crank.joints)
     # Rounded to 1e-9 deg, so that a crank drawn at 60 deg reads 60.0, not 59.999999999999986.
@@ -157,22 +157,6 @@ def find_assembly(sketch: Sketch) -> Assembly:
     ground_joints = None if bare is None else np.array([joints[j].at for j in bare])
     sweep = _sweep(chosen[0][0], joints, loops[0].branch, angle)
     return Assembly(links, ground_name, ground_joints, loops, angle, sweep, ground_rule, crank_rule)
-
-
-def shared_joints(links: tuple[ImportedLink, ...], tolerance: float) -> list[Joint]:
-    """Every link's joints gathered into pins: centres closer than ``tolerance`` [m] (directly or through
-    others) are one pin. Sorted by x, then y."""
-    ends = [(link.name, k) for link in links for k in range(len(link.joints))]
-    if not ends:
-        return []
-    points = np.vstack([link.joints for link in links if len(link.joints)])
-    pairs = close_pairs(points, tolerance, "joints")
-    _, pin = components(len(points), pairs)
-    found = [
-        Joint(points[pin == k].mean(axis=0), tuple(ends[i] for i in np.flatnonzero(pin == k)))
-        for k in range(pin.max() + 1)
-    ]
-    return sorted(found, key=lambda j: (j.at[0], j.at[1]))
 
 
 def _ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
@@ -210,35 +194,24 @@ def _with_bare_ground(joints: list[Joint]) -> list[Joint]:
 
 def _cycles(joints: list[Joint], ground: str) -> list[_Cycle]:
     """Every four-bar loop through ``ground``: four distinct links, four distinct joints, each found once."""
-    at: dict[str, list[int]] = {}
-    for index, joint in enumerate(joints):
-        for name, _ in joint.ends:
-            at.setdefault(name, []).append(index)
+    at = pins_of(joints)
     found: dict[tuple, _Cycle] = {}
     for jp in at.get(ground, []):
-        for p in _others(joints[jp], ground):
+        for p in others(joints[jp], ground):
             for kp in at[p]:
                 if kp == jp:
                     continue
-                for k in _others(joints[kp], ground, p):
+                for k in others(joints[kp], ground, p):
                     for kq in at[k]:
                         if kq in (kp, jp):
                             continue
-                        for q in _others(joints[kq], ground, p, k):
+                        for q in others(joints[kq], ground, p, k):
                             for jq in at[q]:
-                                if jq not in (jp, kp, kq) and ground in _names(joints[jq]):
+                                if jq not in (jp, kp, kq) and ground in users(joints[jq]):
                                     cycle = _Cycle(p, jp, kp, k, kq, q, jq)
                                     key = min(_key(cycle), _key(cycle.reversed()))
                                     found.setdefault(key, cycle)
     return [found[key] for key in sorted(found)]
-
-
-def _names(joint: Joint) -> list[str]:
-    return [name for name, _ in joint.ends]
-
-
-def _others(joint: Joint, *excluded: str) -> list[str]:
-    return [name for name in dict.fromkeys(_names(joint)) if name not in excluded]
 
 
 def _key(cycle: _Cycle) -> tuple:
@@ -259,7 +232,7 @@ def _main_cycle(cycles: list[_Cycle], joints: list[Joint], links: dict[str, Impo
             "the crank turns about a fixed pivot"
         )
     options = [
-        (_length(joints, c.jp, c.kp), c.p, k, c)
+        (pin_distance(joints, c.jp, c.kp), c.p, k, c)
         for k, cycle in enumerate(cycles) for c in (cycle, cycle.reversed())
     ]
     _, crank, _, main = min(options, key=lambda o: o[:3])
@@ -267,10 +240,6 @@ def _main_cycle(cycles: list[_Cycle], joints: list[Joint], links: dict[str, Impo
         f"no layer is named {', '.join(CRANK_NAMES)}: the shortest link pivoted on the ground; rename its layer "
         "crank to choose another"
     )
-
-
-def _length(joints: list[Joint], i: int, j: int) -> float:
-    return float(math.hypot(*(joints[j].at - joints[i].at)))
 
 
 def _chain(main: _Cycle, cycles: list[_Cycle]) -> list[tuple[_Cycle, Drive | None]]:
@@ -293,6 +262,17 @@ def _chain(main: _Cycle, cycles: list[_Cycle]) -> list[tuple[_Cycle, Drive | Non
                 growing = True
                 break
     return chosen
+
+
+def _grounded(chosen: list[tuple[_Cycle, Drive | None]]) -> dict[tuple[str, int], Drive]:
+    """The placed loops' cranks and outputs, by link and ground pivot: what a further loop's crank
+    can turn with."""
+    grounded: dict[tuple[str, int], Drive] = {}
+    for k, (cycle, _) in enumerate(chosen):
+        name = "main" if k == 0 else f"loop{k + 1}"
+        grounded.setdefault((cycle.p, cycle.jp), Drive(name, "crank"))
+        grounded.setdefault((cycle.q, cycle.jq), Drive(name, "output"))
+    return grounded
 
 
 def _bare_pivots(chosen: list[tuple[_Cycle, Drive | None]], joints: list[Joint]) -> list[int]:
@@ -355,45 +335,15 @@ def _branch(name: str, a: NDArray[np.float64], b: NDArray[np.float64], o4: NDArr
     return "open" if cross > 0 else "crossed"
 
 
-@dataclass(frozen=True)
-class _SliderChain:
-    """A slider-crank through the ground: crank ``p`` pivoted at joint ``jp``, rod ``k`` pinned to
-    ``p`` at ``kp`` and to the slider ``s`` (a link whose one joint it is) at ``kb``."""
-
-    p: str
-    jp: int
-    kp: int
-    k: str
-    kb: int
-    s: str
-
-
-def _slider_chains(joints: list[Joint], ground: str, links: dict[str, ImportedLink]) -> list[_SliderChain]:
-    """Every crank -> rod -> slider chain from a pivot of ``ground`` to a link with one joint."""
-    at: dict[str, list[int]] = {}
-    for index, joint in enumerate(joints):
-        for name, _ in joint.ends:
-            at.setdefault(name, []).append(index)
-    return [
-        _SliderChain(p, jp, kp, k, kb, s)
-        for jp in at.get(ground, [])
-        for p in _others(joints[jp], ground)
-        for kp in at[p] if kp != jp
-        for k in _others(joints[kp], ground, p)
-        for kb in at[k] if kb not in (jp, kp)
-        for s in _others(joints[kb], ground, p, k) if len(links[s].joints) == 1
-    ]
-
-
-def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: list[Joint], chains: list[_SliderChain],
+def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: list[Joint], chains: list[SliderChain],
                      ground: str | None, ground_rule: str) -> Assembly:
-    """The drawing as one slider-crank (``chains`` from ``_slider_chains``): the crank named as one, else
-    the shortest; its slider line along the slider block's longer side, through its pin."""
+    """The drawing as one slider-crank (``chains`` from ``_slider_chains``): the crank named as one,
+    else the shortest."""
     named = [c for c in chains if _named(links[c.p], CRANK_NAMES)]
     if named:
         chain, crank_rule = named[0], f"the link on layer {named[0].p!r}"
     else:
-        chain = min(chains, key=lambda c: (_length(joints, c.jp, c.kp), c.p, c.k, c.s))
+        chain = min(chains, key=lambda c: (pin_distance(joints, c.jp, c.kp), c.p, c.k, c.s))
         crank_rule = (f"no layer is named {', '.join(CRANK_NAMES)}: the shortest link pivoted on the ground; rename "
                       "its layer crank to choose another")
     ground_name = ground if ground is not None else BARE_GROUND
@@ -403,62 +353,22 @@ def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: lis
             f"link(s) {', '.join(repr(n) for n in left)} are not in the slider-crank {chain.p!r}, {chain.k!r}, {chain.s!r} "
             f"({_what_joins(sketch, joints)}): leave their layers out with --exclude-layers, or write the scene by hand"
         )
-    o2, a, b = (joints[j] for j in (chain.jp, chain.kp, chain.kb))
-    u = _slider_direction(links[chain.s], b.at - o2.at)
-    ahead = float((b.at - a.at) @ u)
-    if abs(ahead) <= 1e-9 * _length(joints, chain.kp, chain.kb):
-        raise SketchError(
-            f"the drawing is at a toggle (rod {chain.k!r} square to the slider line at B ({b.at[0]:.6g}, {b.at[1]:.6g}) m), "
-            "where neither branch is drawn; draw the mechanism at another crank angle"
-        )
+    o2, a = joints[chain.jp], joints[chain.kp]
     if ground is None:
-        travel = _length(joints, chain.jp, chain.kp) + _length(joints, chain.kp, chain.kb)
+        # The undrawn ground has one pivot: its axis is given a second point, along the slider line.
+        loop = slider_loop("main", chain, joints, links, Role(BARE_GROUND, (0, 1)))
+        travel = pin_distance(joints, chain.jp, chain.kp) + pin_distance(joints, chain.kp, chain.kb)
+        u = np.array([math.cos(loop.slider_angle), math.sin(loop.slider_angle)])
         ground_joints = np.array([o2.at, o2.at + travel * u])
-        ground_role = Role(BARE_GROUND, (0, 1))
         ground_rule = "the ground is not drawn: the crank's pivot, then a point along the slider line's direction"
     else:
-        others = [k for k in range(len(links[ground].joints)) if k != o2.index(ground)]
-        if not others:
-            raise SketchError(
-                f"the ground {ground!r} has one joint, the crank's pivot; a slider-crank's ground needs a second one "
-                "(a POINT or hole anywhere on it), or leave its layer out with --exclude-layers"
-            )
-        ground_joints, ground_role = None, Role(ground, (o2.index(ground), others[0]))
-    # Rounded as the crank angle is, and the offset to 1e-12 m: a line drawn through the pivot reads 0.0.
-    slider_angle = math.radians(round(math.degrees(math.atan2(u[1], u[0])), ANGLE_DIGITS))
-    loop = Loop(
-        name="main",
-        kind="slider-crank",
-        crank=Role(chain.p, (o2.index(chain.p), a.index(chain.p))),
-        coupler=Role(chain.k, (a.index(chain.k), b.index(chain.k))),
-        slider=Role(chain.s, (b.index(chain.s), b.index(chain.s))),
-        ground=ground_role,
-        branch="open" if ahead > 0 else "crossed",
-        offset=round(float((b.at - o2.at) @ np.array([-u[1], u[0]])), 12),
-        slider_angle=slider_angle,
-    )
+        loop = slider_loop("main", chain, joints, links, pivot_ground(chain, joints, links, ground, None))
+        ground_joints = None
     angle = round(math.degrees(math.atan2(*(a.at - o2.at)[::-1])), ANGLE_DIGITS)
-    linkage = SliderCrank(tuple(o2.at), _length(joints, chain.jp, chain.kp), _length(joints, chain.kp, chain.kb),
-                          loop.offset, slider_angle, loop.branch)
+    linkage = SliderCrank(tuple(o2.at), pin_distance(joints, chain.jp, chain.kp), pin_distance(joints, chain.kp, chain.kb),
+                          loop.offset, loop.slider_angle, loop.branch)
     sweep = _range_holding(slider_feasible_input_ranges(linkage), angle)
     return Assembly(links, ground_name, ground_joints, (loop,), angle, sweep, ground_rule, crank_rule)
-
-
-def _slider_direction(slider: ImportedLink, ahead: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The unit direction of the longer side of ``slider``'s smallest enclosing rectangle, pointing
-    along ``ahead`` (from the crank's pivot to the slider's pin) where the two are not square."""
-    corners = np.asarray(slider.outline.minimum_rotated_rectangle.exterior.coords)[:3]
-    sides = np.diff(corners, axis=0)
-    lengths = np.hypot(*sides.T)
-    if lengths.max() < SLIDER_ELONGATION * lengths.min():
-        raise SketchError(
-            f"link {slider.name!r} is taken for a slider (a link with one pin, at the rod's end), but its outline is "
-            f"about as long as it is wide ({lengths.max():.3g} x {lengths.min():.3g} m): the line it slides on is "
-            f"taken along its longer side, which must be at least {SLIDER_ELONGATION:g} x the shorter; draw the block "
-            "longer along its line, or write the scene by hand (docs/scenes.md)"
-        )
-    u = sides[int(np.argmax(lengths))] / lengths.max()
-    return -u if float(u @ ahead) < 0 else u
 
 
 def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
@@ -471,7 +381,7 @@ def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
             f"drawn in place must coincide within the gap tolerance {sketch.gap_tolerance_m:.3g} m"
         )
     pairs = "; ".join(
-        f"links {', '.join(repr(n) for n in dict.fromkeys(_names(j)) if n != BARE_GROUND)} share the joint at "
+        f"links {', '.join(repr(n) for n in dict.fromkeys(users(j)) if n != BARE_GROUND)} share the joint at "
         f"({j.at[0]:.6g}, {j.at[1]:.6g}) m" for j in shared
     )
     return (

@@ -17,6 +17,7 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 import pytest
+from shapely.geometry import MultiPoint
 
 from linkstress.cli import main
 from linkstress.kinematics.motion import angle_motion
@@ -153,3 +154,42 @@ def test_a_drawn_slider_block_gets_no_section_stresses_and_the_others_do(tmp_pat
     scene.write_text(scene.read_text() + '\n[analysis]\nvalidate = ["slider"]\n')
     assert main(["validate", str(scene)]) == 2
     assert "analysis.validate: link 'slider' is a slider, with one joint" in capsys.readouterr().err
+
+
+def test_a_slider_crank_driven_by_a_four_bars_rocker_is_chained_to_it(tmp_path, capsys):
+    # a crank-rocker O2 (0, 0), O4 (0.1, 0): crank 0.03, coupler 0.1, rocker 0.08 (O4 -> B) with a third
+    # pin C 0.05 from O4, 100 deg round from B; a rod C -> D of 0.12 to a slider on the line y = -0.07
+    o2, o4 = np.array([0.0, 0.0]), np.array([0.1, 0.0])
+    a = o2 + 0.03 * np.array([math.cos(1.0), math.sin(1.0)])
+    d_ao4 = np.hypot(*(o4 - a))
+    along = (0.1**2 - 0.08**2 + d_ao4**2) / (2 * d_ao4)
+    unit = (o4 - a) / d_ao4
+    b = a + along * unit + math.sqrt(0.1**2 - along**2) * np.array([-unit[1], unit[0]])
+    turn_c = math.atan2(*(b - o4)[::-1]) + math.radians(100.0)
+    c = o4 + 0.05 * np.array([math.cos(turn_c), math.sin(turn_c)])
+    d = np.array([c[0] + math.sqrt(0.12**2 - (c[1] + 0.07) ** 2), -0.07])
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    bars = {"crank": (o2, a), "coupler": (a, b), "rod": (c, d)}
+    for layer, (p, q) in bars.items():
+        msp.add_lwpolyline(rectangle(p, q, 0.012, 0.008), close=True, dxfattribs={"layer": layer})
+        for centre in (p, q):
+            msp.add_circle(tuple(centre), HOLE / 2, dxfattribs={"layer": layer})
+    rocker = MultiPoint([tuple(o4), tuple(b), tuple(c)]).convex_hull.buffer(0.008)
+    msp.add_lwpolyline(list(rocker.exterior.coords)[:-1], close=True, dxfattribs={"layer": "rocker"})
+    for centre in (o4, b, c):
+        msp.add_circle(tuple(centre), HOLE / 2, dxfattribs={"layer": "rocker"})
+    msp.add_lwpolyline(rectangle(d - [0.02, 0.0], d + [0.02, 0.0], 0.02, 0.0), close=True, dxfattribs={"layer": "slider"})
+    msp.add_circle(tuple(d), HOLE / 2, dxfattribs={"layer": "slider"})
+    doc.saveas(tmp_path / "press.dxf")
+
+    assert main(["import", str(tmp_path / "press.dxf"), "--scene", str(tmp_path / "scene.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "mechanism main: four-bar, crank 'crank', coupler 'coupler', output 'rocker'" in out
+    assert "mechanism loop2: slider-crank, crank 'rocker', coupler 'rod', slider 'slider'" in out
+    second = tomllib.loads((tmp_path / "scene.toml").read_text())["mechanisms"]["loop2"]
+    assert (second["type"], second["driven_by"], second["slider_angle_deg"]) == ("slider-crank", "main.output", 0.0)
+    assert second["offset_m"] == pytest.approx(-0.07, abs=1e-12)
+    scene = load_scene(tmp_path / "scene.toml")
+    motion = solve_machine(scene.machine, angle_motion(np.array([math.degrees(1.0)]), 0.0, 0.0))
+    np.testing.assert_allclose(motion.links["slider"].point(np.zeros((1, 2)))[0][0, 0], d, atol=1e-9)
