@@ -374,11 +374,16 @@ def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: lis
 def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
     """Which links share which joints, for a refusal."""
     shared = [j for j in joints if len({n for n, _ in j.ends if n != BARE_GROUND}) > 1]
+    few = [f"{link.name!r} ({len(link.joints)})" for link in sketch.links if len(link.joints) < 2]
+    hint = (
+        f"; links with fewer than two joints: {', '.join(few)} (joints are POINTs, else the centres of round holes: "
+        "a bore with a keyway or a flat gives none; a slider block has one)" if few else ""
+    )
     names = ", ".join(repr(link.name) for link in sketch.links)
     if not shared:
         return (
             f"no two of the links ({names}) share a joint: pin centres (POINTs or circular holes) of links "
-            f"drawn in place must coincide within the gap tolerance {sketch.gap_tolerance_m:.3g} m"
+            f"drawn in place must coincide within the gap tolerance {sketch.gap_tolerance_m:.3g} m{hint}"
         )
     pairs = "; ".join(
         f"links {', '.join(repr(n) for n in dict.fromkeys(users(j)) if n != BARE_GROUND)} share the joint at "
@@ -387,7 +392,7 @@ def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
     return (
         f"{pairs}; no closed loop of four links and four joints through a ground (a layer named "
         f"{', '.join(GROUND_NAMES)}, or fixed pivots that one link alone uses), nor a slider-crank (a crank "
-        "pivoted on the ground, a rod, and a slider block with one pin)"
+        f"pivoted on the ground, a rod, and a slider block with one pin){hint}"
     )
 
 

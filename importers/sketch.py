@@ -39,6 +39,10 @@ from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 
 POINT_RULE = "point"
 HOLE_RULE = "hole centre"
+ROUND_HOLE = 0.97
+"""A hole whose largest inscribed circle fills less of it than this is not round (a keyway, a flat,
+a slot): a POINT off its centroid is then refused as being in a hole no pin is modelled in, not as
+being off its centre (a regular 12-gon, the coarsest polygon taken for a circle, fills 0.977)."""
 
 MAX_REACH_M = 1e6
 """No curve or POINT of a sketch may reach farther than this from its origin [m]: a machine, not a map."""
@@ -415,6 +419,15 @@ def _off_centre(polygon: Polygon, points: NDArray[np.float64], origins, name: st
         c = hole.centroid
         radius = math.sqrt(hole.area / math.pi)
         if point.distance(c) > HOLE_CENTRE_TOLERANCE * radius:
+            inscribed = shapely.length(shapely.maximum_inscribed_circle(hole, 1e-4 * radius)) / radius
+            if inscribed**2 < ROUND_HOLE:
+                return SketchProblem(
+                    layer, (float(p[0]), float(p[1])), unit, (describe(origin),),
+                    f"{describe(origin)} at ({p[0]:.6g}, {p[1]:.6g}) {unit} lies in a hole of link {name!r} that is not "
+                    f"round (its largest inscribed circle fills {100 * inscribed**2:.0f} % of it: a keyway, a flat, a slot)",
+                    "linkstress puts a pin only in a round hole, at its centre: draw the bore round to analyse the link "
+                    "(a keyway's or flat's own stress is then not modelled: check it apart), or delete the POINT",
+                )
             cx, cy = (v if abs(v) > 1e-12 * radius else 0.0 for v in (c.x, c.y))
             return SketchProblem(
                 layer, (float(p[0]), float(p[1])), unit, (describe(origin),),

@@ -193,3 +193,40 @@ def test_a_slider_crank_driven_by_a_four_bars_rocker_is_chained_to_it(tmp_path, 
     scene = load_scene(tmp_path / "scene.toml")
     motion = solve_machine(scene.machine, angle_motion(np.array([math.degrees(1.0)]), 0.0, 0.0))
     np.testing.assert_allclose(motion.links["slider"].point(np.zeros((1, 2)))[0][0, 0], d, atol=1e-9)
+
+
+def keyed_crank(path: Path, point: bool) -> Path:
+    """A crank disc (radius 40 mm) whose 12 mm bore has a 4 mm keyway, and a pin hole A 30 mm out at
+    45 deg; with ``point``, POINTs at the bore's axis and at A."""
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    attrs = {"layer": "crank"}
+    msp.add_circle((0, 0), 40, dxfattribs=attrs)
+    r, half = 6.0, 2.0
+    y0 = math.sqrt(r * r - half * half)
+    msp.add_arc((0, 0), r, math.degrees(math.atan2(y0, -half)), math.degrees(math.atan2(y0, half)) + 360, dxfattribs=attrs)
+    for p, q in (((half, y0), (half, r + 2)), ((half, r + 2), (-half, r + 2)), ((-half, r + 2), (-half, y0))):
+        msp.add_line(p, q, dxfattribs=attrs)
+    a = (30 * math.cos(math.pi / 4), 30 * math.sin(math.pi / 4))
+    msp.add_circle(a, 4, dxfattribs=attrs)
+    if point:
+        msp.add_point((0, 0), dxfattribs=attrs)
+        msp.add_point(a, dxfattribs=attrs)
+    doc.saveas(path)
+    return path
+
+
+def test_a_point_in_a_keyed_bore_is_refused_as_a_hole_that_is_not_round(tmp_path, capsys):
+    # bore pi 6^2 = 113.1 mm^2, keyway 4 x (8 - 5.657) = 9.37 mm^2 less the bore's cap under it 0.92:
+    # the largest inscribed circle (the bore) fills 113.1 / 121.55 = 93 %
+    sketch = keyed_crank(tmp_path / "crank.dxf", point=True)
+    assert main(["import", str(sketch)]) == 2
+    err = capsys.readouterr().err
+    assert "lies in a hole of link 'crank' that is not round (its largest inscribed circle fills 93 % of it" in err
+    assert "draw the bore round to analyse the link" in err and "not at its centre" not in err
+
+
+def test_a_drawing_that_closes_no_mechanism_names_the_links_with_fewer_than_two_joints(tmp_path, capsys):
+    sketch = keyed_crank(tmp_path / "crank.dxf", point=False)
+    assert main(["import", str(sketch), "--scene", str(tmp_path / "scene.toml")]) == 2
+    assert "links with fewer than two joints: 'crank' (1) (joints are POINTs, else the centres of round holes" in capsys.readouterr().err
