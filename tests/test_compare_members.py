@@ -13,7 +13,8 @@ from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.members import link_members
 from linkstress.profile import LinkProfile
-from linkstress.validation.compare import compare_link, hole_circles, member_stations, resultant_error
+from linkstress.validation.compare import compare_link, resultant_error
+from linkstress.validation.stations import hole_circles, member_stations
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.report import member_record, member_words
 

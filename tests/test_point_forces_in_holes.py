@@ -22,7 +22,8 @@ from linkstress.dynamics.internal_forces import internal_forces
 from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.profile import LinkProfile
-from linkstress.validation.compare import comparison_stations, default_mesh, resultant_error
+from linkstress.validation.compare import resultant_error
+from linkstress.validation.stations import comparison_stations, default_mesh
 from linkstress.validation.fea.link import solve_link
 from linkstress.validation.fea.loads import link_loads, nodal_resultant, point_force_hole
 from linkstress.validation.validate_scene import RESULTANT_LIMIT

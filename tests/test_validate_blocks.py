@@ -20,7 +20,7 @@ from linkstress.analysis import plan_for
 from linkstress.cli import main
 from linkstress.executors import LocalExecutor
 from linkstress.scene import load_scene
-from linkstress.validation.compare import choose_stations, default_mesh
+from linkstress.validation.stations import choose_stations, default_mesh
 from linkstress.validation.fea.convergence import convergence_study, join_studies
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.link import join_results, solve_link

@@ -29,7 +29,7 @@ from linkstress.loads import LinkLoadCase
 from linkstress.members import Member
 from linkstress.profile import LinkProfile
 from linkstress.stress_state import larger_principal_sign, von_mises
-from linkstress.validation.compare import choose_stations, default_mesh
+from linkstress.validation.stations import choose_stations, default_mesh
 from linkstress.validation.fea.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO
 from linkstress.validation.fea.link import reaction_ratio, region_length, solve_link
 from linkstress.validation.fea.mesh import MeshSettings

@@ -30,9 +30,7 @@ from linkstress.validation.compare import (
     LinkBeams,
     LinkComparison,
     LinkFEA,
-    choose_stations,
     comparison_mesh,
-    default_mesh,
     join_link_fea,
     link_beams,
     link_comparison,
@@ -41,6 +39,7 @@ from linkstress.validation.compare import (
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.fea.plane_stress import SOLVE_COLUMNS
+from linkstress.validation.stations import choose_stations, default_mesh
 
 REACTION_LIMIT = 1e-4
 """Largest support reaction, relative to the applied load, for loads in equilibrium. Not zero: the

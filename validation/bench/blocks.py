@@ -73,7 +73,7 @@ def main() -> int:
             client.run(lambda: __import__("linkstress.validation.validate_scene"))
             where = DaskExecutor(client, "local")
             auto = len(position_blocks(args.positions, 1, where.workers))
-            rows.append((f"2 workers, blocks validate chooses", *timed(scene, args.positions, where), auto))
+            rows.append(("2 workers, blocks validate chooses", *timed(scene, args.positions, where), auto))
             given = len(position_blocks(args.positions, 1, where.workers, args.block))
             rows.append((f"2 workers, --positions-per-task {args.block}", *timed(scene, args.positions, where, args.block), given))
     reference = rows[0][3]

@@ -43,7 +43,8 @@ from linkstress.members import Member, MemberCuts, link_members
 from linkstress.profile import LinkProfile
 from linkstress.scene import Scene, load_scene
 from linkstress.stress_state import von_mises
-from linkstress.validation.compare import choose_stations, default_mesh, member_stations, relative, resultant_error
+from linkstress.validation.compare import relative, resultant_error
+from linkstress.validation.stations import choose_stations, default_mesh, member_stations
 from linkstress.validation.fea.convergence import richardson
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.link import solve_link

@@ -32,7 +32,8 @@ from linkstress.analysis import plan_for, run_analysis
 from linkstress.kinematics.linkage_class import feasible_input_ranges
 from linkstress.kinematics.motion import angle_motion
 from linkstress.scene import Scene, load_scene
-from linkstress.validation.compare import comparison_stations, compare_link, default_mesh
+from linkstress.validation.compare import compare_link
+from linkstress.validation.stations import comparison_stations, default_mesh
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.report import curvature_note
 from linkstress.validation.bench.speed_error import RATIO

@@ -31,7 +31,7 @@ from linkstress.kinematics import solve_machine
 from linkstress.kinematics.motion import angle_motion
 from linkstress.members import link_members
 from linkstress.scene import load_scene
-from linkstress.validation.compare import comparison_stations, default_mesh
+from linkstress.validation.stations import comparison_stations, default_mesh
 from linkstress.validation.fea.link import solve_link
 from linkstress.threads import blas_alone
 from linkstress.validation.bench.timing import best_run

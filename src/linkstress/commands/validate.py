@@ -207,7 +207,7 @@ class FinestMesh:
 def finest_mesh(scene: Scene, name: str, size: float | None, levels: int) -> FinestMesh:
     """The estimate of link ``name``'s meshes for an element ``size`` [m] (None: the default) over a
     study of ``levels`` (the finest is REFINEMENT_RATIO^(levels - 1) finer)."""
-    from linkstress.validation.compare import ELEMENTS_PER_DEPTH, comparison_stations, default_mesh
+    from linkstress.validation.stations import ELEMENTS_PER_DEPTH, comparison_stations, default_mesh
     from linkstress.validation.fea.convergence import REFINEMENT_RATIO
     from linkstress.validation.validate_scene import LINEAR_REFINEMENT
 
