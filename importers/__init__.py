@@ -2,7 +2,7 @@
 
 ``read_sketch(path, units=None, tolerance=None)`` returns a :class:`Sketch` whose ``links`` are
 :class:`ImportedLink` objects (outline and joints in metres, sketch frame); ``ImportedLink.profile``
-makes a :class:`linkstress.profile.LinkProfile` of a given thickness and material.
+makes a :class:`linkstress.geometry.profile.LinkProfile` of a given thickness and material.
 """
 
 from linkstress.importers.sketch import HOLE_RULE, POINT_RULE, ImportedLink, Sketch, read_sketch

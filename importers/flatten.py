@@ -3,7 +3,7 @@
 Arcs (and bulges, circles, ellipses) are flattened from their exact geometry, never through
 ``ezdxf.path``'s cubic Beziers. The step is chosen as for a circle of the arc's (major) radius r:
 n equal steps of dt with r (1 - cos(dt / 2)) <= s, the chord (sagitta) tolerance, so every chord of
-an inscribed polygon would lie within s of the curve (``linkstress.curves``' rule). An inscribed
+an inscribed polygon would lie within s of the curve (``linkstress.geometry.curves``' rule). An inscribed
 polygon loses the area (2/3) s per unit length of curve, a relative error about (4/3) s / r;
 instead the vertices are placed *area-preserving* (the midpoint rule of quadrature):
 
@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.curves import MIN_SEGMENTS_PER_TURN
+from linkstress.geometry.curves import MIN_SEGMENTS_PER_TURN
 from linkstress.errors import SketchError
 from linkstress.importers import circles
 from linkstress.importers.primitives import CurveSet, Origin, Polyline, bulge_arcs, describe

@@ -35,7 +35,7 @@ from linkstress.importers.library_notes import library_notes, noted, with_notes
 from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, no_curves, with_damage
 from linkstress.importers.problems import SketchProblem, listed
 from linkstress.materials import Material
-from linkstress.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
+from linkstress.geometry.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 
 POINT_RULE = "point"
 HOLE_RULE = "hole centre"

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from linkstress.builders import stadium, straight_bar
+from linkstress.geometry.builders import stadium, straight_bar
 from linkstress.cli import main
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from shapely.geometry import LineString, Polygon
 
-from linkstress.bounds import bounding_functions
-from linkstress.builders import stadium, straight_bar
+from linkstress.geometry.bounds import bounding_functions
+from linkstress.geometry.builders import stadium, straight_bar
 
 
 def test_bar_bounds_are_its_top_and_bottom_over_the_full_extent():

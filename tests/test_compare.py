@@ -7,8 +7,8 @@ import pytest
 
 from shapely.geometry import Point, Polygon
 
-from linkstress.builders import straight_bar
-from linkstress.profile import LinkProfile
+from linkstress.geometry.builders import straight_bar
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.compare import relative, resultant_error
 from linkstress.validation.stations import choose_stations, comparison_stations
 from linkstress.validation.fea.errors import FEAError

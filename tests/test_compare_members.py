@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 from shapely.geometry import Point, Polygon, box
 
-from linkstress.builders import straight_bar
-from linkstress.curves import circle_points
+from linkstress.geometry.builders import straight_bar
+from linkstress.geometry.curves import circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.members import link_members
-from linkstress.profile import LinkProfile
+from linkstress.geometry.members import link_members
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.compare import compare_link, resultant_error
 from linkstress.validation.stations import hole_circles, member_stations
 from linkstress.validation.fea.errors import FEAError

@@ -11,13 +11,13 @@ import pytest
 from scipy.integrate import quad
 from shapely.geometry import Polygon, box
 
-from linkstress.curved_beam import SERIES_LIMIT, cubic_kernel, curved_sections, theory_of
-from linkstress.curves import arc_points, circle_points
+from linkstress.geometry.curved_beam import SERIES_LIMIT, cubic_kernel, curved_sections, theory_of
+from linkstress.geometry.curves import arc_points, circle_points
 from linkstress.errors import GeometryError
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.profile import LinkProfile
-from linkstress.sections import section_table
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.sections import section_table
 from linkstress.validation.fea.link import solve_link
 from linkstress.validation.fea.mesh import MeshSettings
 

@@ -11,10 +11,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from linkstress.analysis import Plan, run_analysis
-from linkstress.builders import straight_bar, stadium
+from linkstress.geometry.builders import straight_bar, stadium
 from linkstress.dynamics.internal_forces import internal_forces
 from linkstress.dynamics.section_stress import section_stresses
-from linkstress.members import frame_member
+from linkstress.geometry.members import frame_member
 from linkstress.kinematics.motion import angle_motion
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import Material

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.dynamics.newton_euler import (
     GROUND, Actuator, AppliedCouple, Assembly, Body, Pin, Slide, solve_forces,
 )

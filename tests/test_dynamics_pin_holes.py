@@ -16,14 +16,14 @@ import pytest
 from shapely.geometry import Point, Polygon, box
 
 from linkstress.analysis import run_analysis
-from linkstress.builders import stadium, straight_bar
-from linkstress.curves import arc_points
+from linkstress.geometry.builders import stadium, straight_bar
+from linkstress.geometry.curves import arc_points
 from linkstress.dynamics.pin_holes import (
     END_DISTANCES, OPEN_KT, RATIOS, ROUND, ROUND_KT, SHANKS, SQUARE, SQUARE_KT, pin_hole_estimates, table_kt,
 )
 from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.report.records import _pin_hole_lists, _rows
 from linkstress.safety import finite_or_none, pin_hole_factor
 from linkstress.scene import load_scene

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.fatigue import node_fatigue, safety_factor
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import Material

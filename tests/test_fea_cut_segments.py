@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 from shapely.geometry import LineString, Polygon, box
 
-from linkstress.builders import straight_bar
-from linkstress.curves import circle_points
+from linkstress.geometry.builders import straight_bar
+from linkstress.geometry.curves import circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.fea.convergence import convergence_study
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.link import solve_link

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
 from linkstress.validation.fea.errors import FEAError

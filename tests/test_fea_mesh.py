@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from shapely.geometry import Polygon, box
 from shapely.geometry.polygon import orient
 
-from linkstress.builders import stadium, straight_bar
-from linkstress.curves import circle_points
+from linkstress.geometry.builders import stadium, straight_bar
+from linkstress.geometry.curves import circle_points
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.mesh import MeshSettings, mesh_region
 from linkstress.validation.fea.ring_curves import Arc, Circle, Line, Spline, ring_curves

@@ -98,7 +98,7 @@ def test_old_format_reads_as_centimetres_and_says_so(tmp_path):
 
 
 def _as_part(polygon: Polygon):
-    from linkstress.mass_properties import area_properties
+    from linkstress.geometry.mass_properties import area_properties
     from test_import_exact import Part
 
     props = area_properties(polygon)

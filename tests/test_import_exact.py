@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from shapely.geometry import Polygon
 
-from linkstress.mass_properties import area_properties
+from linkstress.geometry.mass_properties import area_properties
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
 

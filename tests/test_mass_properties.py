@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from shapely.geometry import Polygon
 
-from linkstress.builders import stadium
-from linkstress.curves import circle_points
-from linkstress.mass_properties import area_properties
+from linkstress.geometry.builders import stadium
+from linkstress.geometry.curves import circle_points
+from linkstress.geometry.mass_properties import area_properties
 from linkstress.materials import Material
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 
 from conftest import rel_err
 

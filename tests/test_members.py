@@ -1,5 +1,5 @@
 """A link's members: the arms between its joints, their axes (straight or curved), and the sections
-and free bodies of the cuts across them (``linkstress.members``)."""
+and free bodies of the cuts across them (``linkstress.geometry.members``)."""
 
 from __future__ import annotations
 
@@ -10,16 +10,16 @@ import pytest
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import split, unary_union
 
-from linkstress.builders import stadium, straight_bar
-from linkstress.curved_beam import CURVED_BEAM_LIMIT
+from linkstress.geometry.builders import stadium, straight_bar
+from linkstress.geometry.curved_beam import CURVED_BEAM_LIMIT
 from linkstress.dynamics.section_stress import section_stresses
 from linkstress.errors import GeometryError
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.centreline import CURVED_WANDER
-from linkstress.members import check_members, frame_member, link_members, member_tree
-from linkstress.profile import LinkProfile
-from linkstress.region_moments import region_moments
+from linkstress.geometry.centreline import CURVED_WANDER
+from linkstress.geometry.members import check_members, frame_member, link_members, member_tree
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.region_moments import region_moments
 
 SPAN = 0.2
 """Joint spacing [m] of the generated two-joint links: joints at (0, 0) and (SPAN, 0)."""
@@ -319,7 +319,7 @@ def test_two_joints_at_one_point_are_refused_naming_them():
 
 
 def test_the_centreline_median_is_numpys_median_for_odd_and_even_counts():
-    from linkstress.centreline import median
+    from linkstress.geometry.centreline import median
 
     rng = np.random.default_rng(7)
     for count in range(1, 30):

@@ -13,8 +13,8 @@ from linkstress.dynamics.section_stress import section_stresses
 from linkstress.errors import GeometryError
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.members import link_members
-from linkstress.profile import LinkProfile
+from linkstress.geometry.members import link_members
+from linkstress.geometry.profile import LinkProfile
 
 CASES = 60
 

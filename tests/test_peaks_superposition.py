@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from linkstress.analysis import plan_for, run_analysis
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.members import link_members
+from linkstress.geometry.members import link_members
 from linkstress.scene import load_scene
 from linkstress.stress_state import von_mises
 from linkstress.validation import peaks as peaks_module

@@ -16,12 +16,12 @@ import numpy as np
 import pytest
 from shapely.geometry import Polygon
 
-from linkstress.builders import straight_bar
-from linkstress.curves import circle_points
+from linkstress.geometry.builders import straight_bar
+from linkstress.geometry.curves import circle_points
 from linkstress.dynamics.internal_forces import internal_forces
 from linkstress.loads import LinkLoadCase, PointForce
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.compare import resultant_error
 from linkstress.validation.stations import comparison_stations, default_mesh
 from linkstress.validation.fea.link import solve_link

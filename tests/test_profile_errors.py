@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from shapely.geometry import Polygon
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.errors import GeometryError
 from linkstress.materials import Material
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 
 BAR = [(0, 0), (1, 0), (1, 0.2), (0, 0.2)]
 JOINTS = np.array([[0.1, 0.1], [0.9, 0.1]])

@@ -14,10 +14,10 @@ from hypothesis import strategies as st
 from shapely import affinity
 from shapely.geometry import Polygon
 
-from linkstress.bounds import bounding_functions
-from linkstress.mass_properties import area_properties
-from linkstress.profile import LinkProfile
-from linkstress.sections import section_table
+from linkstress.geometry.bounds import bounding_functions
+from linkstress.geometry.mass_properties import area_properties
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.sections import section_table
 
 
 @st.composite

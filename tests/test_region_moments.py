@@ -10,9 +10,9 @@ from hypothesis import strategies as st
 from shapely import clip_by_rect
 from shapely.geometry import MultiPolygon, Polygon
 
-from linkstress.builders import stadium
-from linkstress.mass_properties import area_properties
-from linkstress.region_moments import region_moments
+from linkstress.geometry.builders import stadium
+from linkstress.geometry.mass_properties import area_properties
+from linkstress.geometry.region_moments import region_moments
 
 
 def clipped_moments(polygon: Polygon, x: float) -> np.ndarray:

@@ -9,7 +9,7 @@ import pytest
 
 from linkstress.cli import main
 from linkstress.errors import SceneError
-from linkstress.members import link_members
+from linkstress.geometry.members import link_members
 from linkstress.scene import load_scene
 
 BASE = """

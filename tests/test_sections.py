@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from shapely.geometry import LineString, Polygon
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.errors import GeometryError
-from linkstress.profile import LinkProfile
-from linkstress.sections import cut_extent, section_table
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.sections import cut_extent, section_table
 
 
 def rect(x0, y0, w, h):

@@ -8,7 +8,7 @@
 - a crank too short for stations five hole radii from its pins (60 mm, 12 mm holes) compares its
   resultants at the midpoint and says why no nominal comparison is possible there.
 
-The scenes are generated here: straight bars (``linkstress.builders.straight_bar``) drawn into a DXF.
+The scenes are generated here: straight bars (``linkstress.geometry.builders.straight_bar``) drawn into a DXF.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 
 from linkstress.analysis import plan_for, run_analysis
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.cli import main
 from linkstress.scene import load_scene
 from linkstress.validation import compare

@@ -1,7 +1,7 @@
 """Beam sections against plane-stress FEA of the same link under the same loads.
 
 Three comparisons per link and position (docs/design.md, "FEA cross-check"), along each member of
-the link (the arms between its joints, ``linkstress.members``), each sectioned on its own axis:
+the link (the arms between its joints, ``linkstress.geometry.members``), each sectioned on its own axis:
 
 - section resultants: N, V, M integrated over FEA cuts, the beam's section segments normal to the
   member's axis at the comparison stations, against the beam's free-body values; error = largest
@@ -37,8 +37,8 @@ from numpy.typing import NDArray
 from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
-from linkstress.members import Member, MemberCuts
-from linkstress.profile import LinkProfile
+from linkstress.geometry.members import Member, MemberCuts
+from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
 from linkstress.validation.fea.convergence import (
     CONVERGED_CHANGE,

@@ -26,8 +26,8 @@ from numpy.typing import NDArray
 
 from linkstress.analysis import PEAK_MESH_LEVELS
 from linkstress.loads import LinkLoadCase
-from linkstress.members import Member
-from linkstress.profile import LinkProfile
+from linkstress.geometry.members import Member
+from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import larger_principal_sign, von_mises
 from linkstress.validation.stations import choose_stations, default_mesh
 from linkstress.validation.fea.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO

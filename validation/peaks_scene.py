@@ -24,7 +24,7 @@ from linkstress.analysis import Plan
 from linkstress.dynamics.machine_forces import MachineForces
 from linkstress.executors import DaskExecutor, LocalExecutor
 from linkstress.fatigue import NodeFatigue, criteria_available, node_fatigue
-from linkstress.members import link_members
+from linkstress.geometry.members import link_members
 from linkstress.loads import LinkLoadCase
 from linkstress.scene import Scene, SceneLink
 from linkstress.threads import blas_alone

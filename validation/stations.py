@@ -1,6 +1,6 @@
 """Where beam and FEA are compared, and the mesh sized for it.
 
-Along each member of a link (``linkstress.members``) the comparison stations lie between its
+Along each member of a link (``linkstress.geometry.members``) the comparison stations lie between its
 joints, clear of the pin holes (a cut through a hole splits the bearing pressure between its two
 sides, which a beam cannot) and a section depth from the other members' axes (where arms meet,
 neither arm is a beam), and always include the midpoint. On a member too short for its holes the
@@ -19,9 +19,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
-from linkstress.member_cuts import segment_distance
-from linkstress.members import Member, frame_member
-from linkstress.profile import LinkProfile
+from linkstress.geometry.member_cuts import segment_distance
+from linkstress.geometry.members import Member, frame_member
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.mesh import MeshSettings
 

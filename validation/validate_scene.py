@@ -24,7 +24,7 @@ from tqdm import tqdm
 from linkstress.analysis import AnalysisResult, Plan, run_analysis
 from linkstress.errors import GeometryError
 from linkstress.executors import DaskExecutor, LocalExecutor
-from linkstress.members import link_members
+from linkstress.geometry.members import link_members
 from linkstress.scene import Scene
 from linkstress.validation.compare import (
     LinkBeams,

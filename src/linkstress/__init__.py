@@ -5,7 +5,7 @@ SI units throughout (m, kg, s, N, Pa, rad); angles counter-clockwise from the gr
 
 from linkstress.errors import GeometryError, InputError, LinkstressError, SceneError, SketchError
 from linkstress.materials import Material
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 
 __version__ = "0.1.0"
 

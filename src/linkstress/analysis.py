@@ -18,7 +18,7 @@ from linkstress.dynamics.machine_forces import MachineForces, machine_forces
 from linkstress.dynamics.section_stress import StressSummary, links_section_stresses
 from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
-from linkstress.members import link_members
+from linkstress.geometry.members import link_members
 from linkstress.scene import Scene
 from linkstress.threads import blas_alone
 
@@ -131,7 +131,7 @@ class AnalysisResult:
 
     def curved(self, name: str) -> bool:
         """Whether link ``name`` has a curved member: one sectioned normal to its curved centreline
-        (``linkstress.members``)."""
+        (``linkstress.geometry.members``)."""
         stress = self.stresses.get(name)
         return stress is not None and any(m.member.curved for m in stress.members)
 

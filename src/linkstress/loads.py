@@ -20,7 +20,7 @@ import shapely
 from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 
 OUTLINE_TOLERANCE = 1e-3
 """A point within this fraction of the outline's size (its bounding-box diagonal) outside the

@@ -9,7 +9,7 @@ pin-hole factor. A position where the stress is zero, or without a pin-hole fact
 factor: the reports leave it empty (JSON null), never print infinity.
 
 Every member of a link counts, a curved one with its curved-beam (Winkler-Bach) stresses on the cuts
-square to its centreline (``linkstress.members``), so a curved link has its section factor too.
+square to its centreline (``linkstress.geometry.members``), so a curved link has its section factor too.
 """
 
 from __future__ import annotations

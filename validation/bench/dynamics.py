@@ -23,7 +23,7 @@ import numpy as np
 
 from linkstress.analysis import Plan, run_analysis
 from linkstress.kinematics.motion import angle_motion
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.scene import load_scene
 from linkstress.tables import format_table
 from linkstress.threads import cores

@@ -24,10 +24,10 @@ import time
 
 import numpy as np
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.tables import format_table
 from linkstress.validation.fea.convergence import convergence_study
 from linkstress.validation.fea.link import solve_link

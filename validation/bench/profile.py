@@ -14,8 +14,8 @@ import time
 import numpy as np
 from shapely.geometry import Polygon
 
-from linkstress.builders import straight_bar
-from linkstress.mass_properties import area_properties
+from linkstress.geometry.builders import straight_bar
+from linkstress.geometry.mass_properties import area_properties
 from linkstress.tables import format_table
 from linkstress.validation.bench.strip_sum import strip_sum_properties
 from linkstress.validation.bench.timing import best_time
@@ -41,7 +41,7 @@ def main() -> None:
     parser.add_argument("--full", action="store_true", help="also run the strip sums at dx = 1e-4 m")
     args = parser.parse_args()
 
-    from linkstress.sections import section_table
+    from linkstress.geometry.sections import section_table
 
     outline = wavy_link(10_000)
     n_vertices = sum(len(r.coords) - 1 for r in [outline.exterior, *outline.interiors])

@@ -30,7 +30,7 @@ from linkstress.importers import dxf, read_sketch
 from linkstress.importers.dxf_tags import SimpleEntities
 from linkstress.importers.flatten import Tolerance, flatten
 from linkstress.importers.primitives import CurveSet
-from linkstress.mass_properties import area_properties
+from linkstress.geometry.mass_properties import area_properties
 from linkstress.tables import format_table
 from linkstress.validation.bench.timing import best_time
 

@@ -12,7 +12,7 @@ in the full run; the joint-force solve they all share is timed apart):
 - plane-stress FEA, P2 and P1, on the validate default mesh refined by RATIO**k for several k
   (mesh, assembly, factorisation, solve, stress recovery and sampling).
 
-The quantity is the nominal von Mises stress along every member of each link (``linkstress.members``:
+The quantity is the nominal von Mises stress along every member of each link (``linkstress.geometry.members``:
 sections square to the member's axis) at validate's comparison stations of that member
 (``member_stations``), at the beam's critical fibre of each, over the stations that are not nominal
 (a section depth from every hole and junction; a member whose every station is nominal, a crank
@@ -38,9 +38,9 @@ from numpy.typing import NDArray
 from linkstress.analysis import AnalysisResult, plan_for, run_analysis
 from linkstress.dynamics.section_stress import section_stresses
 from linkstress.loads import LinkLoadCase
-from linkstress.mass_properties import area_properties
-from linkstress.members import Member, MemberCuts, link_members
-from linkstress.profile import LinkProfile
+from linkstress.geometry.mass_properties import area_properties
+from linkstress.geometry.members import Member, MemberCuts, link_members
+from linkstress.geometry.profile import LinkProfile
 from linkstress.scene import Scene, load_scene
 from linkstress.stress_state import von_mises
 from linkstress.validation.compare import relative, resultant_error

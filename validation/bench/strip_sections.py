@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 from linkstress.dynamics.machine_forces import machine_forces
 from linkstress.kinematics import MachineMotion
 from linkstress.loads import LinkLoadCase
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.scene import Scene
 from linkstress.scene.model import MassData
 from linkstress.validation.bench.strip_sum import StripSumProperties, strip_sum_properties

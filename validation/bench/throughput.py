@@ -29,7 +29,7 @@ from linkstress.dynamics.machine_forces import machine_forces
 from linkstress.dynamics.section_stress import links_section_stresses
 from linkstress.kinematics import solve_machine
 from linkstress.kinematics.motion import angle_motion
-from linkstress.members import link_members
+from linkstress.geometry.members import link_members
 from linkstress.scene import load_scene
 from linkstress.validation.stations import comparison_stations, default_mesh
 from linkstress.validation.fea.link import solve_link

@@ -27,8 +27,8 @@ from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
 from linkstress.loads import LinkLoadCase
-from linkstress.mass_properties import area_properties
-from linkstress.profile import LinkProfile
+from linkstress.geometry.mass_properties import area_properties
+from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
 from linkstress.validation.fea.link import LinkFEAResult, solve_link
 from linkstress.validation.fea.mesh import MeshSettings

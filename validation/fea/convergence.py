@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkstress.loads import LinkLoadCase
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.link import LinkFEAResult, join_results, solve_link

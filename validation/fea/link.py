@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkstress.loads import LinkLoadCase
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.loads import check_load_case, link_loads, point_force_hole

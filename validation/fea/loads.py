@@ -31,7 +31,7 @@ from shapely.geometry import Polygon
 from skfem import Basis
 
 from linkstress.loads import LinkLoadCase, hole_at
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.plane_stress import PlaneStressModel, quadrature_weights, vector_loads
 

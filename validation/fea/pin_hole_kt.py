@@ -21,10 +21,10 @@ import math
 import numpy as np
 from shapely.geometry import Polygon, box
 
-from linkstress.curves import arc_points, circle_points
+from linkstress.geometry.curves import arc_points, circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import STRUCTURAL_STEEL
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.fea.convergence import convergence_study
 from linkstress.validation.fea.mesh import MeshSettings
 

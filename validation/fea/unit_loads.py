@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.loads import LinkLoadCase
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.link import applied_load, link_model, support_reactions
 from linkstress.validation.fea.loads import (

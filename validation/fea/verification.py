@@ -20,8 +20,8 @@ from numpy.typing import NDArray
 from shapely.geometry import Polygon, box
 from skfem import ElementTriP2, FacetBasis
 
-from linkstress.builders import straight_bar
-from linkstress.curves import arc_points, circle_points
+from linkstress.geometry.builders import straight_bar
+from linkstress.geometry.curves import arc_points, circle_points
 from linkstress.loads import LinkLoadCase
 from linkstress.materials import Material
 from linkstress.tables import format_table

@@ -7,11 +7,11 @@ import math
 
 import numpy as np
 
-from linkstress.builders import straight_bar
+from linkstress.geometry.builders import straight_bar
 from linkstress.commands import HelpFormatter, examples
 from linkstress.errors import InputError
 from linkstress.materials import Material
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 from linkstress.scene.keys import MAX_STATIONS, range_problem
 from linkstress.tables import format_table
 

@@ -16,8 +16,8 @@ from numpy.typing import NDArray
 
 from linkstress.dynamics.fibre_peaks import cubic_peak, has_cubic_peak, single_chord_peak
 from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces
-from linkstress.curved_beam import CurvedSections, curved_sections
-from linkstress.sections import SectionTable
+from linkstress.geometry.curved_beam import CurvedSections, curved_sections
+from linkstress.geometry.sections import SectionTable
 
 BODY_TERM = 0.1925
 """Half the 0.385 of the body-load term in ``interior_candidates``' test."""
@@ -319,7 +319,7 @@ CURVED_SAMPLES = 17
 @dataclass(frozen=True)
 class CurvedFibres:
     """The stations ``at`` (C,) of a member that take curved-beam normal stress (Winkler-Bach,
-    ``linkstress.curved_beam``): sigma = N / A + M g(v), with Jourawski's tau = V Q(v) / (I t).
+    ``linkstress.geometry.curved_beam``): sigma = N / A + M g(v), with Jourawski's tau = V Q(v) / (I t).
 
     Their von Mises is not the quartic in v of a straight section, so it is evaluated at
     ``CURVED_SAMPLES`` fibres per chord, ends included: ``v`` (C, F) [m], with ``gain`` (C, F)

@@ -25,10 +25,10 @@ import shapely
 from numpy.typing import NDArray
 
 from linkstress.loads import LinkLoadCase
-from linkstress.members import MemberCuts
-from linkstress.profile import LinkProfile
-from linkstress.region_moments import RegionMoments, region_moments
-from linkstress.sections import SectionTable
+from linkstress.geometry.members import MemberCuts
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.region_moments import RegionMoments, region_moments
+from linkstress.geometry.sections import SectionTable
 
 
 @dataclass(frozen=True)
@@ -160,7 +160,7 @@ def force_basis(
 
 
 def member_force_basis(link: LinkProfile, loads: LinkLoadCase, cuts: MemberCuts) -> ForceBasis:
-    """The ``ForceBasis`` at the sections of one member (``linkstress.members``), load frame, from the
+    """The ``ForceBasis`` at the sections of one member (``linkstress.geometry.members``), load frame, from the
     free body of each cut's left piece (the one that holds the member's joint i): with F_L and M_L
     (about the section's centroid) the resultant of every load on that piece, d'Alembert load
     included, N = -F_L . t, V = -F_L . n and M = M_L (t along the member axis, n across it). On a

@@ -42,10 +42,10 @@ import numpy as np
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
-from linkstress.boundary import Boundary
+from linkstress.geometry.boundary import Boundary
 from linkstress.loads import LinkLoadCase, hole_at
-from linkstress.profile import LinkProfile
-from linkstress.sections import cut_extent
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.sections import cut_extent
 
 RATIOS = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7)
 """d/H of the table rows."""

@@ -1,7 +1,7 @@
 """Beam-section stresses along a link: normal, Jourawski shear and von Mises at every fibre.
 
 At station x with N, V, M (see ``internal_forces``) and the section's A, I, y_na and first moment
-Q(y) (``linkstress.sections``), at fibre y of the plate of thickness t, with u = y - y_na:
+Q(y) (``linkstress.geometry.sections``), at fibre y of the plate of thickness t, with u = y - y_na:
 
     sigma = N / A + M u / I,   tau = V Q(y) / (I t),   sigma_vM = sqrt(sigma^2 + 3 tau^2).
 
@@ -27,7 +27,7 @@ and the chord's interior maxima are found by ``fibre_peaks.single_chord_peak``. 
 bars the term is 2-4 % of the nominal stress and takes the beam-versus-FEA difference there from up
 to 3.8 % to under 0.6 %.
 
-Near a hole (and at a junction of members, ``linkstress.members``) the values are nominal: elementary beam theory, the stress a Kt
+Near a hole (and at a junction of members, ``linkstress.geometry.members``) the values are nominal: elementary beam theory, the stress a Kt
 multiplies. The correction refines beam theory where it holds, so there it is left out, as on
 sections split by holes, unless asked for (``body_load_near_holes``). It is also where it costs
 most: the near-hole stations of an inertia-loaded link (its rounded ends, where N and M fade and
@@ -55,14 +55,14 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.curved_beam import theory_of
+from linkstress.geometry.curved_beam import theory_of
 from linkstress.dynamics.fibre_candidates import CurvedFibres, Fibres, SectionShape, body_gains, fibre_sigma
 from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces, load_coefficients, member_force_basis
 from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
-from linkstress.members import Member, MemberCuts, frame_member
-from linkstress.profile import LinkProfile
-from linkstress.sections import SectionTable
+from linkstress.geometry.members import Member, MemberCuts, frame_member
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.sections import SectionTable
 from linkstress.threads import blas_alone, cores, even_blocks, in_parallel
 
 

@@ -5,7 +5,7 @@ this position passed a loop's toggle or change point: one message each, see
 ``kinematics.crossings``), ``transmission_angle_deg`` per loop (feasible positions); per link ``angle_deg``,
 ``omega_rad_s``, ``alpha_rad_s2``, ``acc_G_m_s2`` (where the centre of mass is known),
 ``curved`` (some member of the link is curved: sectioned square to its centreline,
-``linkstress.members``), ``max_von_mises_pa`` and ``max_at_m`` (ground frame, the largest over the
+``linkstress.geometry.members``), ``max_von_mises_pa`` and ``max_at_m`` (ground frame, the largest over the
 link's members) with ``max_von_mises_away_from_holes_pa`` (when
 some station is at least a section depth from every pin hole), ``equilibrium_mismatch`` and
 ``pin_holes`` (per pin hole: Kt, the net-section stress of its pin force and the Kt x nominal

@@ -19,8 +19,8 @@ from numpy.typing import NDArray
 
 from linkstress.errors import GeometryError, InputError
 from linkstress.materials import Material, fatigue_data_problem
-from linkstress.members import check_members
-from linkstress.profile import LinkProfile
+from linkstress.geometry.members import check_members
+from linkstress.geometry.profile import LinkProfile
 from linkstress.scene.keys import Table
 from linkstress.scene.model import MassData
 

@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from linkstress.kinematics.machine import Machine
 from linkstress.kinematics.motion import InputMotion
 from linkstress.materials import Material
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,7 @@ class SceneLink:
     sketch: Path | None = None
     layer: str | None = None
     members: tuple[tuple[int, int], ...] | None = None
-    """The link's arms as joint pairs (``linkstress.members``); None: the tree that joins its joints."""
+    """The link's arms as joint pairs (``linkstress.geometry.members``); None: the tree that joins its joints."""
 
     def to_member(self, points: NDArray[np.float64]) -> NDArray[np.float64]:
         """Drawn points (..., 2) [m] into the member frame."""

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from shapely.geometry import Polygon
 
-from linkstress.boundary import Boundary, oriented_rings
+from linkstress.geometry.boundary import Boundary, oriented_rings
 
 
 @dataclass(frozen=True)

@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkstress.errors import GeometryError
-from linkstress.sections import SectionTable
+from linkstress.geometry.sections import SectionTable
 
 CURVED_BEAM_LIMIT = 0.1
 """|kappa| x section depth above which a member is a curved beam (its radius under ten depths).

@@ -20,8 +20,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
-from linkstress.boundary import Boundary, boundary_of, segment_moments
-from linkstress.sections import Crossings, edge_crossings, within_extent
+from linkstress.geometry.boundary import Boundary, boundary_of, segment_moments
+from linkstress.geometry.sections import Crossings, edge_crossings, within_extent
 
 
 @dataclass(frozen=True)

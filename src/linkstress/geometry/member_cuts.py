@@ -21,10 +21,10 @@ import numpy as np
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
-from linkstress.boundary import oriented_rings, segment_moments
+from linkstress.geometry.boundary import oriented_rings, segment_moments
 from linkstress.errors import GeometryError
-from linkstress.profile import LinkProfile
-from linkstress.sections import edge_crossings
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.sections import edge_crossings
 
 STATION_BLOCK = 2_000_000
 """Most (station, edge) pairs cut at once."""
@@ -195,7 +195,7 @@ def piece_moments(piece: Polygon) -> NDArray[np.float64]:
 def vertical_lines(link: LinkProfile, pair: tuple[int, int], x: NDArray[np.float64]) -> CutLines:
     """``cut_lines`` of the cuts square to the line through joints ``pair`` at distances ``x`` [m] from
     its first joint (v measured from that line), by the sorted sweep of vertical cuts in that member
-    frame (``linkstress.sections``): the cost grows with the crossings, not edges x stations. A cut
+    frame (``linkstress.geometry.sections``): the cost grows with the crossings, not edges x stations. A cut
     at the outline's far end takes the section just behind it."""
     boundary = link.boundary(*pair)
     x = np.clip(x, boundary.x_min, boundary.x_max)

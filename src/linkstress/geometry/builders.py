@@ -11,10 +11,10 @@ import math
 import numpy as np
 from shapely.geometry import Polygon
 
-from linkstress.curves import arc_points, circle_points
+from linkstress.geometry.curves import arc_points, circle_points
 from linkstress.errors import GeometryError
 from linkstress.materials import Material
-from linkstress.profile import LinkProfile
+from linkstress.geometry.profile import LinkProfile
 
 RELATIVE_SAGITTA = 1e-6
 

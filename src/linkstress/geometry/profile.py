@@ -16,13 +16,13 @@ from shapely import affinity
 from shapely.geometry import LinearRing, Point, Polygon
 from shapely.validation import explain_validity
 
-from linkstress.boundary import Boundary, oriented_rings, rounding_slack
-from linkstress.bounds import BoundingFunctions, bounding_functions
+from linkstress.geometry.boundary import Boundary, oriented_rings, rounding_slack
+from linkstress.geometry.bounds import BoundingFunctions, bounding_functions
 from linkstress.errors import GeometryError
-from linkstress.frames import MemberFrame
-from linkstress.mass_properties import AreaProperties, area_properties, edge_area_properties
+from linkstress.geometry.frames import MemberFrame
+from linkstress.geometry.mass_properties import AreaProperties, area_properties, edge_area_properties
 from linkstress.materials import Material
-from linkstress.sections import SectionTable, section_table
+from linkstress.geometry.sections import SectionTable, section_table
 
 HOLE_CENTRE_TOLERANCE = 1e-2
 """A joint in a hole must lie within this fraction of the hole's equivalent radius of its centroid."""

@@ -15,8 +15,8 @@ from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
 from linkstress.errors import GeometryError
-from linkstress.boundary import Boundary, boundary_of
-from linkstress.sections import edge_crossings, height_on_edge, within_extent
+from linkstress.geometry.boundary import Boundary, boundary_of
+from linkstress.geometry.sections import edge_crossings, height_on_edge, within_extent
 
 
 @dataclass(frozen=True)

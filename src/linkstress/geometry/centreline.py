@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.member_cuts import CutLines, Edges, cut_lines, through_axis
+from linkstress.geometry.member_cuts import CutLines, Edges, cut_lines, through_axis
 
 CURVED_WANDER = 0.1
 """A member is curved when the bow of its midline (``centreline``) is more than this many section

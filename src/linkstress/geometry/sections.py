@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
 from linkstress.errors import GeometryError
-from linkstress.boundary import Boundary, boundary_of
+from linkstress.geometry.boundary import Boundary, boundary_of
 
 
 END_SLACK = 1e-9

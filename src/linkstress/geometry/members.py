@@ -6,7 +6,7 @@ scene names them, the edges of the tree that joins all its joints along the mate
 member frame of the link's frame joints (``LinkLoadCase.frame_joints``).
 
 Axis. A member's axis is the straight line through its joints, or, where the material between them
-curves (a banana, an arc, a U), the material's centreline (``linkstress.centreline``). Beyond a
+curves (a banana, an arc, a U), the material's centreline (``linkstress.geometry.centreline``). Beyond a
 joint that ends the tree (a leaf), the axis runs on straight to the outline (the free end); at a
 joint shared with another member it stops. Stations are arc lengths s [m] along the axis, s = 0 at
 joint i.
@@ -38,16 +38,16 @@ from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import split
 
-from linkstress.centreline import centreline, first_midline
-from linkstress.curved_beam import centre_reach
+from linkstress.geometry.centreline import centreline, first_midline
+from linkstress.geometry.curved_beam import centre_reach
 from linkstress.errors import GeometryError
-from linkstress.member_cuts import (
+from linkstress.geometry.member_cuts import (
     CutLines, Edges, cut_lines, half_plane_moments, piece_moments, section_chords, segment_distance, through_axis,
     to_load_frame, vertical_lines,
 )
-from linkstress.profile import LinkProfile
-from linkstress.region_moments import region_moments
-from linkstress.sections import SectionTable, _table_from_chords
+from linkstress.geometry.profile import LinkProfile
+from linkstress.geometry.region_moments import region_moments
+from linkstress.geometry.sections import SectionTable, _table_from_chords
 
 OUTSIDE_PENALTY = 100.0
 """Weight per metre of a joint-to-joint line that leaves the material, against 1 per metre inside:
@@ -341,7 +341,7 @@ def _member_cuts(member: Member, s, origin, tangent, curvature) -> MemberCuts:
 
 def _straight_cuts(member: Member, s: NDArray[np.float64], tangent: NDArray[np.float64]) -> tuple[CutLines, NDArray[np.float64]]:
     """``cut_lines`` and ``half_plane_moments`` of a straight member's stations, by sorted sweeps of
-    vertical cuts in its member frame (``vertical_lines``, ``linkstress.region_moments``)."""
+    vertical cuts in its member frame (``vertical_lines``, ``linkstress.geometry.region_moments``)."""
     boundary = member.link.boundary(*member.joints)
     moments = region_moments(boundary, np.clip(s, boundary.x_min, boundary.x_max))
     local = np.array([moments.area, moments.first_x, moments.first_y, moments.polar])
