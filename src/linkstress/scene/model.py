@@ -139,7 +139,9 @@ class Analysis:
 @dataclass(frozen=True)
 class Scene:
     """A whole scene, checked. ``actuator``: the link carrying the unknown driving torque;
-    ``title`` and ``notes``: what reports say about the case (the title defaults to the file's stem)."""
+    ``title`` and ``notes``: what reports say about the case (the title defaults to the file's stem);
+    ``warnings``: values that are valid but implausible (a unit slip, most likely), one line each,
+    which every report shows and the JSON lists under ``warnings``."""
 
     path: Path
     units: str | None
@@ -152,6 +154,7 @@ class Scene:
     analysis: Analysis | None
     title: str = ""
     notes: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     @property
     def moving_links(self) -> tuple[str, ...]:
