@@ -21,6 +21,7 @@ from ezdxf.lldxf.const import DXFError
 from linkstress.errors import SketchError
 from linkstress.importers import dxf_geometry as geo
 from linkstress.importers.dxf_tags import DamagedDXF, SimpleEntities, decode_dxf_unicode
+from linkstress.importers.library_notes import one_line
 from linkstress.importers.primitives import CurveSet, Origin, describe
 
 MAX_BLOCK_DEPTH = 64
@@ -75,7 +76,7 @@ def _recover(path: Path, fixes: list[str]):
         doc, auditor = recover.readfile(path)
     except Exception as error:  # noqa: BLE001 - ezdxf raises many types on damaged input; all mean the same
         raise SketchError(
-            f"a damaged DXF file that ezdxf cannot recover ({error}); export the sketch from CAD again"
+            f"a damaged DXF file that ezdxf cannot recover ({one_line(error)}); export the sketch from CAD again"
         ) from None
     fixes.extend(f"ezdxf recover: {entry.message}" for entry in [*auditor.fixes, *auditor.errors])
     return doc
@@ -107,7 +108,7 @@ def _reason(damage: Exception) -> str:
     """What ezdxf's exception says; a StopIteration (it ran out of tags) says nothing."""
     if isinstance(damage, StopIteration):
         return "the file ends before its structure does (truncated?)"
-    return f"{type(damage).__name__}: {damage}"
+    return f"{type(damage).__name__}: {one_line(damage)}"
 
 
 def _damaged(path: Path, fixes: list[str], reason: str):
@@ -180,7 +181,7 @@ class _Collector:
         except SketchError:
             raise
         except (DXFError, ValueError, ZeroDivisionError, TypeError, AttributeError, IndexError) as error:
-            raise SketchError(f"{describe(origin)} cannot be read ({error}); redraw or explode it") from None
+            raise SketchError(f"{describe(origin)} cannot be read ({one_line(error)}); redraw or explode it") from None
 
     def _line(self, e, origin, _insert, _blocks) -> None:
         s, t = e.dxf.start, e.dxf.end

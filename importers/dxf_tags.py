@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.importers.library_notes import one_line
+
 SIMPLE = ("LINE", "ARC", "CIRCLE", "POINT", "LWPOLYLINE")
 
 # Group codes each simple entity must carry exactly once, and those it may carry at most once.
@@ -227,7 +229,7 @@ def _decode(codes, values, starts, ends, kinds, simple) -> tuple[SimpleEntities,
             if kind == "LWPOLYLINE":
                 found.vertices, found.bulges, found.vertex_start = table.vertices()
         except ValueError as error:
-            raise DamagedDXF(f"a {kind} has a value that is not a number ({error})") from None
+            raise DamagedDXF(f"a {kind} has a value that is not a number ({one_line(error)})") from None
         found.columns[kind] = columns
         found.layers[kind] = [layer if layer is not None else "0" for layer in table.texts(8)]
         found.handles[kind] = table.texts(5)

@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 from linkstress.geometry.curves import MIN_SEGMENTS_PER_TURN
 from linkstress.errors import SketchError
 from linkstress.importers import circles
+from linkstress.importers.library_notes import one_line
 from linkstress.importers.primitives import CurveSet, Origin, Polyline, bulge_arcs, describe
 
 if TYPE_CHECKING:
@@ -420,7 +421,7 @@ def _spline_vertices(spline, distance: float, limit: int,
         curve, lo, hi = spline_curve(spline)
     except ValueError as error:  # scipy refuses knots that decrease or do not fit the control points
         raise SketchError(
-            f"{describe(origin)} cannot be evaluated ({error}); redraw it or convert it to a polyline") from None
+            f"{describe(origin)} cannot be evaluated ({one_line(error)}); redraw it or convert it to a polyline") from None
     breaks = np.unique(np.asarray(spline.knots(), float).clip(lo, hi))
     if len(breaks) < 2:
         return _evaluate(curve, np.array([lo])), np.empty(0)

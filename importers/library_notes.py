@@ -49,8 +49,14 @@ def library_notes(notes: list[str]):
         notes.extend(f"{w.category.__name__}: {w.message}" for w in caught)
 
 
+def one_line(said: object) -> str:
+    """What a library said (an exception, a log line), as one printable line: libraries quote the
+    file's own bytes, newlines and NULs included."""
+    return " ".join("".join(ch if ch.isprintable() else " " for ch in str(said)).split())
+
+
 def _distinct(notes: list[str]) -> list[str]:
-    return list(dict.fromkeys(" ".join(note.split()) for note in notes))
+    return list(dict.fromkeys(one_line(note) for note in notes))
 
 
 def _summary(notes: list[str]) -> tuple[str, ...]:

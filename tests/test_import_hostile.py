@@ -87,6 +87,19 @@ def test_a_twenty_digit_group_code_is_read_in_recover_mode_and_noted(tmp_path):
     assert any("'12345678901234567890' is not a group code); read in ezdxf's recover mode" in f for f in data["fixes"])
 
 
+@pytest.mark.parametrize("tag", [" \x00", " \x000"])
+def test_a_damaged_tag_holding_a_nul_is_quoted_on_one_printable_line(tmp_path, tag):
+    """ezdxf quotes the bad tag in its message; the file's control characters must not reach ours
+    (recoverable or not)."""
+    text = drawing(tmp_path, units=0, draw=lambda msp: rectangle(msp, 0, 0, 2, 1)).read_text()
+    first_line = text.index("\nLINE\n")
+    (tmp_path / "nul.dxf").write_text(text[:first_line] + text[first_line:].replace("\n330\n", f"\n{tag}\n", 1))
+    with pytest.raises(SketchError) as refused:
+        read_sketch(tmp_path / "nul.dxf")
+    message = str(refused.value)
+    assert "damaged" in message and message.isprintable()
+
+
 def test_a_line_to_x_1e300_is_refused_naming_it(tmp_path):
     def draw(msp):
         rectangle(msp, 0, 0, 2, 1)
