@@ -22,6 +22,7 @@ from linkstress.scene.loads import read_analysis, read_loads
 from linkstress.scene.mechanisms import read_mechanisms
 from linkstress.scene.model import Scene, SceneLink
 from linkstress.scene.motion import read_actuator, read_motion
+from linkstress.scene.plausibility import plausibility_warnings
 
 TOP_KEYS = ("title", "notes", "units", "materials", "links", "mechanisms", "motion", "loads", "analysis")
 
@@ -106,5 +107,5 @@ def _scene(top: Table, path: Path) -> Scene:
     analysis = read_analysis(top.table("analysis"), links)
     return Scene(
         path, units, MappingProxyType(materials), MappingProxyType(links), machine, motion, actuator, loads,
-        analysis, title, tuple(notes),
+        analysis, title, tuple(notes), plausibility_warnings(materials, links),
     )
