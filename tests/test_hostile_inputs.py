@@ -220,15 +220,59 @@ def test_sections_refuses_a_density_of_1e300(capsys):
     refused(capsys, ["sections", "--bar", "1", "0.5", "0.1", "0.1", "--density", "1e300"], "--density: must be at most 100000 kg/m^3")
 
 
-def test_an_overflowing_motion_expression_is_one_error_naming_its_keys_and_no_numpy_warning(tmp_path):
-    # 1e200 deg/s: every key is in range, yet omega^2 r overflows; the last guard names what did
+def test_a_huge_motion_expression_is_one_error_naming_its_key_and_no_numpy_warning(tmp_path):
+    # 1e200 deg/s: held to the ranges of plain values, it stops before anything squares it
     text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
                   'input_angle_deg = {expression = "1e200*t", t = [0.0, 0.5]}')
     write_scene(tmp_path, text)
     result = run_cli("analyze", "scene.toml", "--json", "out.json", cwd=tmp_path)
-    assert_one_error(result, "scene.toml:", "overflowed (not a finite number)", "motion.input_angle_deg")
+    assert_one_error(result, "scene.toml: motion.input_angle_deg.expression: '1e200*t' gives", "check the unit")
     assert not re.search(r"\b(nan|inf)\b", result.stdout, re.IGNORECASE)
     assert not (tmp_path / "out.json").exists()
+
+
+@pytest.mark.parametrize(
+    ("expression", "times", "message"),
+    [
+        # theta = 1e17 t deg: 1e17 deg at t = 1 s, past the 1e7 deg of a plain input_angle_deg
+        ("1e17*t", "[0.0, 1.0]", "gives an input angle of 1e+17 deg at t = 1 s, more than the 1e+07 deg"),
+        # theta = 1e8 t deg: dtheta/dt = 1e8 deg/s = 1e8 pi / 180 = 1.74533e6 rad/s, past 1e5 rad/s
+        ("1e8*t", "[0.0, 0.05]", "gives an input speed (its time derivative) of 1.74533e+06 rad/s at t = 0 s, more than "
+         "the 100000 rad/s"),
+        # theta = cos(1e6 t) deg: d2theta/dt2 = -1e12 cos(1e6 t) deg/s^2 = -1.74533e10 rad/s^2 at t = 0
+        ("cos(1e6*t)", "[0.0]", "gives an input acceleration (its second time derivative) of -1.74533e+10 rad/s^2 at "
+         "t = 0 s, more than the 1e+09 rad/s^2"),
+    ],
+)
+def test_a_motion_expression_is_held_to_the_ranges_of_plain_values(tmp_path, capsys, expression, times, message):
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
+                  f'input_angle_deg = {{expression = "{expression}", t = {times}}}')
+    refused(capsys, ["analyze", str(write_scene(tmp_path, text))],
+            f"scene.toml: motion.input_angle_deg.expression: {expression!r} {message}")
+
+
+@pytest.mark.parametrize(
+    ("expression", "passes"),
+    [
+        # 1e7 deg, the largest plain angle, and just past it
+        ("1e7 + 0*t", True), ("1.0000001e7 + 0*t", False),
+        # 1e5 rad/s = 1e5 x 180 / pi = 5,729,577.95 deg/s
+        ("5729577.9*t", True), ("5729578.0*t", False),
+    ],
+)
+def test_an_expression_on_the_bound_of_a_range_runs(tmp_path, capsys, expression, passes):
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
+                  f'input_angle_deg = {{expression = "{expression}", t = [0.0, 0.001]}}')
+    code = main(["analyze", str(write_scene(tmp_path, text))])
+    assert code == (0 if passes else 2), capsys.readouterr().err
+
+
+def test_a_long_expression_is_quoted_cut_in_its_message(tmp_path, capsys):
+    expression = "t + " + "abc" * 300
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
+                  f'input_angle_deg = {{expression = "{expression}", t = [0.0, 1.0]}}')
+    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "'abcabc", "...' in 't + abcabc")
+    assert len(line) < 400
 
 
 # --- work beyond a stated limit is refused before it is done ------------------------------------

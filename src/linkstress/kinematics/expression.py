@@ -26,6 +26,9 @@ MAX_LENGTH = 1000
 MAX_DEPTH = 100
 """Deepest nesting of operations accepted (evaluation recurses once per level)."""
 
+SHOWN_LENGTH = 60
+"""Longest piece of an expression quoted in a message [characters]; a longer one is cut."""
+
 CONSTANTS = {"pi": math.pi, "e": math.e}
 
 Jet = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
@@ -91,11 +94,16 @@ class Expression:
         if not finite.all():
             bad = float(x[~finite][0])
             raise ExpressionError(
-                f"{self.where}: {self.text!r} or its derivatives are not finite at "
+                f"{self.where}: {shown(self.text)} or its derivatives are not finite at "
                 f"{self.variable} = {bad!r}; keep arguments of log/sqrt > 0, of asin/acos inside (-1, 1), "
                 "and divisors away from 0"
             )
         return jet  # type: ignore[return-value]
+
+
+def shown(text: str) -> str:
+    """``text`` quoted for a message, cut to ``SHOWN_LENGTH`` characters: an expression may be 1000."""
+    return repr(text if len(text) <= SHOWN_LENGTH else text[:SHOWN_LENGTH - 3] + "...")
 
 
 def _parse(text: str, variable: str, where: str) -> ast.expr:
@@ -106,7 +114,7 @@ def _parse(text: str, variable: str, where: str) -> ast.expr:
     try:
         tree = ast.parse(text.strip(), mode="eval").body
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
-        raise ExpressionError(f"{where}: {text!r} is not a valid expression ({error.__class__.__name__})") from None
+        raise ExpressionError(f"{where}: {shown(text)} is not a valid expression ({error.__class__.__name__})") from None
     if _depth(tree) > MAX_DEPTH:
         raise ExpressionError(f"{where}: the expression nests deeper than {MAX_DEPTH} levels")
     _check(tree, variable, where, text)
@@ -149,15 +157,15 @@ def _check(node: ast.AST, variable: str, where: str, text: str) -> None:
             name = sub.func.id if isinstance(sub.func, ast.Name) else None
             if name in FUNCTIONS and len(sub.args) == 1 and not sub.keywords:
                 continue
-            shown = name or ast.unparse(sub.func)
+            callee = name or ast.unparse(sub.func)
             raise ExpressionError(
-                f"{where}: call {shown!r} in {text!r} is not allowed; functions take one argument: "
+                f"{where}: call {shown(callee)} in {shown(text)} is not allowed; functions take one argument: "
                 + ", ".join(sorted(FUNCTIONS))
             )
         if isinstance(sub, ast.Name) and id(sub) in callees and sub.id in FUNCTIONS:
             continue
         piece = ast.unparse(sub) if isinstance(sub, ast.expr) else type(sub).__name__
-        raise ExpressionError(f"{where}: {piece!r} in {text!r} is not allowed; {_allowed(variable)}")
+        raise ExpressionError(f"{where}: {shown(piece)} in {shown(text)} is not allowed; {_allowed(variable)}")
 
 
 def _depends_on(node: ast.AST, variable: str) -> bool:
