@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from shapely.geometry import Point, Polygon
 
 from linkstress.errors import SketchError
+from linkstress.inputs import SKETCH_BYTES, read_bounded
 from linkstress.importers.chaining import close_pairs
 from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
@@ -161,7 +162,7 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     """
     path = Path(path)
     try:
-        data = path.read_bytes()
+        data = read_bounded(path, SKETCH_BYTES, "sketch")
     except OSError as error:
         raise SketchError(
             f"cannot read the sketch {str(path)!r}: {error.strerror or error}; give the path of a readable "

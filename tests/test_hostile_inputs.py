@@ -7,12 +7,16 @@ the FEA needs. The four-bar: crank 0.1 m, coupler 0.3 m, output 0.25 m, ground 0
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
 import shutil
+import signal
+import socket
 import subprocess
 import sys
+import tempfile
 import textwrap
 import time
 import tomllib
@@ -24,6 +28,7 @@ import pytest
 from linkstress.analysis import plan_for
 from linkstress.cli import main
 from linkstress.commands.analyze import MEMORY_LIMIT, memory_estimate
+from linkstress.inputs import SCENE_BYTES, SKETCH_BYTES, InputFileError, read_bounded
 from linkstress.scene import load_scene
 
 REPO = Path(__file__).resolve().parents[1]
@@ -556,3 +561,104 @@ def test_a_wrong_type_for_any_key_is_one_message_naming_it(tmp_path, capsys, pat
     scene = tmp_path / "scene.toml"
     scene.write_text("".join(f"{json.dumps(k)} = {toml_value(v)}\n" for k, v in data.items()))
     refused(capsys, ["analyze", str(scene), "--explain"], f"scene.toml: {'.'.join(path)}")
+
+
+# --- inputs that are not files, and files past their size limit -----------------------------------
+
+@contextlib.contextmanager
+def special_file(kind: str, folder: Path, suffix: str):
+    """A path in ``folder`` that is ``kind``: a FIFO, a socket, a folder, or the device /dev/zero."""
+    if kind == "/dev/zero":
+        yield Path("/dev/zero")
+        return
+    path = folder / f"input{suffix}"
+    if kind == "FIFO":
+        os.mkfifo(path)
+        yield path
+    elif kind == "socket":
+        # a Unix socket's path may hold about 100 bytes: a short folder of its own
+        short = Path(tempfile.mkdtemp(prefix="ls"))
+        path = short / f"s{suffix}"
+        server = socket.socket(socket.AF_UNIX)
+        server.bind(str(path))
+        try:
+            yield path
+        finally:
+            server.close()
+            shutil.rmtree(short)
+    else:
+        path.mkdir()
+        yield path
+
+
+@contextlib.contextmanager
+def within(seconds: float):
+    """Fail instead of hanging: a read of a FIFO waits for a writer forever."""
+    def alarm(signum, frame):
+        raise TimeoutError(f"still running after {seconds} s")
+
+    previous = signal.signal(signal.SIGALRM, alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+SPECIAL = {"FIFO": "a FIFO (named pipe)", "/dev/zero": "a character device", "socket": "a socket", "folder": "a folder"}
+
+
+@pytest.mark.parametrize("kind", list(SPECIAL))
+def test_a_sketch_that_is_not_a_file_is_refused_by_what_it_is_before_reading(tmp_path, capsys, kind):
+    with special_file(kind, tmp_path, ".dxf") as path, within(10):
+        refused(capsys, ["import", str(path), "--units", "mm"], f"the sketch {str(path)!r} is {SPECIAL[kind]}, not a file")
+
+
+@pytest.mark.parametrize("kind", ["FIFO", "/dev/zero", "socket"])
+def test_a_scene_that_is_not_a_file_is_refused_by_what_it_is_before_reading(tmp_path, capsys, kind):
+    with special_file(kind, tmp_path, ".toml") as path, within(10):
+        refused(capsys, ["analyze", str(path)], f"the scene file {str(path)!r} is {SPECIAL[kind]}, not a file")
+
+
+@pytest.mark.parametrize("kind", list(SPECIAL))
+def test_a_scene_s_sketch_that_is_not_a_file_is_refused_naming_the_key(tmp_path, capsys, kind):
+    with special_file(kind, tmp_path, ".dxf") as path, within(10):
+        scene = write_scene(tmp_path, DRAWN.replace('sketch = "bars.dxf"', f'sketch = "{path}"', 1))
+        refused(capsys, ["analyze", str(scene)], "scene.toml: links.crank.sketch: the sketch", f"is {SPECIAL[kind]}")
+
+
+def test_a_scene_file_past_16_mib_is_refused_with_its_size_before_reading(tmp_path, capsys):
+    # a sparse file: its size is there, its bytes are not (nothing to read if the size were not checked first)
+    path = tmp_path / "scene.toml"
+    with path.open("wb") as stream:
+        stream.truncate(SCENE_BYTES + 1)
+    refused(capsys, ["analyze", str(path)],
+            f"the scene file {str(path)!r} is 16,777,217 bytes (16.0 MiB), more than the 16 MiB a scene file may be",
+            seconds=5)
+
+
+def test_a_scene_file_of_16_mib_is_read(tmp_path, capsys):
+    # exactly the limit: read and parsed (and refused for what it lacks)
+    path = tmp_path / "scene.toml"
+    path.write_bytes(b"#" + b" " * (SCENE_BYTES - 2) + b"\n")
+    refused(capsys, ["analyze", str(path)], "scene.toml: links: missing table")
+
+
+def test_a_sketch_past_256_mib_is_refused_with_its_size_before_reading(tmp_path, capsys):
+    path = tmp_path / "sheet.dxf"
+    with path.open("wb") as stream:
+        stream.truncate(SKETCH_BYTES + 1)
+    refused(capsys, ["import", str(path)], "is 268,435,457 bytes (256.0 MiB), more than the 256 MiB a sketch may be",
+            seconds=5)
+
+
+def test_a_file_that_grows_past_its_limit_while_read_is_refused(tmp_path, monkeypatch):
+    # the size the file system gave was within the limit; the bytes read were not
+    path = tmp_path / "scene.toml"
+    path.write_bytes(b"x" * 11)
+    real = os.fstat
+    monkeypatch.setattr(os, "fstat", lambda fd: os.stat_result((*real(fd)[:6], 5, *real(fd)[7:])))
+    with pytest.raises(InputFileError, match=r"is at least 11 bytes \(0.0 MiB\), more than the 0 MiB"):
+        read_bounded(path, 10, "scene file")
+    assert read_bounded(path, 11, "scene file") == b"x" * 11

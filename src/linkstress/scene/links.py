@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.errors import GeometryError, InputError
+from linkstress.inputs import check_regular
 from linkstress.materials import Material, fatigue_data_problem
 from linkstress.geometry.members import check_members
 from linkstress.geometry.profile import LinkProfile
@@ -157,9 +158,13 @@ def _load_profile(entry: Table, name, path: Path, layer, units, thickness, mater
     from linkstress.importers import read_sketch  # ezdxf and shapely's importers: only for a scene with sketches
 
     try:
-        found = path.is_file()
+        found = path.exists()
+        if found:
+            check_regular(path, "sketch")  # a FIFO would wait for a writer, /dev/zero never end
     except OSError as error:  # e.g. a name longer than the file system allows
         raise entry.error("sketch", f"cannot use this path ({error.strerror or error}); give a sketch file's path") from None
+    except InputError as error:
+        raise entry.error("sketch", str(error)) from None
     if not found:
         raise entry.error("sketch", f"file {_short(str(path))!r} not found (paths are relative to the scene file's folder)")
     try:
