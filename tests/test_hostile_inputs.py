@@ -662,3 +662,28 @@ def test_a_file_that_grows_past_its_limit_while_read_is_refused(tmp_path, monkey
     with pytest.raises(InputFileError, match=r"is at least 11 bytes \(0.0 MiB\), more than the 0 MiB"):
         read_bounded(path, 10, "scene file")
     assert read_bounded(path, 11, "scene file") == b"x" * 11
+
+
+# --- a valid case with nothing to carry -----------------------------------------------------------
+
+def test_a_zero_load_case_with_peaks_gives_zeros_and_no_nan(tmp_path, capsys):
+    # no loads, no speed, no gravity: every force, stress and FEA peak is exactly 0, and a factor
+    # against 0 is no factor (null), never inf or nan
+    text = DRAWN.replace("poisson_ratio = 0.3", "poisson_ratio = 0.3\nyield_strength = 250e6\nendurance_limit = 200e6\n"
+                         "ultimate_strength = 400e6").replace("input_speed_rad_s = 10.0\n", "")
+    scene = write_scene(tmp_path, text)
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(scene), "--peaks", "--json", str(out)]) == 0
+    stdout = capsys.readouterr().out
+    assert not re.search(r"\b(nan|inf)\b", stdout, re.IGNORECASE)
+    data = json.loads(out.read_text(), parse_constant=lambda c: pytest.fail(f"the JSON holds {c}"))
+    for position in data["positions"]:
+        for name in BARS:
+            link = position["links"][name]
+            assert link["max_von_mises_pa"] == 0.0 and link["peak_von_mises_pa"] == 0.0
+            assert link["peak_yield_safety_factor"] is None and link["yield_safety_factor"] is None
+    for name in BARS:
+        summary = data["links"][name]
+        assert summary["peak_max_von_mises_pa"] == 0.0 and summary["peak_change_pct"] == 0.0
+        assert summary["peak_yield_safety_factor"] is None and summary["fatigue_safety_factor"] is None
+        assert summary["fatigue_alternating_pa"] == 0.0 and summary["fatigue_mean_pa"] == 0.0
