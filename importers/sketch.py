@@ -27,6 +27,7 @@ from shapely.geometry import Point, Polygon
 
 from linkstress.errors import SketchError
 from linkstress.inputs import SKETCH_BYTES, read_bounded
+from linkstress.listing import capped
 from linkstress.importers.chaining import close_pairs
 from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
@@ -114,7 +115,7 @@ class Sketch:
         no name is given, is refused with the problems: what was left out there may be the link
         meant, or part of it.
         """
-        names = ", ".join(repr(link.name) for link in self.links)
+        names = capped(repr(link.name) for link in self.links)
         if name_or_layer is not None:
             name_or_layer = decode_dxf_unicode(name_or_layer)  # as the drawing's layer names are
         if name_or_layer is None:
@@ -140,7 +141,7 @@ class Sketch:
         if on_layer:
             raise SketchError(
                 f"{self.path.name}: layer {name_or_layer!r} holds {len(on_layer)} links "
-                f"({', '.join(repr(k.name) for k in on_layer)}): name one of them"
+                f"({capped(repr(k.name) for k in on_layer)}): name one of them"
             )
         raise SketchError(f"{self.path.name} has no link or layer {name_or_layer!r}; its links are {names}")
 
@@ -243,7 +244,7 @@ def _on_layers(origins: list[Origin], layers: Collection[str] | None, exclude: C
     present = sorted({layer for layer in on.tolist() if layer is not None})
     unknown = sorted((set(layers or ()) | set(exclude)) - set(present))
     if unknown:
-        has = f"its layers are {', '.join(repr(n) for n in present)}" if present else "it has no layers"
+        has = f"its layers are {capped(repr(n) for n in present)}" if present else "it has no layers"
         raise SketchError(
             f"no layer {', '.join(repr(n) for n in unknown)} in the drawing ({has}); check --layers and "
             "--exclude-layers"

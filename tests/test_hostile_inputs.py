@@ -29,6 +29,7 @@ from linkstress.analysis import plan_for
 from linkstress.cli import main
 from linkstress.commands.analyze import MEMORY_LIMIT, memory_estimate
 from linkstress.inputs import SCENE_BYTES, SKETCH_BYTES, InputFileError, read_bounded
+from linkstress.listing import capped
 from linkstress.scene import load_scene
 
 REPO = Path(__file__).resolve().parents[1]
@@ -687,3 +688,44 @@ def test_a_zero_load_case_with_peaks_gives_zeros_and_no_nan(tmp_path, capsys):
         assert summary["peak_max_von_mises_pa"] == 0.0 and summary["peak_change_pct"] == 0.0
         assert summary["peak_yield_safety_factor"] is None and summary["fatigue_safety_factor"] is None
         assert summary["fatigue_alternating_pa"] == 0.0 and summary["fatigue_mean_pa"] == 0.0
+
+
+# --- messages that list things list five ---------------------------------------------------------
+
+def test_capped_lists_five_and_counts_them_all():
+    assert capped([]) == ""
+    assert capped("abcde") == "a, b, c, d, e"
+    assert capped("abcdef") == "a, b, c, d, e (first 5 of 6)"
+    assert capped(range(100), 2, "; ") == "0; 1 (first 2 of 100)"
+
+
+def test_an_import_scene_refusal_of_150_outlines_lists_five(tmp_path, capsys):
+    # 150 squares with a hole each (one joint, no mechanism): the refusal listed all 150 twice
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    for k in range(150):
+        x, y = (k % 15) * 20, (k // 15) * 20
+        msp.add_lwpolyline([(x, y), (x + 8, y), (x + 8, y + 8), (x, y + 8)], close=True, dxfattribs={"layer": f"glyph_{k}"})
+        msp.add_circle((x + 4, y + 4), 1, dxfattribs={"layer": f"glyph_{k}"})
+    doc.saveas(tmp_path / "sheet.dxf")
+    line = refused(capsys, ["import", str(tmp_path / "sheet.dxf"), "--scene", str(tmp_path / "scene.toml")],
+                   "no two of the links ('glyph_0', 'glyph_15', 'glyph_30', 'glyph_45', 'glyph_60' (first 5 of 150))",
+                   "links with fewer than two joints: 'glyph_0' (1), ", "(1) (first 5 of 150)")
+    assert len(line) < 600
+    assert not (tmp_path / "scene.toml").exists()
+
+
+def test_a_scene_naming_an_unknown_material_among_forty_lists_five(tmp_path, capsys):
+    materials = "".join(f"[materials.m{k:02d}]\ndensity = 7850.0\n" for k in range(40))
+    text = materials + edited(BARE, "[links.crank]\n", "[links.crank]\nmaterial = \"steel\"\n")
+    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))],
+                   "links.crank.material: no material named 'steel'; materials are: m00, m01, m02, m03, m04 (first 5 of 40)")
+    assert len(line) < 300
+
+
+def test_a_key_path_of_5000_characters_is_cut_in_its_message(tmp_path, capsys):
+    name = "x" * 5000
+    text = BARE + f"\n[links.{name}]\njoints = [[0.0, 0.0], [0.1, 0.0]]\n"
+    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "scene.toml: links.xxx", "x...x",
+                   "x: no mechanism uses this link")
+    assert len(line) < 400

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from linkstress.errors import GeometryError, InputError
 from linkstress.inputs import check_regular
+from linkstress.listing import capped
 from linkstress.materials import Material, fatigue_data_problem
 from linkstress.geometry.members import check_members
 from linkstress.geometry.profile import LinkProfile
@@ -104,7 +105,7 @@ def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches
     if entry.has("material"):
         material_name = entry.string("material")
         if material_name not in materials:
-            known = ", ".join(sorted(materials)) or "none defined"
+            known = capped(sorted(materials)) or "none defined"
             raise entry.error(
                 "material", f"no material named {material_name!r}; materials are: {known} (add [materials.{material_name}])"
             )

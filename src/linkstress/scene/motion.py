@@ -19,6 +19,7 @@ import numpy as np
 from linkstress.kinematics.expression import Expression, shown
 from linkstress.kinematics.machine import Machine
 from linkstress.kinematics.motion import InputMotion, angle_motion, angle_range, timed_motion
+from linkstress.listing import capped
 from linkstress.scene.keys import RANGES, Table
 
 MOTION_KEYS = ("input_angle_deg", "input_speed_rad_s", "input_acceleration_rad_s2", "actuator")
@@ -63,7 +64,7 @@ def read_actuator(table: Table, machine: Machine) -> str:
     if name not in grounded:
         raise table.error(
             "actuator", f"link {name!r} is not a crank, output or slider of any mechanism; the driving torque "
-            f"acts on a link pivoted on (or sliding on) the ground: {', '.join(dict.fromkeys(grounded))}"
+            f"acts on a link pivoted on (or sliding on) the ground: {capped(dict.fromkeys(grounded))}"
         )
     return name
 
