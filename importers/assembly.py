@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.errors import SketchError
-from linkstress.listing import capped
+from linkstress.messages import capped
 from linkstress.importers.pins import (
     ANGLE_DIGITS,
     BARE_GROUND,

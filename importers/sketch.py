@@ -27,7 +27,7 @@ from shapely.geometry import Point, Polygon
 
 from linkstress.errors import SketchError
 from linkstress.inputs import SKETCH_BYTES, read_bounded
-from linkstress.listing import capped
+from linkstress.messages import capped
 from linkstress.importers.chaining import close_pairs
 from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf

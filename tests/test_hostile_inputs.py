@@ -29,7 +29,8 @@ from linkstress.analysis import plan_for
 from linkstress.cli import main
 from linkstress.commands.analyze import MEMORY_LIMIT, memory_estimate
 from linkstress.inputs import SCENE_BYTES, SKETCH_BYTES, InputFileError, read_bounded
-from linkstress.listing import capped
+from linkstress import executors
+from linkstress.messages import capped
 from linkstress.scene import load_scene
 
 REPO = Path(__file__).resolve().parents[1]
@@ -277,7 +278,7 @@ def test_a_long_expression_is_quoted_cut_in_its_message(tmp_path, capsys):
     expression = "t + " + "abc" * 300
     text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
                   f'input_angle_deg = {{expression = "{expression}", t = [0.0, 1.0]}}')
-    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "'abcabc", "...' in 't + abcabc")
+    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "'abcabc", "...", "' in 't + abcabc")
     assert len(line) < 400
 
 
@@ -729,3 +730,48 @@ def test_a_key_path_of_5000_characters_is_cut_in_its_message(tmp_path, capsys):
     line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "scene.toml: links.xxx", "x...x",
                    "x: no mechanism uses this link")
     assert len(line) < 400
+
+
+# --- a scheduler address with a control character ------------------------------------------------
+
+CONTROLLED = ["tcp://10.0.0.5:8786\n", "tcp://10.0.0.5:8786\r", "\ttcp://10.0.0.5:8786", "tcp://10.0.0.5:8786\x1b[31m",
+              "tcp://10.0.0.5:87\x0086", "tcp://10.0.0.5:8786\u202e", "tcp://10.0.\u200b0.5:8786", "local\n"]
+"""A final newline (which ``$`` let through), a carriage return, a tab, an escape sequence, a NUL, a
+right-to-left override and a zero-width space (format characters), and ``local`` with a newline."""
+
+
+@pytest.mark.parametrize("address", CONTROLLED, ids=repr)
+@pytest.mark.parametrize("command", ["analyze", "validate", "regress"])
+def test_a_scheduler_option_holding_a_control_character_is_refused_at_once_quoted(tmp_path, capsys, address, command):
+    scene = write_scene(tmp_path, DRAWN)
+    argv = {"analyze": ["analyze", str(scene), "--peaks"], "validate": ["validate", str(scene)],
+            "regress": ["regress", str(REPO / "validation" / "cases" / "textbook_fourbar")]}[command]
+    control = next(c for c in address if not c.isprintable() or c in "\u202e\u200b")
+    refused(capsys, [*argv, "--scheduler", address], f"--scheduler: {address!r} holds the control character {control!r}",
+            seconds=5)
+
+
+@pytest.mark.parametrize("address", [a for a in CONTROLLED if "\x00" not in a], ids=repr)
+def test_a_scheduler_variable_holding_a_control_character_is_refused_at_once_quoted(capsys, monkeypatch, address):
+    # an environment variable cannot hold a NUL
+    monkeypatch.setenv("LINKSTRESS_SCHEDULER", address)
+    refused(capsys, ["regress", str(REPO / "validation" / "cases" / "textbook_fourbar")],
+            f"LINKSTRESS_SCHEDULER: {address!r} holds the control character", seconds=5)
+
+
+def test_a_scheduler_address_of_100000_characters_is_quoted_cut(capsys):
+    address = "tcp://" + "a" * 100_000 + ":8786"
+    line = refused(capsys, ["regress", "--scheduler", address], "--scheduler: 'tcp://aaa", "...", "aaa:8786' is not a scheduler")
+    assert len(line) < 400
+
+
+@pytest.mark.parametrize("host", ["a" * 64, ".".join(["a" * 63] * 4) + "aa", "a..b", ".a", "[" + "1" * 46 + "]"])
+def test_a_scheduler_host_dns_cannot_hold_is_refused_before_connecting(capsys, host):
+    # DNS: labels of at most 63 characters, names of at most 253 (RFC 1035 2.3.4); a 64-character
+    # label made the socket module's IDNA codec raise UnicodeError, a traceback
+    refused(capsys, ["regress", "--scheduler", f"tcp://{host}:8786"], "is not a scheduler address", seconds=5)
+
+
+@pytest.mark.parametrize("host", ["a" * 63, ".".join(["a" * 63] * 4)[:253], "10.0.0.5", "[::1]", "node-7.cluster_a.example"])
+def test_a_scheduler_host_dns_can_hold_passes_the_check(host):
+    executors.check_address(f"tcp://{host}:8786")

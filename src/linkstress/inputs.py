@@ -14,6 +14,7 @@ import stat
 from pathlib import Path
 
 from linkstress.errors import InputError
+from linkstress.messages import quoted
 
 MiB = 2**20
 SCENE_BYTES = 16 * MiB
@@ -22,8 +23,6 @@ input angles, which tomllib parses in about 3 s (a range or an expression gives 
 SKETCH_BYTES = 256 * MiB
 """Largest DXF or CSV sketch read [bytes]: about a million LINEs, or the 5,000,000 vertices a sketch
 may flatten to as polylines; a sheet of a hundred parts is a few MB."""
-SHOWN_PATH = 120
-"""Longest path quoted in a message [characters]; a longer one keeps its start and its end."""
 
 KINDS = (
     (stat.S_ISDIR, "a folder"),
@@ -36,14 +35,6 @@ KINDS = (
 
 class InputFileError(InputError):
     """An input path that is not a regular file, or a file larger than its limit."""
-
-
-def shown_path(path: str | Path) -> str:
-    """``path`` quoted for a message, its middle cut when longer than ``SHOWN_PATH``."""
-    text = str(path)
-    if len(text) > SHOWN_PATH:
-        text = text[: SHOWN_PATH - 43] + "..." + text[-40:]
-    return repr(text)
 
 
 def kind_of(mode: int) -> str | None:
@@ -80,12 +71,12 @@ def _refuse_kind(path: str | Path, mode: int, what: str) -> None:
     kind = kind_of(mode)
     if kind is not None:
         raise InputFileError(
-            f"the {what} {shown_path(path)} is {kind}, not a file: give the path of a {what} saved as a file"
+            f"the {what} {quoted(str(path))} is {kind}, not a file: give the path of a {what} saved as a file"
         )
 
 
 def _too_large(path: str | Path, size: int, limit: int, what: str, bound: str = "") -> InputFileError:
     return InputFileError(
-        f"the {what} {shown_path(path)} is {bound}{size:,} bytes ({size / MiB:.1f} MiB), more than the {limit // MiB} MiB "
+        f"the {what} {quoted(str(path))} is {bound}{size:,} bytes ({size / MiB:.1f} MiB), more than the {limit // MiB} MiB "
         f"a {what} may be"
     )

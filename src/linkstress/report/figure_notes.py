@@ -16,6 +16,8 @@ import warnings
 from collections.abc import Iterator
 from contextlib import contextmanager
 
+from linkstress.messages import capped
+
 MAX_NOTES = 5
 """Distinct notes listed at most; the rest are counted."""
 MAX_CHARACTERS = 20
@@ -69,7 +71,7 @@ def figure_notes(messages: list[str]) -> list[str]:
     notes = []
     missing = list(dict.fromkeys(missing))
     if missing:
-        shown = "".join(missing[:MAX_CHARACTERS]) + (f" and {len(missing) - MAX_CHARACTERS} more" if len(missing) > MAX_CHARACTERS else "")
+        shown = capped(missing, MAX_CHARACTERS, separator="")
         notes.append(f"the figure's font lacks {len(missing)} character(s): {shown} (drawn as empty boxes)")
     others = list(dict.fromkeys(others))
     notes += [f"library warning: {note}" for note in others[:MAX_NOTES]]

@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from linkstress.errors import GeometryError, InputError
 from linkstress.inputs import check_regular
-from linkstress.listing import capped
+from linkstress.messages import capped
 from linkstress.materials import Material, fatigue_data_problem
 from linkstress.geometry.members import check_members
 from linkstress.geometry.profile import LinkProfile

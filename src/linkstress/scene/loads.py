@@ -23,7 +23,7 @@ import shapely
 
 from linkstress.fatigue import CRITERIA
 from linkstress.kinematics.machine import Machine
-from linkstress.listing import capped
+from linkstress.messages import capped
 from linkstress.loads import distance_outside
 from linkstress.scene.keys import MAX_STATIONS, Table, shown_value
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink

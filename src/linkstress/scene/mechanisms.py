@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 from linkstress.errors import SceneError
 from linkstress.kinematics.fourbar import BRANCHES
 from linkstress.kinematics.machine import KINDS, Drive, Loop, Role
-from linkstress.listing import capped
+from linkstress.messages import capped
 from linkstress.scene.keys import Table, shown_value
 
 ROLES = {

@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkstress.kinematics.expression import Expression, shown
+from linkstress.kinematics.expression import QUOTED, Expression
 from linkstress.kinematics.machine import Machine
 from linkstress.kinematics.motion import InputMotion, angle_motion, angle_range, timed_motion
-from linkstress.listing import capped
+from linkstress.messages import capped, quoted
 from linkstress.scene.keys import RANGES, Table
 
 MOTION_KEYS = ("input_angle_deg", "input_speed_rad_s", "input_acceleration_rad_s2", "actuator")
@@ -108,8 +108,9 @@ def _check_ranges(spec: Table, expression: Expression, motion: InputMotion) -> N
         if outside.size:
             k = int(outside[0])
             raise spec.error(
-                "expression", f"{shown(expression.text)} gives {what} of {values[k]:.6g} {unit} at t = {motion.time[k]:.6g} s, "
-                f"more than the {largest:g} {unit} a plain value may be (check the unit: degrees of angle, seconds)"
+                "expression",
+                f"{quoted(expression.text, QUOTED)} gives {what} of {values[k]:.6g} {unit} at t = {motion.time[k]:.6g} "
+                f"s, more than the {largest:g} {unit} a plain value may be (check the unit: degrees of angle, seconds)",
             )
 
 
