@@ -17,6 +17,7 @@ from pathlib import Path
 import ezdxf
 import pytest
 
+from linkstress.cli import main
 from linkstress.scene import load_scene
 from linkstress.scene.plausibility import GYRATION_FACTOR, RULES
 
@@ -236,3 +237,15 @@ def test_the_radius_of_gyration_bound_is_100_link_sizes(tmp_path, factor, warned
     inertia = 0.5 * (factor * GYRATION_FACTOR * 0.1) ** 2
     text = FOURBAR.format(material="", crank="").replace("inertia = 0.001", f"inertia = {inertia!r}", 1)
     assert bool(warnings_of(tmp_path, text=text)) is warned
+
+
+def test_a_fatigue_refusal_caused_by_a_unit_slip_names_the_slip(tmp_path, capsys):
+    # ultimate_strength = 58 (ksi meant: 58 x 6.894757e6 = 399.9e6 Pa) puts the real 200 MPa endurance
+    # limit above it: refused, and the refusal says which value looks like a slip
+    path = tmp_path / "scene.toml"
+    path.write_text(FOURBAR.format(material="endurance_limit = 200e6\nultimate_strength = 58", crank=""))
+    assert main(["analyze", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "materials.steel.endurance_limit: must be below ultimate_strength (58 Pa), got 200000000.0; " in err
+    assert "materials.steel.ultimate_strength = 58 Pa: did you mean 58 MPa = 58e6 or 58 ksi = 399.9e6?" in err
+    assert len(err.strip().splitlines()) == 1

@@ -25,6 +25,7 @@ from linkstress.geometry.members import check_members
 from linkstress.geometry.profile import LinkProfile
 from linkstress.scene.keys import Table
 from linkstress.scene.model import MassData
+from linkstress.scene.plausibility import RULES, value_warning
 
 MATERIAL_KEYS = (
     "density", "youngs_modulus", "poisson_ratio", "yield_strength",
@@ -82,7 +83,11 @@ def read_materials(table: Table | None) -> dict[str, Material]:
                 given[0], f"fatigue needs endurance_limit and ultimate_strength together [Pa]; missing: {', '.join(missing)}"
             )
         if (problem := fatigue_data_problem(endurance, ultimate, strength, surface, size)) is not None:
-            raise entry.error(*problem)
+            key, text = problem
+            strengths = {"yield_strength": strength, "endurance_limit": endurance, "ultimate_strength": ultimate}
+            slips = [w for k, v in strengths.items() if (w := value_warning(entry.key_path(k), RULES[k], v))]
+            # 58 (ksi meant) as ultimate_strength puts a real endurance limit above it: say which is the slip
+            raise entry.error(key, f"{text}; {slips[0]}" if slips else text)
         materials[name] = Material(name, density, youngs, poisson, strength, endurance, ultimate, surface, size)
     return materials
 
