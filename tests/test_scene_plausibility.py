@@ -246,6 +246,6 @@ def test_a_fatigue_refusal_caused_by_a_unit_slip_names_the_slip(tmp_path, capsys
     path.write_text(FOURBAR.format(material="endurance_limit = 200e6\nultimate_strength = 58", crank=""))
     assert main(["analyze", str(path)]) == 2
     err = capsys.readouterr().err
-    assert "materials.steel.endurance_limit: must be below ultimate_strength (58 Pa), got 200000000.0; " in err
+    assert "materials.steel.endurance_limit: must be below ultimate_strength (58.0 Pa), got 200000000.0; " in err
     assert "materials.steel.ultimate_strength = 58 Pa: did you mean 58 MPa = 58e6 or 58 ksi = 399.9e6?" in err
     assert len(err.strip().splitlines()) == 1
