@@ -249,3 +249,10 @@ def test_a_fatigue_refusal_caused_by_a_unit_slip_names_the_slip(tmp_path, capsys
     assert "materials.steel.endurance_limit: must be below ultimate_strength (58.0 Pa), got 200000000.0; " in err
     assert "materials.steel.ultimate_strength = 58 Pa: did you mean 58 MPa = 58e6 or 58 ksi = 399.9e6?" in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_the_warnings_docs_scenes_md_shows_are_the_readers(tmp_path):
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "scenes.md").read_text()
+    shown = [line.strip() for line in doc.splitlines() if line.startswith("    ") and ": did you mean " in line]
+    computed = warnings_of(tmp_path, "yield_strength = 250", "thickness = 6")
+    assert sorted(shown) == sorted(computed)
