@@ -167,10 +167,10 @@ def scheduler_choice(option: str | None) -> tuple[str | None, str]:
         check_address(option, OPTION)
         return option, OPTION
     raw = os.environ.get(SCHEDULER_VARIABLE, "")
-    value = raw.strip(" ")
     if not raw.strip():
         return None, ""
-    check_address(raw if _control(raw) else value, SCHEDULER_VARIABLE)
+    value = raw.strip(" ")  # a newline or a tab stays, to be refused
+    check_address(value, SCHEDULER_VARIABLE)
     return value, SCHEDULER_VARIABLE
 
 
