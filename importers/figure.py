@@ -26,6 +26,7 @@ from shapely.ops import polylabel
 
 from linkstress.importers.sketch import ImportedLink, Sketch
 from linkstress.importers.summary import NO_PROFILE
+from linkstress.report.figure_notes import figure_warnings
 
 MAX_LINK_PANELS = 12
 """A sketch of more links gets the overview only: a row per link of a 91-part sheet would be a PNG
@@ -52,7 +53,8 @@ collection shows as a filled box (the default handler draws scatter markers, of 
 def sketch_png(sketch: Sketch) -> bytes:
     """PNG bytes of ``sketch_figure(sketch)``."""
     buffer = io.BytesIO()
-    sketch_figure(sketch).savefig(buffer, format="png", dpi=DPI)
+    with figure_warnings():  # a glyph its font lacks (a CJK layer name): not onto the terminal
+        sketch_figure(sketch).savefig(buffer, format="png", dpi=DPI)
     return buffer.getvalue()
 
 

@@ -26,6 +26,8 @@ from numpy.typing import NDArray
 from shapely.geometry import Point, Polygon
 
 from linkstress.errors import SketchError
+from linkstress.inputs import SKETCH_BYTES, read_bounded
+from linkstress.messages import capped
 from linkstress.importers.chaining import close_pairs
 from linkstress.importers.contours import Outline, build_contours
 from linkstress.importers.dxf import read_dxf
@@ -113,7 +115,7 @@ class Sketch:
         no name is given, is refused with the problems: what was left out there may be the link
         meant, or part of it.
         """
-        names = ", ".join(repr(link.name) for link in self.links)
+        names = capped(repr(link.name) for link in self.links)
         if name_or_layer is not None:
             name_or_layer = decode_dxf_unicode(name_or_layer)  # as the drawing's layer names are
         if name_or_layer is None:
@@ -139,7 +141,7 @@ class Sketch:
         if on_layer:
             raise SketchError(
                 f"{self.path.name}: layer {name_or_layer!r} holds {len(on_layer)} links "
-                f"({', '.join(repr(k.name) for k in on_layer)}): name one of them"
+                f"({capped(repr(k.name) for k in on_layer)}): name one of them"
             )
         raise SketchError(f"{self.path.name} has no link or layer {name_or_layer!r}; its links are {names}")
 
@@ -161,7 +163,7 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     """
     path = Path(path)
     try:
-        data = path.read_bytes()
+        data = read_bounded(path, SKETCH_BYTES, "sketch")
     except OSError as error:
         raise SketchError(
             f"cannot read the sketch {str(path)!r}: {error.strerror or error}; give the path of a readable "
@@ -242,7 +244,7 @@ def _on_layers(origins: list[Origin], layers: Collection[str] | None, exclude: C
     present = sorted({layer for layer in on.tolist() if layer is not None})
     unknown = sorted((set(layers or ()) | set(exclude)) - set(present))
     if unknown:
-        has = f"its layers are {', '.join(repr(n) for n in present)}" if present else "it has no layers"
+        has = f"its layers are {capped(repr(n) for n in present)}" if present else "it has no layers"
         raise SketchError(
             f"no layer {', '.join(repr(n) for n in unknown)} in the drawing ({has}); check --layers and "
             "--exclude-layers"

@@ -31,16 +31,22 @@ import math
 import random
 import re
 import resource
+import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import ezdxf
 import pytest
 
 from linkstress.cli import main
+from linkstress.inputs import SCENE_BYTES, SKETCH_BYTES
+from linkstress.scene import load_scene
+from linkstress.scene.plausibility import RULES
 
 REPO = Path(__file__).resolve().parents[1]
 SEED = REPO / "validation" / "cases" / "seed_ansys_fourbar"
@@ -550,3 +556,373 @@ def test_a_hostile_case_prints_one_line_at_most_on_stderr(tmp_path, corpus, fami
     if done.returncode == 2:
         lines = done.stderr.strip().splitlines()
         assert len(lines) == 1 or "usage:" in done.stderr, done.stderr
+
+
+# ---------------------------------------------------------------------------------------------------
+# Issue 28: motion expressions, inputs that are not files, unit slips, holes on layers of their own,
+# scheduler addresses and a case with no load. A refusal here is also short: one line of at most
+# MESSAGE_LIMIT characters (lists capped at five, long text cut).
+
+MESSAGE_LIMIT = 400
+"""Characters an error line (after "linkstress: error: ") may have in these families."""
+IMPORT_MESSAGE_LIMIT = 600
+"""The same for ``import`` of a drawn mechanism, whose refusal spells out two capped lists (the links
+and the links with fewer than two joints, five of each)."""
+
+
+def run_short(argv: list, outputs: list[Path], limit: int = MESSAGE_LIMIT) -> tuple[int, str, str]:
+    """``run_hostile``, and a refusal is one error line of at most ``limit`` characters."""
+    code, stdout, stderr = run_hostile(argv, outputs)
+    assert code in (0, 2), (code, stderr[-2000:])
+    if code == 2 and "usage:" not in stderr:
+        (line,) = [line for line in stderr.splitlines() if line.startswith("linkstress: error:")]
+        message = line.removeprefix("linkstress: error: ")
+        assert len(message) <= limit, (len(message), message[:600])
+        assert not NON_FINITE.search(message), message
+    return code, stdout, stderr
+
+
+BARE_FOURBAR = """
+[links.crank]
+joints = [[0.0, 0.0], [0.1, 0.0]]
+mass = 0.5
+inertia = 0.001
+center_of_mass = [0.05, 0.0]
+
+[links.coupler]
+joints = [[0.0, 0.0], [0.3, 0.0]]
+mass = 1.0
+inertia = 0.01
+center_of_mass = [0.15, 0.0]
+
+[links.output]
+joints = [[0.0, 0.0], [0.25, 0.0]]
+mass = 0.8
+inertia = 0.005
+center_of_mass = [0.125, 0.0]
+
+[links.ground]
+joints = [[0.0, 0.0], [0.3, 0.0]]
+
+[mechanisms.main]
+type = "four-bar"
+crank = "crank"
+coupler = "coupler"
+output = "output"
+ground = "ground"
+
+[motion]
+"""
+"""A Grashof four-bar of bare joints (crank 0.1 m, coupler 0.3 m, output 0.25 m, ground 0.3 m):
+kinematics and joint forces, no sketch to read."""
+
+
+# --- motion expressions ----------------------------------------------------------------------------
+
+EXPRESSION_ATOMS = ("t", "t", "t", "1", "90", "360", "pi", "e", "0", "0.5", "1e7", "1e17", "1e300", "1e-300", "5729577.9",
+                    "3e6", "1e12")
+EXPRESSION_CALLS = ("sin", "cos", "tan", "exp", "log", "sqrt", "asin", "atan", "sinh", "cosh", "tanh", "abs",
+                    "max", "eval", "__import__", "pow")
+TIMES = ("[0.0, 1.0]", "[0.0]", "[0.0, 0.001, 0.002]", "{start = 0.0, stop = 1.0, num = 11}",
+         "{start = -1.0, stop = 1.0, num = 7}", "{start = 0.0, stop = 1e9, num = 3}", "[1e9]", "{start = 0.0, stop = 1e-9, num = 5}",
+         "{start = 0.0, stop = 0.01, num = 50}", "[1e300]", "[-0.0, 0.5]")
+
+
+def random_expression(rng: random.Random, depth: int) -> str:
+    """An expression of ``t`` up to ``depth`` levels deep: allowed calls and numbers, mostly, and
+    now and then a call outside the whitelist or a number no angle can be."""
+    if depth == 0 or rng.random() < 0.3:
+        return rng.choice(EXPRESSION_ATOMS)
+    kind = rng.random()
+    if kind < 0.35:
+        return f"{rng.choice(EXPRESSION_CALLS)}({random_expression(rng, depth - 1)})"
+    if kind < 0.45:
+        return f"-{random_expression(rng, depth - 1)}"
+    operator = rng.choice(("+", "-", "*", "/", "**", "*", "+"))
+    return f"({random_expression(rng, depth - 1)}{operator}{random_expression(rng, depth - 1)})"
+
+
+EXPRESSION_CASES = 40
+
+
+@pytest.mark.parametrize("case", range(EXPRESSION_CASES))
+def test_hostile_motion_expression(tmp_path, case):
+    rng = random.Random(f"expression-{case}")
+    expression = random_expression(rng, rng.randint(1, 4))
+    scene = tmp_path / "scene.toml"
+    scene.write_text(BARE_FOURBAR + f'input_angle_deg = {{expression = "{expression}", t = {rng.choice(TIMES)}}}\n')
+    out = tmp_path / "out.json"
+    code, _, stderr = run_short(["analyze", scene, "--json", out], [out])
+    if code == 2:
+        assert "scene.toml: motion.input_angle_deg" in stderr, stderr
+        return
+    # a run that goes ahead stays inside the ranges of plain values (docs/design.md, Limits)
+    for position in json.loads(out.read_text())["positions"]:
+        assert abs(position["input_angle_deg"]) <= 1e7, position["input_angle_deg"]
+        if position["feasible"]:
+            crank = position["links"]["crank"]
+            assert abs(crank["omega_rad_s"]) <= 1e5 and abs(crank["alpha_rad_s2"]) <= 1e9, crank
+
+
+# --- inputs that are not regular files -------------------------------------------------------------
+
+SPECIAL_KINDS = ("fifo", "dev-zero", "dev-null", "socket", "folder", "link-to-fifo", "link-to-dev-zero", "oversize",
+                 "broken-link")
+SPECIAL_TARGETS = ("analyze-scene", "validate-scene", "import-sketch", "scene-sketch")
+SPECIAL_WORDS = {
+    "fifo": "is a FIFO (named pipe), not a file", "dev-zero": "is a character device, not a file",
+    "dev-null": "is a character device, not a file", "socket": "is a socket, not a file", "folder": "folder",
+    "link-to-fifo": "is a FIFO (named pipe), not a file", "link-to-dev-zero": "is a character device, not a file",
+    "oversize": "MiB), more than the", "broken-link": "",
+}
+"""What the one error line says for each kind (a broken link is simply not found, in each reader's words)."""
+
+
+@contextlib.contextmanager
+def special_path(kind: str, folder: Path, name: str, oversize: int):
+    """A path named ``name`` in ``folder`` (a short folder of its own for a socket, whose path the
+    system limits to about 100 bytes) that is ``kind``; ``oversize``: a sparse file's size."""
+    path = folder / name
+    if kind in ("fifo", "link-to-fifo"):
+        os.mkfifo(folder / "pipe")
+        if kind == "fifo":
+            (folder / "pipe").rename(path)
+        else:
+            path.symlink_to(folder / "pipe")
+    elif kind in ("dev-zero", "dev-null"):
+        path = Path(f"/dev/{kind[4:]}")
+    elif kind == "link-to-dev-zero":
+        path.symlink_to("/dev/zero")
+    elif kind == "folder":
+        path.mkdir()
+    elif kind == "oversize":
+        with path.open("wb") as stream:
+            stream.truncate(oversize)
+    elif kind == "broken-link":
+        path.symlink_to(folder / "nowhere")
+    else:
+        short = Path(tempfile.mkdtemp(prefix="ls"))
+        server = socket.socket(socket.AF_UNIX)
+        server.bind(str(short / name))
+        try:
+            yield short / name
+        finally:
+            server.close()
+            shutil.rmtree(short)
+        return
+    yield path
+
+
+@pytest.mark.parametrize("target", SPECIAL_TARGETS)
+@pytest.mark.parametrize("kind", SPECIAL_KINDS)
+def test_hostile_special_file(tmp_path, corpus, kind, target):
+    folder = case_folder(tmp_path, corpus)
+    name = "input.dxf" if target in ("import-sketch", "scene-sketch") else "input.toml"
+    oversize = (SKETCH_BYTES if name.endswith(".dxf") else SCENE_BYTES) + 1
+    with special_path(kind, folder, name, oversize) as path:
+        if target == "analyze-scene":
+            argv = ["analyze", path]
+        elif target == "validate-scene":
+            argv = ["validate", path, "--mesh-levels", "1"]
+        elif target == "import-sketch":
+            argv = ["import", path, "--units", "mm"]
+        else:
+            scene = folder / "scene.toml"
+            scene.write_text(set_key(corpus["scene"], "links.crank", "sketch", json.dumps(str(path))))
+            argv = ["analyze", scene]
+        code, _, stderr = run_short(argv, [])
+    assert code == 2, stderr
+    assert SPECIAL_WORDS[kind] in stderr, stderr
+    if target == "scene-sketch":
+        assert "scene.toml: links.crank.sketch: " in stderr, stderr
+
+
+# --- unit slips ------------------------------------------------------------------------------------
+
+PSI_PA = 6894.757293168361
+SLIP_VALUES = {
+    "thickness": (0.003, 0.006, 0.01, 0.02), "density": (1200.0, 2700.0, 7850.0, 8900.0),
+    "youngs_modulus": (2.5e9, 70e9, 110e9, 200e9), "yield_strength": (40e6, 250e6, 350e6, 900e6),
+    "endurance_limit": (60e6, 100e6, 150e6), "ultimate_strength": (400e6, 600e6, 1000e6),
+}
+"""Real values of each key [SI], as a designer means them: plates 3-20 mm; nylon, aluminium, steel,
+copper; strengths of a polymer to a high-strength steel. Endurance limits stay below, and yield
+strengths are paired with, ultimate strengths of at least 400 MPa."""
+SLIP_UNITS = {
+    "thickness": (("mm", 1e-3), ("cm", 1e-2), ("in", 0.0254), ("um", 1e-6)),
+    "density": (("g/cm^3", 1e3), ("lb/in^3", 0.45359237 / 0.0254**3), ("t/mm^3", 1e12), ("N/m^3", 1 / 9.80665)),
+    "youngs_modulus": (("GPa", 1e9), ("MPa", 1e6), ("psi", PSI_PA), ("ksi", 1e3 * PSI_PA), ("Msi", 1e6 * PSI_PA)),
+    "yield_strength": (("MPa", 1e6), ("kPa", 1e3), ("ksi", 1e3 * PSI_PA), ("psi", PSI_PA), ("GPa", 1e9)),
+}
+"""The units a value may be written in by mistake, (name, its size in SI units); the fatigue
+strengths take the yield strength's."""
+SLIP_BAR = {"length": 0.1, "height": 0.04, "overhang": 0.03}
+"""The drawn crank of the unit-slip cases [m]: its outline is 0.16 m by 0.04 m."""
+
+
+def slip_scene(folder: Path, key: str, written: float) -> Path:
+    """The drawn crank and bare four-bar, its steel with fatigue data and ``key`` = ``written``."""
+    length, h, overhang = SLIP_BAR["length"], SLIP_BAR["height"] / 2, SLIP_BAR["overhang"]
+    doc = ezdxf.new("R2013", units=6)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-overhang, -h), (length + overhang, -h), (length + overhang, h), (-overhang, h)], close=True)
+    for x in (0.0, length):
+        msp.add_circle((x, 0.0), 0.005)
+        msp.add_point((x, 0.0))
+    doc.saveas(folder / "crank.dxf")
+    material = {"density": 7850.0, "youngs_modulus": 200e9, "poisson_ratio": 0.3, "yield_strength": 350e6,
+                "endurance_limit": 200e6, "ultimate_strength": 600e6}
+    thickness = 0.01
+    if key == "thickness":
+        thickness = written
+    else:
+        material[key] = written
+    lines = "".join(f"{name} = {value!r}\n" for name, value in material.items())
+    crank_start, crank_end = BARE_FOURBAR.index("[links.crank]"), BARE_FOURBAR.index("[links.coupler]")
+    text = (f"[materials.steel]\n{lines}\n" + BARE_FOURBAR[:crank_start]
+            + f'[links.crank]\nsketch = "crank.dxf"\nthickness = {thickness!r}\nmaterial = "steel"\n\n'
+            + BARE_FOURBAR[crank_end:] + "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0\n")
+    path = folder / "scene.toml"
+    path.write_text(text)
+    return path
+
+
+SLIP_CASES = 40
+
+
+@pytest.mark.parametrize("case", range(SLIP_CASES))
+def test_hostile_unit_slip(tmp_path, case):
+    rng = random.Random(f"slip-{case}")
+    key = rng.choice(sorted(SLIP_VALUES))
+    meant = rng.choice(SLIP_VALUES[key])
+    unit, size = rng.choice(SLIP_UNITS.get(key, SLIP_UNITS["yield_strength"]))
+    written = float(f"{meant / size:.6g}")
+    scene = slip_scene(tmp_path, key, written)
+    out = tmp_path / "out.json"
+    code, _, stderr = run_short(["analyze", scene, "--json", out], [out])
+    path = f"links.crank.{key}" if key == "thickness" else f"materials.steel.{key}"
+    if code == 2:
+        # refused only where a plain range refuses it ("check the unit") or the fatigue data clash
+        assert "scene.toml: " in stderr and ("check the unit" in stderr or "ultimate_strength" in stderr), stderr
+        return
+    warnings = [w for w in load_scene(scene).warnings if w.startswith(f"{path} ")]
+    rule = RULES[key]
+    diagonal = math.hypot(SLIP_BAR["length"] + 2 * SLIP_BAR["overhang"], SLIP_BAR["height"])
+    implausible = not rule.low <= written <= rule.high or (key == "thickness" and written > diagonal)
+    assert bool(warnings) == implausible, (written, warnings)
+    if not warnings:
+        return
+    (warning,) = warnings
+    assert warning.startswith(f"{path} = {written:g} ") and len(warning) < 250 and "\n" not in warning
+    fitting = [name for name, s in rule.slips if rule.low <= written * s <= rule.high and
+               (key != "thickness" or written * s <= diagonal)]
+    if fitting[:1] == [unit]:
+        assert f"did you mean {written:g} {unit} = " in warning, warning
+
+
+# --- holes and slots on layers of their own --------------------------------------------------------
+
+def holed_sketch(rng: random.Random, path: Path) -> list[str]:
+    """A DXF of a crank (and sometimes a coupler pinned to it) whose pin holes, a slot or a lightening
+    hole are drawn on other layers than the outlines; the layers they are on."""
+    doc = ezdxf.new(rng.choice(("R12", "R2000", "R2013")), units=4)
+    msp = doc.modelspace()
+    hole_layer = rng.choice(("holes", "HOLES", "crank", "0", "Bohrungen", "穴"))
+    layers = {"crank", hole_layer}
+    links = [("crank", 0.0, 0.0, 100.0)]
+    if rng.random() < 0.5:
+        links.append(("coupler", 100.0, 0.0, 300.0))
+    for name, x0, y0, length in links:
+        layers.add(name)
+        h = rng.choice((10.0, 15.0, 20.0))
+        corners = [(x0 - h, y0 - h), (x0 + length + h, y0 - h), (x0 + length + h, y0 + h), (x0 - h, y0 + h)]
+        if doc.dxfversion == "AC1009":
+            msp.add_polyline2d(corners, close=True, dxfattribs={"layer": name})
+        else:
+            msp.add_lwpolyline(corners, close=True, dxfattribs={"layer": name})
+        for x in (x0, x0 + length):
+            msp.add_circle((x, y0), rng.choice((2.5, 5.0, h * 0.9, h * 1.5)), dxfattribs={"layer": hole_layer})
+            if rng.random() < 0.6:
+                msp.add_point((x, y0), dxfattribs={"layer": rng.choice((name, hole_layer))})
+        kind = rng.choice(("slot", "lightening", "none", "overlap"))
+        middle = x0 + length / 2
+        if kind == "slot":
+            slot = rng.choice(("slots", hole_layer))
+            layers.add(slot)
+            r = h / 3
+            msp.add_line((middle - 10, y0 - r), (middle + 10, y0 - r), dxfattribs={"layer": slot})
+            msp.add_arc((middle + 10, y0), r, -90, 90, dxfattribs={"layer": slot})
+            msp.add_line((middle + 10, y0 + r), (middle - 10, y0 + r), dxfattribs={"layer": slot})
+            msp.add_arc((middle - 10, y0), r, 90, 270, dxfattribs={"layer": slot})
+        elif kind == "lightening":
+            msp.add_circle((middle, y0), h / 2, dxfattribs={"layer": rng.choice(("light", hole_layer))})
+        elif kind == "overlap":
+            # a "hole" that crosses the outline: no hole, a crossing
+            msp.add_circle((x0 + length + h, y0), h / 2, dxfattribs={"layer": hole_layer})
+    doc.saveas(path)
+    return sorted(layers)
+
+
+HOLE_CASES = 24
+
+
+@pytest.mark.parametrize("case", range(HOLE_CASES))
+def test_hostile_holes_on_their_own_layers(tmp_path, case):
+    rng = random.Random(f"holes-{case}")
+    sketch = tmp_path / "sheet.dxf"
+    layers = holed_sketch(rng, sketch)
+    out, scene = tmp_path / "links.json", tmp_path / "scene.toml"
+    argv: list = ["import", sketch, "--json", out]
+    if rng.random() < 0.4:
+        argv += ["--hole-layers", rng.choice((",".join(layers), "holes", "nope", "holes,slots,light"))]
+    if rng.random() < 0.4:
+        argv += ["--scene", scene]
+    if rng.random() < 0.2:
+        argv += ["--strict"]
+    if rng.random() < 0.2:
+        argv += ["--layers", ",".join(rng.sample(layers, rng.randint(1, len(layers))))]
+    run_short(argv, [out, scene], IMPORT_MESSAGE_LIMIT)
+
+
+# --- scheduler addresses ---------------------------------------------------------------------------
+
+SCHEDULER_CASES = 8
+
+
+@pytest.mark.parametrize("case", range(SCHEDULER_CASES))
+def test_hostile_scheduler_address(tmp_path, corpus, case, monkeypatch):
+    rng = random.Random(f"scheduler-{case}")
+    address = rng.choice(("tcp://10.0.0.5:8786", "local", "tls://node-3:8786"))
+    k = rng.randrange(len(address) + 1)
+    address = address[:k] + rng.choice(("\n", "\r\n", "\t", "\x1b[2J", "\x7f", "\u202e", "\u200b", "\x85")) + address[k:]
+    folder = case_folder(tmp_path, corpus)
+    (folder / "scene.toml").write_text(corpus["scene"])
+    command = rng.choice((["validate", folder / "scene.toml"], ["regress", folder / "no-cases"]))
+    if rng.random() < 0.5:
+        argv = [*command, "--scheduler", address]
+    else:
+        monkeypatch.setenv("LINKSTRESS_SCHEDULER", address)
+        argv = command
+    code, _, stderr = run_short(argv, [])
+    assert code == 2 and "holds the control character" in stderr and repr(address.strip(" ")) in stderr, stderr
+
+
+# --- a valid case with no load, through the FEA peaks ----------------------------------------------
+
+def test_a_case_with_no_load_through_the_peaks_gives_zeros(tmp_path, corpus):
+    folder = case_folder(tmp_path, corpus)
+    scene = folder / "scene.toml"
+    text = set_key(corpus["scene"], "motion", "input_speed_rad_s", "0.0")
+    text = set_key(text, "materials.steel", "yield_strength", "250e6")
+    scene.write_text(text.split("[loads")[0])
+    out = folder / "out.json"
+    code, _, stderr = run_short(["analyze", scene, "--peaks", "--json", out], [out])
+    assert code == 0, stderr
+    summaries = json.loads(out.read_text())["links"]
+    assert {s["peak_max_von_mises_pa"] for s in summaries.values()} == {0.0}
+    assert {s["peak_yield_safety_factor"] for s in summaries.values()} == {None}
+
+
+def test_the_issue_28_families_add_at_least_100_cases():
+    special = len(SPECIAL_KINDS) * len(SPECIAL_TARGETS)
+    assert EXPRESSION_CASES + special + SLIP_CASES + HOLE_CASES + SCHEDULER_CASES + 1 >= 100

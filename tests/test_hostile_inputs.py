@@ -7,12 +7,16 @@ the FEA needs. The four-bar: crank 0.1 m, coupler 0.3 m, output 0.25 m, ground 0
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
 import shutil
+import signal
+import socket
 import subprocess
 import sys
+import tempfile
 import textwrap
 import time
 import tomllib
@@ -24,6 +28,9 @@ import pytest
 from linkstress.analysis import plan_for
 from linkstress.cli import main
 from linkstress.commands.analyze import MEMORY_LIMIT, memory_estimate
+from linkstress.inputs import SCENE_BYTES, SKETCH_BYTES, InputFileError, read_bounded
+from linkstress import executors
+from linkstress.messages import capped
 from linkstress.scene import load_scene
 
 REPO = Path(__file__).resolve().parents[1]
@@ -220,15 +227,59 @@ def test_sections_refuses_a_density_of_1e300(capsys):
     refused(capsys, ["sections", "--bar", "1", "0.5", "0.1", "0.1", "--density", "1e300"], "--density: must be at most 100000 kg/m^3")
 
 
-def test_an_overflowing_motion_expression_is_one_error_naming_its_keys_and_no_numpy_warning(tmp_path):
-    # 1e200 deg/s: every key is in range, yet omega^2 r overflows; the last guard names what did
+def test_a_huge_motion_expression_is_one_error_naming_its_key_and_no_numpy_warning(tmp_path):
+    # 1e200 deg/s: held to the ranges of plain values, it stops before anything squares it
     text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
                   'input_angle_deg = {expression = "1e200*t", t = [0.0, 0.5]}')
     write_scene(tmp_path, text)
     result = run_cli("analyze", "scene.toml", "--json", "out.json", cwd=tmp_path)
-    assert_one_error(result, "scene.toml:", "overflowed (not a finite number)", "motion.input_angle_deg")
+    assert_one_error(result, "scene.toml: motion.input_angle_deg.expression: '1e200*t' gives", "check the unit")
     assert not re.search(r"\b(nan|inf)\b", result.stdout, re.IGNORECASE)
     assert not (tmp_path / "out.json").exists()
+
+
+@pytest.mark.parametrize(
+    ("expression", "times", "message"),
+    [
+        # theta = 1e17 t deg: 1e17 deg at t = 1 s, past the 1e7 deg of a plain input_angle_deg
+        ("1e17*t", "[0.0, 1.0]", "gives an input angle of 1e+17 deg at t = 1 s, more than the 1e+07 deg"),
+        # theta = 1e8 t deg: dtheta/dt = 1e8 deg/s = 1e8 pi / 180 = 1.74533e6 rad/s, past 1e5 rad/s
+        ("1e8*t", "[0.0, 0.05]", "gives an input speed (its time derivative) of 1.74533e+06 rad/s at t = 0 s, more than "
+         "the 100000 rad/s"),
+        # theta = cos(1e6 t) deg: d2theta/dt2 = -1e12 cos(1e6 t) deg/s^2 = -1.74533e10 rad/s^2 at t = 0
+        ("cos(1e6*t)", "[0.0]", "gives an input acceleration (its second time derivative) of -1.74533e+10 rad/s^2 at "
+         "t = 0 s, more than the 1e+09 rad/s^2"),
+    ],
+)
+def test_a_motion_expression_is_held_to_the_ranges_of_plain_values(tmp_path, capsys, expression, times, message):
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
+                  f'input_angle_deg = {{expression = "{expression}", t = {times}}}')
+    refused(capsys, ["analyze", str(write_scene(tmp_path, text))],
+            f"scene.toml: motion.input_angle_deg.expression: {expression!r} {message}")
+
+
+@pytest.mark.parametrize(
+    ("expression", "passes"),
+    [
+        # 1e7 deg, the largest plain angle, and just past it
+        ("1e7 + 0*t", True), ("1.0000001e7 + 0*t", False),
+        # 1e5 rad/s = 1e5 x 180 / pi = 5,729,577.95 deg/s
+        ("5729577.9*t", True), ("5729578.0*t", False),
+    ],
+)
+def test_an_expression_on_the_bound_of_a_range_runs(tmp_path, capsys, expression, passes):
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
+                  f'input_angle_deg = {{expression = "{expression}", t = [0.0, 0.001]}}')
+    code = main(["analyze", str(write_scene(tmp_path, text))])
+    assert code == (0 if passes else 2), capsys.readouterr().err
+
+
+def test_a_long_expression_is_quoted_cut_in_its_message(tmp_path, capsys):
+    expression = "t + " + "abc" * 300
+    text = edited(BARE, "input_angle_deg = [30.0, 120.0]\ninput_speed_rad_s = 10.0",
+                  f'input_angle_deg = {{expression = "{expression}", t = [0.0, 1.0]}}')
+    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "'abcabc", "...", "' in 't + abcabc")
+    assert len(line) < 400
 
 
 # --- work beyond a stated limit is refused before it is done ------------------------------------
@@ -512,3 +563,215 @@ def test_a_wrong_type_for_any_key_is_one_message_naming_it(tmp_path, capsys, pat
     scene = tmp_path / "scene.toml"
     scene.write_text("".join(f"{json.dumps(k)} = {toml_value(v)}\n" for k, v in data.items()))
     refused(capsys, ["analyze", str(scene), "--explain"], f"scene.toml: {'.'.join(path)}")
+
+
+# --- inputs that are not files, and files past their size limit -----------------------------------
+
+@contextlib.contextmanager
+def special_file(kind: str, folder: Path, suffix: str):
+    """A path in ``folder`` that is ``kind``: a FIFO, a socket, a folder, or the device /dev/zero."""
+    if kind == "/dev/zero":
+        yield Path("/dev/zero")
+        return
+    path = folder / f"input{suffix}"
+    if kind == "FIFO":
+        os.mkfifo(path)
+        yield path
+    elif kind == "socket":
+        # a Unix socket's path may hold about 100 bytes: a short folder of its own
+        short = Path(tempfile.mkdtemp(prefix="ls"))
+        path = short / f"s{suffix}"
+        server = socket.socket(socket.AF_UNIX)
+        server.bind(str(path))
+        try:
+            yield path
+        finally:
+            server.close()
+            shutil.rmtree(short)
+    else:
+        path.mkdir()
+        yield path
+
+
+@contextlib.contextmanager
+def within(seconds: float):
+    """Fail instead of hanging: a read of a FIFO waits for a writer forever."""
+    def alarm(signum, frame):
+        raise TimeoutError(f"still running after {seconds} s")
+
+    previous = signal.signal(signal.SIGALRM, alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+SPECIAL = {"FIFO": "a FIFO (named pipe)", "/dev/zero": "a character device", "socket": "a socket", "folder": "a folder"}
+
+
+@pytest.mark.parametrize("kind", list(SPECIAL))
+def test_a_sketch_that_is_not_a_file_is_refused_by_what_it_is_before_reading(tmp_path, capsys, kind):
+    with special_file(kind, tmp_path, ".dxf") as path, within(10):
+        refused(capsys, ["import", str(path), "--units", "mm"], f"the sketch {str(path)!r} is {SPECIAL[kind]}, not a file")
+
+
+@pytest.mark.parametrize("kind", ["FIFO", "/dev/zero", "socket"])
+def test_a_scene_that_is_not_a_file_is_refused_by_what_it_is_before_reading(tmp_path, capsys, kind):
+    with special_file(kind, tmp_path, ".toml") as path, within(10):
+        refused(capsys, ["analyze", str(path)], f"the scene file {str(path)!r} is {SPECIAL[kind]}, not a file")
+
+
+@pytest.mark.parametrize("kind", list(SPECIAL))
+def test_a_scene_s_sketch_that_is_not_a_file_is_refused_naming_the_key(tmp_path, capsys, kind):
+    with special_file(kind, tmp_path, ".dxf") as path, within(10):
+        scene = write_scene(tmp_path, DRAWN.replace('sketch = "bars.dxf"', f'sketch = "{path}"', 1))
+        refused(capsys, ["analyze", str(scene)], "scene.toml: links.crank.sketch: the sketch", f"is {SPECIAL[kind]}")
+
+
+def test_a_scene_file_past_16_mib_is_refused_with_its_size_before_reading(tmp_path, capsys):
+    # a sparse file: its size is there, its bytes are not (nothing to read if the size were not checked first)
+    path = tmp_path / "scene.toml"
+    with path.open("wb") as stream:
+        stream.truncate(SCENE_BYTES + 1)
+    refused(capsys, ["analyze", str(path)],
+            f"the scene file {str(path)!r} is 16,777,217 bytes (16.0 MiB), more than the 16 MiB a scene file may be",
+            seconds=5)
+
+
+def test_a_scene_file_of_16_mib_is_read(tmp_path, capsys):
+    # exactly the limit: read and parsed (and refused for what it lacks)
+    path = tmp_path / "scene.toml"
+    path.write_bytes(b"#" + b" " * (SCENE_BYTES - 2) + b"\n")
+    refused(capsys, ["analyze", str(path)], "scene.toml: links: missing table")
+
+
+def test_a_sketch_past_256_mib_is_refused_with_its_size_before_reading(tmp_path, capsys):
+    path = tmp_path / "sheet.dxf"
+    with path.open("wb") as stream:
+        stream.truncate(SKETCH_BYTES + 1)
+    refused(capsys, ["import", str(path)], "is 268,435,457 bytes (256.0 MiB), more than the 256 MiB a sketch may be",
+            seconds=5)
+
+
+def test_a_file_that_grows_past_its_limit_while_read_is_refused(tmp_path, monkeypatch):
+    # the size the file system gave was within the limit; the bytes read were not
+    path = tmp_path / "scene.toml"
+    path.write_bytes(b"x" * 11)
+    real = os.fstat
+    monkeypatch.setattr(os, "fstat", lambda fd: os.stat_result((*real(fd)[:6], 5, *real(fd)[7:])))
+    with pytest.raises(InputFileError, match=r"is at least 11 bytes \(0.0 MiB\), more than the 0 MiB"):
+        read_bounded(path, 10, "scene file")
+    assert read_bounded(path, 11, "scene file") == b"x" * 11
+
+
+# --- a valid case with nothing to carry -----------------------------------------------------------
+
+def test_a_zero_load_case_with_peaks_gives_zeros_and_no_nan(tmp_path, capsys):
+    # no loads, no speed, no gravity: every force, stress and FEA peak is exactly 0, and a factor
+    # against 0 is no factor (null), never inf or nan
+    text = DRAWN.replace("poisson_ratio = 0.3", "poisson_ratio = 0.3\nyield_strength = 250e6\nendurance_limit = 200e6\n"
+                         "ultimate_strength = 400e6").replace("input_speed_rad_s = 10.0\n", "")
+    scene = write_scene(tmp_path, text)
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(scene), "--peaks", "--json", str(out)]) == 0
+    stdout = capsys.readouterr().out
+    assert not re.search(r"\b(nan|inf)\b", stdout, re.IGNORECASE)
+    data = json.loads(out.read_text(), parse_constant=lambda c: pytest.fail(f"the JSON holds {c}"))
+    for position in data["positions"]:
+        for name in BARS:
+            link = position["links"][name]
+            assert link["max_von_mises_pa"] == 0.0 and link["peak_von_mises_pa"] == 0.0
+            assert link["peak_yield_safety_factor"] is None and link["yield_safety_factor"] is None
+    for name in BARS:
+        summary = data["links"][name]
+        assert summary["peak_max_von_mises_pa"] == 0.0 and summary["peak_change_pct"] == 0.0
+        assert summary["peak_yield_safety_factor"] is None and summary["fatigue_safety_factor"] is None
+        assert summary["fatigue_alternating_pa"] == 0.0 and summary["fatigue_mean_pa"] == 0.0
+
+
+# --- messages that list things list five ---------------------------------------------------------
+
+def test_capped_lists_five_and_counts_them_all():
+    assert capped([]) == ""
+    assert capped("abcde") == "a, b, c, d, e"
+    assert capped("abcdef") == "a, b, c, d, e (first 5 of 6)"
+    assert capped(range(100), 2, "; ") == "0; 1 (first 2 of 100)"
+
+
+def test_an_import_scene_refusal_of_150_outlines_lists_five(tmp_path, capsys):
+    # 150 squares with a hole each (one joint, no mechanism): the refusal listed all 150 twice
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    for k in range(150):
+        x, y = (k % 15) * 20, (k // 15) * 20
+        msp.add_lwpolyline([(x, y), (x + 8, y), (x + 8, y + 8), (x, y + 8)], close=True, dxfattribs={"layer": f"glyph_{k}"})
+        msp.add_circle((x + 4, y + 4), 1, dxfattribs={"layer": f"glyph_{k}"})
+    doc.saveas(tmp_path / "sheet.dxf")
+    line = refused(capsys, ["import", str(tmp_path / "sheet.dxf"), "--scene", str(tmp_path / "scene.toml")],
+                   "no two of the links ('glyph_0', 'glyph_15', 'glyph_30', 'glyph_45', 'glyph_60' (first 5 of 150))",
+                   "links with fewer than two joints: 'glyph_0' (1), ", "(1) (first 5 of 150)")
+    assert len(line) < 600
+    assert not (tmp_path / "scene.toml").exists()
+
+
+def test_a_scene_naming_an_unknown_material_among_forty_lists_five(tmp_path, capsys):
+    materials = "".join(f"[materials.m{k:02d}]\ndensity = 7850.0\n" for k in range(40))
+    text = materials + edited(BARE, "[links.crank]\n", "[links.crank]\nmaterial = \"steel\"\n")
+    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))],
+                   "links.crank.material: no material named 'steel'; materials are: m00, m01, m02, m03, m04 (first 5 of 40)")
+    assert len(line) < 300
+
+
+def test_a_key_path_of_5000_characters_is_cut_in_its_message(tmp_path, capsys):
+    name = "x" * 5000
+    text = BARE + f"\n[links.{name}]\njoints = [[0.0, 0.0], [0.1, 0.0]]\n"
+    line = refused(capsys, ["analyze", str(write_scene(tmp_path, text))], "scene.toml: links.xxx", "x...x",
+                   "x: no mechanism uses this link")
+    assert len(line) < 400
+
+
+# --- a scheduler address with a control character ------------------------------------------------
+
+CONTROLLED = ["tcp://10.0.0.5:8786\n", "tcp://10.0.0.5:8786\r", "\ttcp://10.0.0.5:8786", "tcp://10.0.0.5:8786\x1b[31m",
+              "tcp://10.0.0.5:87\x0086", "tcp://10.0.0.5:8786\u202e", "tcp://10.0.\u200b0.5:8786", "local\n"]
+"""A final newline (which ``$`` let through), a carriage return, a tab, an escape sequence, a NUL, a
+right-to-left override and a zero-width space (format characters), and ``local`` with a newline."""
+
+
+@pytest.mark.parametrize("address", CONTROLLED, ids=repr)
+@pytest.mark.parametrize("command", ["analyze", "validate", "regress"])
+def test_a_scheduler_option_holding_a_control_character_is_refused_at_once_quoted(tmp_path, capsys, address, command):
+    scene = write_scene(tmp_path, DRAWN)
+    argv = {"analyze": ["analyze", str(scene), "--peaks"], "validate": ["validate", str(scene)],
+            "regress": ["regress", str(REPO / "validation" / "cases" / "textbook_fourbar")]}[command]
+    control = next(c for c in address if not c.isprintable() or c in "\u202e\u200b")
+    refused(capsys, [*argv, "--scheduler", address], f"--scheduler: {address!r} holds the control character {control!r}",
+            seconds=5)
+
+
+@pytest.mark.parametrize("address", [a for a in CONTROLLED if "\x00" not in a], ids=repr)
+def test_a_scheduler_variable_holding_a_control_character_is_refused_at_once_quoted(capsys, monkeypatch, address):
+    # an environment variable cannot hold a NUL
+    monkeypatch.setenv("LINKSTRESS_SCHEDULER", address)
+    refused(capsys, ["regress", str(REPO / "validation" / "cases" / "textbook_fourbar")],
+            f"LINKSTRESS_SCHEDULER: {address!r} holds the control character", seconds=5)
+
+
+def test_a_scheduler_address_of_100000_characters_is_quoted_cut(capsys):
+    address = "tcp://" + "a" * 100_000 + ":8786"
+    line = refused(capsys, ["regress", "--scheduler", address], "--scheduler: 'tcp://aaa", "...", "aaa:8786' is not a scheduler")
+    assert len(line) < 400
+
+
+@pytest.mark.parametrize("host", ["a" * 64, ".".join(["a" * 63] * 4) + "aa", "a..b", ".a", "[" + "1" * 46 + "]"])
+def test_a_scheduler_host_dns_cannot_hold_is_refused_before_connecting(capsys, host):
+    # DNS: labels of at most 63 characters, names of at most 253 (RFC 1035 2.3.4); a 64-character
+    # label made the socket module's IDNA codec raise UnicodeError, a traceback
+    refused(capsys, ["regress", "--scheduler", f"tcp://{host}:8786"], "is not a scheduler address", seconds=5)
+
+
+@pytest.mark.parametrize("host", ["a" * 63, ".".join(["a" * 63] * 4)[:253], "10.0.0.5", "[::1]", "node-7.cluster_a.example"])
+def test_a_scheduler_host_dns_can_hold_passes_the_check(host):
+    executors.check_address(f"tcp://{host}:8786")

@@ -318,7 +318,7 @@ def test_an_empty_file_is_refused(tmp_path, name, message):
 def test_a_directory_as_the_sketch_is_refused(tmp_path):
     (tmp_path / "plate.dxf").mkdir()
     message = refused(tmp_path, tmp_path / "plate.dxf")
-    assert message.startswith("cannot read the sketch ") and "plate.dxf': Is a directory; give the path of a readable .dxf or .csv file" in message
+    assert message.startswith("the sketch ") and "plate.dxf' is a folder, not a file: give the path of a sketch saved as a file" in message
 
 
 def test_a_dxf_truncated_in_its_header_is_refused_with_the_damage_noted(tmp_path):

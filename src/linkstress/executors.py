@@ -20,12 +20,14 @@ from __future__ import annotations
 
 import os
 import re
+import unicodedata
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TypeVar
 
 from linkstress.errors import InputError
+from linkstress.messages import quoted
 from linkstress.threads import cores
 
 Task = TypeVar("Task")
@@ -50,9 +52,16 @@ sets MALLOC_TRIM_THRESHOLD_=65536 in its worker's environment (to hand freed mem
 which fixes glibc's mmap threshold at 128 kB: every larger numpy array is then mapped and unmapped
 anew, page faults included. Measured on the six_bar case: 3.4-3.9 s of CPU per run with it, 1.8-1.9
 s without (docs/cluster.md)."""
-ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9_.-]+):[0-9]{1,5}$")
-"""A scheduler's address as ``dask scheduler`` prints it: protocol, host (an IPv6 one in brackets),
-port (1 to 65535, checked apart)."""
+ADDRESS = re.compile(r"(tcp|tls)://(\[[0-9a-fA-F:.]{2,45}\]|[A-Za-z0-9_-]{1,63}(\.[A-Za-z0-9_-]{1,63})*):[0-9]{1,5}")
+"""A scheduler's address as ``dask scheduler`` prints it, matched whole (``fullmatch``: a ``$`` would
+let a final newline through): protocol, host (an IPv6 one in brackets; a name's labels of 1 to 63
+characters, as DNS allows: a longer one makes the socket module's IDNA codec raise), port (1 to
+65535, checked apart)."""
+MAX_HOST = 253
+"""Longest host name DNS allows [characters]."""
+CONTROL = ("Cc", "Cf")
+"""Unicode categories of the characters no address may hold: control characters (a newline, a
+tab, an escape) and format characters (a zero-width space, a right-to-left override)."""
 
 
 class ClusterError(InputError):
@@ -152,11 +161,39 @@ def retries(events: Sequence[tuple[float, dict]], labels: dict[str, str]) -> lis
 
 def scheduler_choice(option: str | None) -> tuple[str | None, str]:
     """The scheduler asked for, by ``--scheduler`` (``option``) or else the LINKSTRESS_SCHEDULER
-    variable, and the name of the one that gave it (for messages); (None, "") for neither."""
+    variable (its surrounding spaces dropped), and the name of the one that gave it (for messages);
+    (None, "") for neither. A ClusterError at once for one that is not an address (``check_address``)."""
     if option is not None:
+        check_address(option, OPTION)
         return option, OPTION
-    value = os.environ.get(SCHEDULER_VARIABLE, "").strip()
-    return (value, SCHEDULER_VARIABLE) if value else (None, "")
+    raw = os.environ.get(SCHEDULER_VARIABLE, "")
+    if not raw.strip():
+        return None, ""
+    value = raw.strip(" ")  # a newline or a tab stays, to be refused
+    check_address(value, SCHEDULER_VARIABLE)
+    return value, SCHEDULER_VARIABLE
+
+
+def check_address(scheduler: str, source: str = OPTION) -> None:
+    """Refuse (ClusterError naming ``source``, the address quoted by ``repr``) a ``scheduler`` that is
+    neither ``local`` nor tcp:// or tls://HOST:PORT, or holds a control or format character."""
+    control = _control(scheduler)
+    if control is not None:
+        raise ClusterError(
+            f"{source}: {quoted(scheduler)} holds the control character {control!r}; give the scheduler's address alone, "
+            f"tcp://HOST:PORT as `dask scheduler` prints it, or {LOCAL}"
+        )
+    match = ADDRESS.fullmatch(scheduler)
+    if scheduler != LOCAL and not (match and len(match.group(2)) <= MAX_HOST and 0 < int(scheduler.rsplit(":", 1)[1]) < 65536):
+        raise ClusterError(
+            f"{source}: {quoted(scheduler)} is not a scheduler address: give tcp://HOST:PORT as `dask scheduler` prints it "
+            f"(e.g. tcp://10.0.0.5:8786), or {LOCAL} for a cluster on this machine"
+        )
+
+
+def _control(text: str) -> str | None:
+    """The first control or format character of ``text`` (``CONTROL``), else None."""
+    return next((c for c in text if unicodedata.category(c) in CONTROL), None)
 
 
 @contextmanager
@@ -168,11 +205,7 @@ def executor(scheduler: str | None, source: str = OPTION, jobs: int = 1) -> Iter
     if scheduler is None:
         yield LocalExecutor(jobs)
         return
-    if scheduler != LOCAL and not (ADDRESS.match(scheduler) and 0 < int(scheduler.rsplit(":", 1)[1]) < 65536):
-        raise ClusterError(
-            f"{source}: {scheduler!r} is not a scheduler address: give tcp://HOST:PORT as `dask scheduler` prints it "
-            f"(e.g. tcp://10.0.0.5:8786), or {LOCAL} for a cluster on this machine"
-        )
+    check_address(scheduler, source)
     try:
         from distributed import Client
     except ImportError:

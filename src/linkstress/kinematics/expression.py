@@ -19,12 +19,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkstress.errors import InputError
+from linkstress.messages import quoted
 
 MAX_LENGTH = 1000
 """Longest expression text accepted [characters]."""
 
 MAX_DEPTH = 100
 """Deepest nesting of operations accepted (evaluation recurses once per level)."""
+
+QUOTED = 60
+"""Characters of an expression (or a piece of one) a message quotes at most."""
 
 CONSTANTS = {"pi": math.pi, "e": math.e}
 
@@ -91,7 +95,7 @@ class Expression:
         if not finite.all():
             bad = float(x[~finite][0])
             raise ExpressionError(
-                f"{self.where}: {self.text!r} or its derivatives are not finite at "
+                f"{self.where}: {quoted(self.text, QUOTED)} or its derivatives are not finite at "
                 f"{self.variable} = {bad!r}; keep arguments of log/sqrt > 0, of asin/acos inside (-1, 1), "
                 "and divisors away from 0"
             )
@@ -106,7 +110,7 @@ def _parse(text: str, variable: str, where: str) -> ast.expr:
     try:
         tree = ast.parse(text.strip(), mode="eval").body
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
-        raise ExpressionError(f"{where}: {text!r} is not a valid expression ({error.__class__.__name__})") from None
+        raise ExpressionError(f"{where}: {quoted(text, QUOTED)} is not a valid expression ({error.__class__.__name__})") from None
     if _depth(tree) > MAX_DEPTH:
         raise ExpressionError(f"{where}: the expression nests deeper than {MAX_DEPTH} levels")
     _check(tree, variable, where, text)
@@ -149,15 +153,15 @@ def _check(node: ast.AST, variable: str, where: str, text: str) -> None:
             name = sub.func.id if isinstance(sub.func, ast.Name) else None
             if name in FUNCTIONS and len(sub.args) == 1 and not sub.keywords:
                 continue
-            shown = name or ast.unparse(sub.func)
+            callee = name or ast.unparse(sub.func)
             raise ExpressionError(
-                f"{where}: call {shown!r} in {text!r} is not allowed; functions take one argument: "
+                f"{where}: call {quoted(callee, QUOTED)} in {quoted(text, QUOTED)} is not allowed; functions take one argument: "
                 + ", ".join(sorted(FUNCTIONS))
             )
         if isinstance(sub, ast.Name) and id(sub) in callees and sub.id in FUNCTIONS:
             continue
         piece = ast.unparse(sub) if isinstance(sub, ast.expr) else type(sub).__name__
-        raise ExpressionError(f"{where}: {piece!r} in {text!r} is not allowed; {_allowed(variable)}")
+        raise ExpressionError(f"{where}: {quoted(piece, QUOTED)} in {quoted(text, QUOTED)} is not allowed; {_allowed(variable)}")
 
 
 def _depends_on(node: ast.AST, variable: str) -> bool:

@@ -16,6 +16,7 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 from numpy.typing import NDArray  # noqa: E402
 
 from linkstress.analysis import AnalysisResult  # noqa: E402
+from linkstress.report.figure_notes import figure_warnings  # noqa: E402
 
 LINK_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 TICK_GAP_PX = 4.0
@@ -24,11 +25,13 @@ LABEL_ZORDER = 10
 """Above every line and fill of a figure: a label on a marked point is never hidden by a curve or cut."""
 
 
-def png_bytes(fig: Figure, dpi: int = 110) -> bytes:
-    """The figure as PNG, its x tick labels spread apart (``spread_x_ticks``); the figure is closed."""
-    spread_x_ticks(fig, dpi)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=dpi)
+def png_bytes(fig: Figure, dpi: int = 110, notes: list[str] | None = None) -> bytes:
+    """The figure as PNG, its x tick labels spread apart (``spread_x_ticks``); the figure is closed.
+    What matplotlib warns while drawing goes to ``notes`` (``figure_warnings``), never the terminal."""
+    with figure_warnings(notes):
+        spread_x_ticks(fig, dpi)
+        buffer = io.BytesIO()
+        fig.savefig(buffer, format="png", dpi=dpi)
     plt.close(fig)
     return buffer.getvalue()
 

@@ -18,16 +18,20 @@ coordinates find it on the drawing) and ``fatigue_critical_at_member_m`` in its 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
+
 import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
-from linkstress.safety import yield_factor
+from linkstress.safety import finite_or_none, yield_factor
 
 
-def peak_columns(result: AnalysisResult, name: str) -> dict[str, NDArray[np.float64]]:
+def peak_columns(result: AnalysisResult, name: str) -> dict[str, NDArray[np.float64] | Callable[[slice], list]]:
     """Link ``name``'s per-position peak columns (P,) and (P, 2); nan at infeasible positions, which
-    carry no link data."""
+    carry no link data. The yield factor is a block's list (null where the peak is zero: no load,
+    no factor)."""
     peaks = result.peaks[name]
     columns = {
         "peak_von_mises_pa": peaks.peak,
@@ -35,8 +39,13 @@ def peak_columns(result: AnalysisResult, name: str) -> dict[str, NDArray[np.floa
     }
     strength = result.scene.links[name].material.yield_strength
     if strength is not None and peaks.trusted:
-        columns["peak_yield_safety_factor"] = np.where(np.isnan(peaks.peak), np.nan, yield_factor(strength, peaks.peak))
+        factors = np.where(np.isnan(peaks.peak), np.nan, yield_factor(strength, peaks.peak))
+        columns["peak_yield_safety_factor"] = partial(_finite_block, factors)
     return columns
+
+
+def _finite_block(values: NDArray[np.float64], block: slice) -> list[float | None]:
+    return finite_or_none(values[block])
 
 
 def peak_summaries(result: AnalysisResult) -> dict[str, dict[str, object]]:

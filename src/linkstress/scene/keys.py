@@ -29,6 +29,9 @@ RANGES: dict[str, tuple[float, float, str]] = {
     "N m": (0.0, 1e12, "a couple"),
 }
 
+SHOWN_KEY_PATH = 160
+"""Longest dotted key path named in a message [characters]; a longer one keeps its start and end."""
+
 MAX_STATIONS = 100_000
 """Section stations per link: far finer than any section changes (the default is 101)."""
 
@@ -50,7 +53,7 @@ class Table:
 
     def __init__(self, data: object, path: str, source: str) -> None:
         if not isinstance(data, dict):
-            raise SceneError(f"{source}: {path}: must be a table ([{path}] or {{ ... }}), got {_shown(data)}")
+            raise SceneError(f"{source}: {path}: must be a table ([{path}] or {{ ... }}), got {shown_value(data)}")
         self.data, self.path, self.source = data, path, source
 
     def key_path(self, key: str) -> str:
@@ -58,6 +61,8 @@ class Table:
 
     def error(self, key: str | None, text: str) -> SceneError:
         where = self.key_path(key) if key is not None else self.path
+        if len(where) > SHOWN_KEY_PATH:  # a table name of thousands of characters
+            where = where[: SHOWN_KEY_PATH - 43] + "..." + where[-40:]
         return SceneError(f"{self.source}: {where}: {text}")
 
     def has(self, key: str) -> bool:
@@ -93,7 +98,7 @@ class Table:
                      positive: bool = False, unit: str = "") -> float:
         suffix = f" {unit}" if unit else ""
         if type(value) not in (int, float) or not math.isfinite(value):
-            raise self.error(key, f"must be a finite number{suffix}, got {_shown(value)}")
+            raise self.error(key, f"must be a finite number{suffix}, got {shown_value(value)}")
         if positive and not value > 0:
             raise self.error(key, f"must be > 0{suffix}, got {value!r}")
         if minimum is not None and value < minimum:
@@ -108,7 +113,7 @@ class Table:
             return default
         value = self.data[key]
         if type(value) is not int:
-            raise self.error(key, f"must be a whole number, got {_shown(value)}")
+            raise self.error(key, f"must be a whole number, got {shown_value(value)}")
         if minimum is not None and value < minimum:
             raise self.error(key, f"must be >= {minimum}, got {value!r}")
         if maximum is not None and value > maximum:
@@ -120,7 +125,7 @@ class Table:
             return default
         value = self.data[key]
         if not isinstance(value, str) or not value:
-            raise self.error(key, f"must be a non-empty string, got {_shown(value)}")
+            raise self.error(key, f"must be a non-empty string, got {shown_value(value)}")
         if choices is not None and value not in (options := list(choices)):
             raise self.error(key, f"must be one of {', '.join(repr(c) for c in options)}, got {value!r}")
         return value
@@ -130,37 +135,37 @@ class Table:
             return default
         value = self.data[key]
         if not isinstance(value, bool):
-            raise self.error(key, f"must be true or false, got {_shown(value)}")
+            raise self.error(key, f"must be true or false, got {shown_value(value)}")
         return value
 
     def numbers(self, key: str, unit: str = "") -> NDArray[np.float64]:
         """A non-empty flat list of finite numbers."""
         value = self.data[key]
         if not isinstance(value, list) or not value:
-            raise self.error(key, f"must be a non-empty list of numbers{' ' + unit if unit else ''}, got {_shown(value)}")
+            raise self.error(key, f"must be a non-empty list of numbers{' ' + unit if unit else ''}, got {shown_value(value)}")
         return np.array([self.check_number(f"{key}[{k}]", v, unit=unit) for k, v in enumerate(value)])
 
     def point(self, key: str, unit: str) -> NDArray[np.float64]:
         """An (x, y) pair of finite numbers."""
         value = self.data[key]
         if not isinstance(value, list) or len(value) != 2:
-            raise self.error(key, f"must be a pair [x, y] {unit}, got {_shown(value)}")
+            raise self.error(key, f"must be a pair [x, y] {unit}, got {shown_value(value)}")
         return np.array([self.check_number(f"{key}[{k}]", v, unit=unit) for k, v in enumerate(value)])
 
     def points(self, key: str, unit: str) -> NDArray[np.float64]:
         """A non-empty list of (x, y) pairs."""
         value = self.data[key]
         if not isinstance(value, list) or not value:
-            raise self.error(key, f"must be a list of [x, y] pairs {unit}, got {_shown(value)}")
+            raise self.error(key, f"must be a list of [x, y] pairs {unit}, got {shown_value(value)}")
         rows = []
         for k, row in enumerate(value):
             if not isinstance(row, list) or len(row) != 2:
-                raise self.error(f"{key}[{k}]", f"must be a pair [x, y] {unit}, got {_shown(row)}")
+                raise self.error(f"{key}[{k}]", f"must be a pair [x, y] {unit}, got {shown_value(row)}")
             rows.append([self.check_number(f"{key}[{k}]", v, unit=unit) for v in row])
         return np.array(rows, float)
 
 
-def _shown(value: object) -> str:
+def shown_value(value: object) -> str:
     """A short rendering of a TOML value for messages."""
     if isinstance(value, dict):
         return "a table"

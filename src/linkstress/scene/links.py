@@ -18,11 +18,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.errors import GeometryError, InputError
+from linkstress.inputs import check_regular
+from linkstress.messages import capped
 from linkstress.materials import Material, fatigue_data_problem
 from linkstress.geometry.members import check_members
 from linkstress.geometry.profile import LinkProfile
 from linkstress.scene.keys import Table
 from linkstress.scene.model import MassData
+from linkstress.scene.plausibility import RULES, value_warning
 
 MATERIAL_KEYS = (
     "density", "youngs_modulus", "poisson_ratio", "yield_strength",
@@ -80,7 +83,11 @@ def read_materials(table: Table | None) -> dict[str, Material]:
                 given[0], f"fatigue needs endurance_limit and ultimate_strength together [Pa]; missing: {', '.join(missing)}"
             )
         if (problem := fatigue_data_problem(endurance, ultimate, strength, surface, size)) is not None:
-            raise entry.error(*problem)
+            key, text = problem
+            strengths = {"yield_strength": strength, "endurance_limit": endurance, "ultimate_strength": ultimate}
+            slips = [w for k, v in strengths.items() if (w := value_warning(entry.key_path(k), RULES[k], v))]
+            # 58 (ksi meant) as ultimate_strength puts a real endurance limit above it: say which is the slip
+            raise entry.error(key, f"{text}; {slips[0]}" if slips else text)
         materials[name] = Material(name, density, youngs, poisson, strength, endurance, ultimate, surface, size)
     return materials
 
@@ -103,7 +110,7 @@ def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches
     if entry.has("material"):
         material_name = entry.string("material")
         if material_name not in materials:
-            known = ", ".join(sorted(materials)) or "none defined"
+            known = capped(sorted(materials)) or "none defined"
             raise entry.error(
                 "material", f"no material named {material_name!r}; materials are: {known} (add [materials.{material_name}])"
             )
@@ -157,9 +164,13 @@ def _load_profile(entry: Table, name, path: Path, layer, units, thickness, mater
     from linkstress.importers import read_sketch  # ezdxf and shapely's importers: only for a scene with sketches
 
     try:
-        found = path.is_file()
+        found = path.exists()
+        if found:
+            check_regular(path, "sketch")  # a FIFO would wait for a writer, /dev/zero never end
     except OSError as error:  # e.g. a name longer than the file system allows
         raise entry.error("sketch", f"cannot use this path ({error.strerror or error}); give a sketch file's path") from None
+    except InputError as error:
+        raise entry.error("sketch", str(error)) from None
     if not found:
         raise entry.error("sketch", f"file {_short(str(path))!r} not found (paths are relative to the scene file's folder)")
     try:

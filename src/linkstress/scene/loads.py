@@ -23,8 +23,9 @@ import shapely
 
 from linkstress.fatigue import CRITERIA
 from linkstress.kinematics.machine import Machine
+from linkstress.messages import capped
 from linkstress.loads import distance_outside
-from linkstress.scene.keys import MAX_STATIONS, Table
+from linkstress.scene.keys import MAX_STATIONS, Table, shown_value
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
 
 LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
@@ -74,7 +75,7 @@ def read_loads(table: Table | None, machine: Machine, links: dict[str, SceneLink
                 spec.require(key, what)
             link = spec.string("link")
             if link not in moving:
-                raise spec.error("link", f"no moving link named {link!r}; moving links are: {', '.join(moving)}")
+                raise spec.error("link", f"no moving link named {link!r}; moving links are: {capped(moving)}")
             at = spec.point("at_m", "m")
             _check_on_link(spec, links[link], at)
             forces.append(PointLoad(link, at, spec.point("force_n", "N")))
@@ -89,10 +90,10 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
     if table.has("validate"):
         raw = table.data["validate"]
         if not isinstance(raw, list) or not all(isinstance(v, str) for v in raw):
-            raise table.error("validate", f"must be a list of link names, got {raw!r}")
+            raise table.error("validate", f"must be a list of link names, got {shown_value(raw)}")
         for name in raw:
             if name not in links:
-                raise table.error("validate", f"no link named {name!r}; links are: {', '.join(links)}")
+                raise table.error("validate", f"no link named {name!r}; links are: {capped(links)}")
             if links[name].profile is None:
                 raise table.error("validate", f"link {name!r} has bare joints; only links drawn in a sketch can be checked by FEA")
         validate = tuple(raw)
@@ -120,7 +121,7 @@ def _moving(machine: Machine) -> list[str]:
 
 def _moving_link(table: Table, name: str, moving: list[str], what: str) -> str:
     if name not in moving:
-        raise table.error(name, f"no moving link named {name!r} for {what}; moving links are: {', '.join(moving)}")
+        raise table.error(name, f"no moving link named {name!r} for {what}; moving links are: {capped(moving)}")
     return name
 
 
@@ -150,7 +151,7 @@ def _friction(table: Table | None, machine: Machine) -> dict[str, float]:
     friction = {}
     for name in table.data:
         if name not in sliders:
-            known = ", ".join(sliders) or "none: the scene has no slider-crank"
+            known = capped(sliders) or "none: the scene has no slider-crank"
             raise table.error(name, f"no slider named {name!r}; give a slider's link or slider-crank's name: {known}")
         friction[sliders[name]] = table.number(name, minimum=0.0)
     return friction

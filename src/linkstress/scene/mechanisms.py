@@ -22,7 +22,8 @@ from numpy.typing import NDArray
 from linkstress.errors import SceneError
 from linkstress.kinematics.fourbar import BRANCHES
 from linkstress.kinematics.machine import KINDS, Drive, Loop, Role
-from linkstress.scene.keys import Table
+from linkstress.messages import capped
+from linkstress.scene.keys import Table, shown_value
 
 ROLES = {
     "four-bar": ("crank", "coupler", "output", "ground"),
@@ -104,14 +105,14 @@ def _read_role(entry: Table, role: str, drawn: Mapping[str, NDArray[np.float64]]
     if spec.has("joints"):
         raw = spec.data["joints"]
         if not (isinstance(raw, list) and len(raw) in counts and all(type(k) is int and k >= 0 for k in raw)):
-            raise spec.error("joints", f"must be {shape}: joint indices (0-based) of link {link!r}, got {raw!r}")
+            raise spec.error("joints", f"must be {shape}: joint indices (0-based) of link {link!r}, got {shown_value(raw)}")
         joints = (raw[0], raw[-1])
     return Role(link, joints)
 
 
 def _ambiguous(entry: Table, role: str, link: str, points: NDArray[np.float64]) -> SceneError:
     """The error for a bare name of a link with three or more joints: which two does the role use?"""
-    listed = ", ".join(f"{k} at ({x:.6g}, {y:.6g}) m" for k, (x, y) in enumerate(points))
+    listed = capped(f"{k} at ({x:.6g}, {y:.6g}) m" for k, (x, y) in enumerate(points))
     shape = "[k]" if role == "slider" else "[i, j]"
     return entry.error(
         role,

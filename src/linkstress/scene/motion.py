@@ -7,7 +7,8 @@ in 10 deg steps is ``{start = 0.0, stop = 350.0, num = 36}``; ``stop = 360.0, nu
 pose it starts from (``validate`` compares that pose once). Angles are the main crank's,
 counter-clockwise from the ground frame's +x. ``input_speed_rad_s`` and ``input_acceleration_rad_s2``
 are numbers or one per angle (default 0: a quasi-static sweep); with an expression they are its exact
-time derivatives and may not be given. ``actuator`` names the link that carries the unknown driving torque (default: the
+time derivatives and may not be given; the expression's angles, speeds and accelerations are held to
+the ranges of plain values (``linkstress.scene.keys.RANGES``). ``actuator`` names the link that carries the unknown driving torque (default: the
 main loop's crank).
 """
 
@@ -15,10 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkstress.kinematics.expression import Expression
+from linkstress.kinematics.expression import QUOTED, Expression
 from linkstress.kinematics.machine import Machine
 from linkstress.kinematics.motion import InputMotion, angle_motion, angle_range, timed_motion
-from linkstress.scene.keys import Table
+from linkstress.messages import capped, quoted
+from linkstress.scene.keys import RANGES, Table
 
 MOTION_KEYS = ("input_angle_deg", "input_speed_rad_s", "input_acceleration_rad_s2", "actuator")
 RANGE_KEYS = ("start", "stop", "num")
@@ -62,7 +64,7 @@ def read_actuator(table: Table, machine: Machine) -> str:
     if name not in grounded:
         raise table.error(
             "actuator", f"link {name!r} is not a crank, output or slider of any mechanism; the driving torque "
-            f"acts on a link pivoted on (or sliding on) the ground: {', '.join(dict.fromkeys(grounded))}"
+            f"acts on a link pivoted on (or sliding on) the ground: {capped(dict.fromkeys(grounded))}"
         )
     return name
 
@@ -82,7 +84,34 @@ def _timed(table: Table) -> InputMotion:
         times = _range(spec.table("t"), "s")
     else:
         times = spec.numbers("t", "s")
-    return timed_motion(expression, times)
+    motion = timed_motion(expression, times)
+    _check_ranges(spec, expression, motion)
+    return motion
+
+
+TIMED_QUANTITIES = (
+    ("angle_deg", "deg", "an input angle"),
+    ("speed", "rad/s", "an input speed (its time derivative)"),
+    ("acceleration", "rad/s^2", "an input acceleration (its second time derivative)"),
+)
+"""What an expression gives, each held to the range of a plain value of its unit: (the motion's
+field, unit, what it is)."""
+
+
+def _check_ranges(spec: Table, expression: Expression, motion: InputMotion) -> None:
+    """Refuse an expression whose angle, speed or acceleration at some time leaves the range a plain
+    ``input_angle_deg``, ``input_speed_rad_s`` or ``input_acceleration_rad_s2`` is held to."""
+    for field, unit, what in TIMED_QUANTITIES:
+        values = getattr(motion, field)
+        largest = RANGES[unit][1]
+        outside = np.flatnonzero(np.abs(values) > largest)
+        if outside.size:
+            k = int(outside[0])
+            raise spec.error(
+                "expression",
+                f"{quoted(expression.text, QUOTED)} gives {what} of {values[k]:.6g} {unit} at t = {motion.time[k]:.6g} "
+                f"s, more than the {largest:g} {unit} a plain value may be (check the unit: degrees of angle, seconds)",
+            )
 
 
 def _range(spec: Table, unit: str) -> np.ndarray:

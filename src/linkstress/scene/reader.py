@@ -15,6 +15,7 @@ from pathlib import Path
 from types import MappingProxyType
 
 from linkstress.errors import InputError, SceneError
+from linkstress.inputs import SCENE_BYTES, read_bounded
 from linkstress.kinematics.machine import Machine
 from linkstress.scene.keys import Table
 from linkstress.scene.links import mass_data, read_links, read_materials
@@ -22,6 +23,7 @@ from linkstress.scene.loads import read_analysis, read_loads
 from linkstress.scene.mechanisms import read_mechanisms
 from linkstress.scene.model import Scene, SceneLink
 from linkstress.scene.motion import read_actuator, read_motion
+from linkstress.scene.plausibility import plausibility_warnings
 
 TOP_KEYS = ("title", "notes", "units", "materials", "links", "mechanisms", "motion", "loads", "analysis")
 
@@ -45,12 +47,13 @@ def scene_from_text(text: str, path: Path) -> Scene:
 
 
 def _text(path: Path) -> str:
-    """The scene file's text; a byte-order mark, as some Windows editors write, is dropped."""
+    """The scene file's text (a regular file of at most ``SCENE_BYTES``); a byte-order mark, as some
+    Windows editors write, is dropped."""
     if path.is_dir():
         raise SceneError(f"scene file {str(path)!r} is a folder; give the .toml file inside it")
     try:
         # utf-8-sig: a byte-order mark is accepted (the CSV reader does the same)
-        text = path.read_text(encoding="utf-8-sig")
+        text = read_bounded(path, SCENE_BYTES, "scene file").decode("utf-8-sig")
     except FileNotFoundError:
         raise SceneError(f"scene file {str(path)!r} not found") from None
     except UnicodeDecodeError as error:
@@ -106,5 +109,5 @@ def _scene(top: Table, path: Path) -> Scene:
     analysis = read_analysis(top.table("analysis"), links)
     return Scene(
         path, units, MappingProxyType(materials), MappingProxyType(links), machine, motion, actuator, loads,
-        analysis, title, tuple(notes),
+        analysis, title, tuple(notes), plausibility_warnings(materials, links),
     )
