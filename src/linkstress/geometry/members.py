@@ -23,8 +23,10 @@ another arm) the outline is split along the section's segment.
 Flags. A station is near a hole when a hole's centre lies closer to its cut segment than the
 section's depth (St-Venant: a pin's load spreads into a beam-like stress state about one depth from
 where it acts), at a junction when its axis point lies closer than the depth to another member's
-axis, and tight when a curved section nearly reaches its centre of curvature: there the values are
-nominal.
+axis, at a bend when it lies within its depth (along the axis) of a stretch of the centreline that
+turns faster than the curved-beam range allows (``linkstress.geometry.bends``: a radius under a section
+depth, a dog-leg's corner), and tight when a curved section nearly reaches its centre of curvature:
+there the values are nominal.
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import split
 
+from linkstress.geometry.bends import near_bends, sharp_arcs
 from linkstress.geometry.centreline import centreline, first_midline
 from linkstress.geometry.curved_beam import centre_reach
 from linkstress.errors import GeometryError
@@ -141,7 +144,8 @@ class MemberCuts:
     ``origin`` (S, 2) [m]: the axis point; ``tangent`` (S, 2): the unit vector along the axis, and
     ``normal`` the one across it (tangent turned +90 degrees); ``curvature`` (S,) [1/m]: signed, > 0
     when the axis turns toward +normal; ``table``: the sections (x = s, chords in v [m] along the
-    normal from ``origin``); ``near_hole`` and ``junction`` (S,): stations whose values are nominal;
+    normal from ``origin``); ``near_hole``, ``junction`` and ``bend`` (S,): stations whose values are
+    nominal (near a hole's centre, another member's axis, or a bend sharper than the curved-beam range);
     ``left_moments`` (4, S): A, int x dA, int y dA, int (x^2 + y^2) dA [per unit thickness, about the
     load frame's origin] of the left piece (the one that holds joint i); ``right_pieces``: the right
     piece's filled outline at the stations whose cut line crosses other material (elsewhere the
@@ -154,6 +158,7 @@ class MemberCuts:
     table: SectionTable
     near_hole: NDArray[np.bool_]
     junction: NDArray[np.bool_]
+    bend: NDArray[np.bool_]
     left_moments: NDArray[np.float64]
     total_moments: NDArray[np.float64]
     right_pieces: dict[int, Polygon]
@@ -174,8 +179,9 @@ class MemberCuts:
 
     @property
     def nominal(self) -> NDArray[np.bool_]:
-        """(S,): stations near a hole, at a junction or ``tight``, where beam values are nominal."""
-        return self.near_hole | self.junction | self.tight
+        """(S,): stations near a hole, at a junction, at a sharp bend or ``tight``, where beam values
+        are nominal."""
+        return self.near_hole | self.junction | self.bend | self.tight
 
     @property
     def ends(self) -> NDArray[np.float64]:
@@ -251,9 +257,10 @@ class Member:
             d = self.path[-1] - self.path[0]
             return origin, np.broadcast_to(d / np.hypot(*d), origin.shape).copy(), np.zeros(len(s))
         h = min(CURVATURE_REACH * self.depth, self.length / 3)
-        # the circles keep a section depth clear of the joints, where the centreline runs through a lug
-        margin = min(h + self.depth, self.length / 2)
-        centre = np.clip(s, margin, self.length - margin)
+        # the circles keep clear of the joints' lugs (a section depth, or a boss's radius), through
+        # which the centreline runs straight to the pin
+        first, last = (min(h + max(self.depth, lug), self.length / 2) for lug in self.lugs)
+        centre = np.clip(s, first, self.length - last)
         # the path's own vertices (on the centreline) nearest to s - h, s, s + h: a chord's interpolated
         # points lie inside the arc by its sagitta
         a, b, c = (self.path[self._vertex(x)] for x in (centre - h, centre, centre + h))
@@ -277,6 +284,22 @@ class Member:
     def _end_tangent(self, end: int) -> NDArray[np.float64]:
         d = self.path[1] - self.path[0] if end == 0 else self.path[-1] - self.path[-2]
         return d / np.hypot(*d)
+
+    @cached_property
+    def lugs(self) -> tuple[float, float]:
+        """The radii [m] of the lugs round joints i and j: how far each joint is from the outline's
+        outer boundary (a boss's radius; half a bar's width at a joint on its midline)."""
+        ring = self.edges.outline.exterior
+        return tuple(float(ring.distance(Point(p))) for p in (self.path[0], self.path[-1]))
+
+    @cached_property
+    def sharp(self) -> NDArray[np.float64]:
+        """Arc lengths [m] where a curved member's centreline turns faster than the curved-beam range
+        allows (``linkstress.geometry.bends``), clear of the joints' lugs; none on a straight member."""
+        if not self.curved:
+            return np.zeros(0)
+        clear = (max(self.lugs[0], self.depth / 2), self.length - max(self.lugs[1], self.depth / 2))
+        return sharp_arcs(self.path, self.arc, self.depth, clear)
 
     @cached_property
     def end_depths(self) -> tuple[float, float]:
@@ -334,8 +357,9 @@ def _member_cuts(member: Member, s, origin, tangent, curvature) -> MemberCuts:
     for path in member.others:
         pieces = np.stack([path[:-1], path[1:]], axis=1)
         junction |= (segment_distance(origin, pieces) < depth[:, None] * (1 - NEAR_SLACK)).any(axis=1)
+    bend = near_bends(s, depth, member.sharp)
     return MemberCuts(
-        member.joints, origin, tangent, curvature, table, near_hole, junction, left, edges.moments, right_pieces,
+        member.joints, origin, tangent, curvature, table, near_hole, junction, bend, left, edges.moments, right_pieces,
     )
 
 
