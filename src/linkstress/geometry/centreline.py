@@ -126,9 +126,9 @@ def _traced(edges: Edges, a, b, depth: float, wander: float) -> tuple[NDArray[np
     along = (b - a) / np.hypot(*(b - a))
     # how far the traced centreline strays from the line a-b, in depths
     wander = float(np.abs((path - a) @ np.array([-along[1], along[0]])).max()) / usual
-    # clear of each joint's lug (a boss: its radius; a bar's end: half its width) by half a width, and
+    # clear of each joint's lug (a boss: its radius; a bar's end: half its width), and
     # cut square across the bar, not along a lug or another arm
-    lugs = [max(shell.exterior.distance(Point(p)), usual / 2) + usual / 2 for p in (a, b)]
+    lugs = [max(shell.exterior.distance(Point(p)), usual / 2) for p in (a, b)]
     clear = (np.hypot(*(path - a).T) > lugs[0]) & (np.hypot(*(path - b).T) > lugs[1])
     clear[1:-1] &= widths <= REGULAR_WIDTH * usual
     inner = np.flatnonzero(clear[1:-1]) + 1
