@@ -31,6 +31,7 @@ there the values are nominal.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -75,31 +76,36 @@ NEAR_SLACK = 1e-9
 """A station exactly one depth from a pin (the midpoint of a bar as long as two depths) is not near it."""
 
 
-def member_tree(link: LinkProfile, root: tuple[int, int] = (0, 1)) -> tuple[tuple[int, int], ...]:
-    """The members of ``link``: the minimum spanning tree of its joints, each pair weighted by the
-    length of the straight line between them plus ``OUTSIDE_PENALTY`` times its length outside the
-    material, oriented away from joint ``root[0]`` (the member of ``root``, if in the tree, keeps its
-    direction). Joints in holes count as in material."""
-    joints = link.joints
-    n = len(joints)
-    if n < 2:
+def member_tree(
+    link: LinkProfile, root: tuple[int, int] = (0, 1), joints: Sequence[int] | None = None,
+) -> tuple[tuple[int, int], ...]:
+    """The members of ``link``: the minimum spanning tree of its ``joints`` (default: all of them),
+    each pair weighted by the length of the straight line between them plus ``OUTSIDE_PENALTY`` times
+    its length outside the material, oriented away from joint ``root[0]`` (the member of ``root``, if
+    in the tree, keeps its direction). Joints in holes count as in material."""
+    n = len(link.joints)
+    start = root[0] % n if n else 0
+    chosen = np.arange(n) if joints is None else np.unique(np.asarray([*joints, start], dtype=int) % n)
+    m = len(chosen)
+    if m < 2:
         return ()
-    if n == 2:
-        return ((root[0] % n, root[1] % n),)
-    first, second = np.triu_indices(n, 1)
-    lines = shapely.linestrings(np.stack([joints[first], joints[second]], axis=1))
+    if m == 2:
+        return ((start, int(chosen[chosen != start][0])),)
+    points = link.joints[chosen]
+    first, second = np.triu_indices(m, 1)
+    lines = shapely.linestrings(np.stack([points[first], points[second]], axis=1))
     inside = shapely.length(shapely.intersection(lines, Polygon(link.outline.exterior)))
     length = shapely.length(lines)
-    weight = np.zeros((n, n))
+    weight = np.zeros((m, m))
     weight[first, second] = weight[second, first] = length + OUTSIDE_PENALTY * (length - inside)
-    start = root[0] % n
-    joined, edges = [start], []
-    best = weight[start].copy()
-    parent = np.full(n, start)
-    best[start] = np.inf
-    for _ in range(n - 1):
-        k = int(np.argmin(np.where(np.isin(np.arange(n), joined), np.inf, best)))
-        edges.append((int(parent[k]), k))
+    home = int(np.flatnonzero(chosen == start)[0])
+    joined, edges = [home], []
+    best = weight[home].copy()
+    parent = np.full(m, home)
+    best[home] = np.inf
+    for _ in range(m - 1):
+        k = int(np.argmin(np.where(np.isin(np.arange(m), joined), np.inf, best)))
+        edges.append((int(chosen[parent[k]]), int(chosen[k])))
         joined.append(k)
         closer = weight[k] < best
         parent[closer], best[closer] = k, weight[k][closer]
@@ -108,9 +114,12 @@ def member_tree(link: LinkProfile, root: tuple[int, int] = (0, 1)) -> tuple[tupl
     return tuple(sorted(edges, key=lambda edge: edge != (start, root[1] % n)))
 
 
-def check_members(link: LinkProfile, members: ArrayLike) -> tuple[tuple[int, int], ...]:
+def check_members(
+    link: LinkProfile, members: ArrayLike, joints: Sequence[int] | None = None,
+) -> tuple[tuple[int, int], ...]:
     """``members`` given by a scene as joint pairs, checked: each names two distinct joints of the link
-    and together they join every joint without a loop (a tree); else a GeometryError that says so."""
+    and together they join every one of ``joints`` (default: all the link's joints) and the joints
+    they name, without a loop (a tree); else a GeometryError that says so."""
     n = len(link.joints)
     pairs = [tuple(int(v) for v in pair) for pair in np.asarray(members, dtype=int).reshape(-1, 2)]
     for i, j in pairs:
@@ -130,9 +139,17 @@ def check_members(link: LinkProfile, members: ArrayLike) -> tuple[tuple[int, int
         if a == b:
             raise GeometryError(f"link {link.name!r}: members {pairs} close a loop at member {[i, j]}; give a tree")
         group[a] = b
-    if len(pairs) != n - 1:
+    if joints is None:
+        if len(pairs) != n - 1:
+            raise GeometryError(
+                f"link {link.name!r}: members {pairs} do not join all {n} joints; give {n - 1} pairs that join them all"
+            )
+        return tuple(pairs)
+    needed = sorted({int(k) % n for k in joints} | {k for pair in pairs for k in pair})
+    if len({find(k) for k in needed}) != 1:
         raise GeometryError(
-            f"link {link.name!r}: members {pairs} do not join all {n} joints; give {n - 1} pairs that join them all"
+            f"link {link.name!r}: members {pairs} do not join the joints {needed} that its mechanisms, loads and "
+            f"members use; give {len(needed) - 1} pairs that join them all"
         )
     return tuple(pairs)
 
@@ -393,11 +410,15 @@ def _right_piece(member: Member, origin, tangent, normal, table: SectionTable, k
 
 def link_members(
     link: LinkProfile, frame_joints: tuple[int, int], members: ArrayLike | None = None,
+    used_joints: Sequence[int] | None = None,
 ) -> tuple[Member, ...]:
     """The members of ``link`` in the load frame of ``frame_joints``: the scene's ``members`` (checked
-    by ``check_members``), else ``member_tree``. Made once per link, frame and ``members`` (the
-    profile is immutable; like its ``boundary``, they are kept with it)."""
-    pairs = check_members(link, members) if members is not None else member_tree(link, frame_joints)
+    by ``check_members``), else ``member_tree`` over ``used_joints`` (those a scene's mechanisms,
+    loads and members use; default: every joint) and the frame joints. A joint left out (the centre
+    of a lightening hole) ends no member: its hole is a plain hole. Made once per link, frame and
+    member pairs (the profile is immutable; like its ``boundary``, they are kept with it)."""
+    joints = None if used_joints is None else (*used_joints, *frame_joints)
+    pairs = check_members(link, members, joints) if members is not None else member_tree(link, frame_joints, joints)
     n = len(link.joints)
     key = (frame_joints[0] % n, frame_joints[1] % n, pairs)
     cache = link.__dict__.setdefault("_members", {})
@@ -418,10 +439,13 @@ def _link_members(link: LinkProfile, frame_joints: tuple[int, int], pairs) -> tu
     )
 
 
-def frame_member(link: LinkProfile, frame_joints: tuple[int, int], members: ArrayLike | None = None) -> Member:
+def frame_member(
+    link: LinkProfile, frame_joints: tuple[int, int], members: ArrayLike | None = None,
+    used_joints: Sequence[int] | None = None,
+) -> Member:
     """The member of ``link`` along its ``frame_joints`` (``link_members``), or, where that pair is not
     a member, the pair taken as a member alone (both its ends free)."""
-    for member in link_members(link, frame_joints, members):
+    for member in link_members(link, frame_joints, members, used_joints):
         if member.joints == tuple(frame_joints):
             return member
     joints = link.frame(*frame_joints).to_local(link.joints)
