@@ -63,6 +63,11 @@ def s_rod(radius: float, bosses: tuple[float, float], lead: float) -> tuple[Link
     return link, 2 * lead + 2 * radius * SWEEP, middles, centres
 
 
+def station_near(member, point: np.ndarray) -> float:
+    """The arc length [m] along ``member``'s axis of its point nearest to ``point`` [m, load frame]."""
+    return float(LineString(member.path).project(Point(point)))
+
+
 BOSSES = [(1.2, 1.2), (1.6, 1.6), (2.5, 2.5), (2.5, 1.0)]
 """Boss diameters about pins a and b, in bar widths (1.0: the bar's own round end)."""
 
@@ -89,12 +94,10 @@ def test_an_s_rods_centreline_runs_through_its_bosses_and_round_both_bends(radiu
     member = frame_member(link, (0, 1))
     assert member.curved
     assert member.length == pytest.approx(length, rel=1e-2)
-    s = np.linspace(*member.extent, 4001)
-    on_axis = member.point_at(s)
     for middle, centre, sign in zip(middles, centres, (1.0, -1.0)):
-        k = int(np.argmin(np.hypot(*(on_axis - middle).T)))
-        assert np.hypot(*(on_axis[k] - middle)) < 2e-3 * H
-        cuts = member.cuts([s[k]])
+        at = station_near(member, middle)
+        assert np.hypot(*(member.point_at([at])[0] - middle)) < 2e-3 * H
+        cuts = member.cuts([at])
         assert cuts.curvature[0] * radius == pytest.approx(sign, rel=2e-2)
         assert np.hypot(*(cuts.origin[0] + cuts.normal[0] / cuts.curvature[0] - centre)) < 2e-2 * radius
         np.testing.assert_allclose(cuts.table.top - cuts.table.bottom, H, rtol=1e-3)
@@ -132,9 +135,7 @@ def test_an_s_rods_bends_take_winkler_bach_within_ten_depths(radius_in_depths, b
     link, _, middles, centres = rod_in_load_frame(radius_in_depths, bosses, lead_in_bosses)
     radius, p = radius_in_depths * H, 1000.0
     member = frame_member(link, (0, 1))
-    s = np.linspace(*member.extent, 4001)
-    on_axis = member.point_at(s)
-    stations = np.array([s[np.argmin(np.hypot(*(on_axis - middle).T))] for middle in middles])
+    stations = np.array([station_near(member, middle) for middle in middles])
     stress = section_stresses(link, pulled(link, p), stations, member=member)
     tangent = np.column_stack([-(middles - centres)[:, 1], (middles - centres)[:, 0]]) / radius
     n = p * np.abs(tangent[:, 0])

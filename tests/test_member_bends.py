@@ -63,8 +63,7 @@ def bent(turn_deg: float, radius: float) -> tuple[LinkProfile, np.ndarray]:
 
 def station_near(member, point: np.ndarray) -> float:
     """The arc length [m] of ``member``'s axis point nearest to ``point`` [m, load frame]."""
-    s = np.linspace(0.0, member.length, 20001)
-    return float(s[np.argmin(np.hypot(*(member.point_at(s) - point).T))])
+    return float(LineString(member.path).project(Point(point)))
 
 
 def pulled(p: float) -> LinkLoadCase:

@@ -15,17 +15,23 @@ from __future__ import annotations
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from shapely.geometry import Point, Polygon
+from shapely.geometry import Polygon
 
 MERGE = 1e-9
 """Fraction of the sample spacing within which two Voronoi vertices are one node."""
 
+JOIN_REACH = 2.0
+"""Sample spacings beyond its nearest vertex of the axis within which a joint joins the axis."""
 
-def medial_path(shell: Polygon, a: NDArray[np.float64], b: NDArray[np.float64], spacing: float) -> NDArray[np.float64] | None:
+
+def medial_path(
+    shell: Polygon, a: NDArray[np.float64], b: NDArray[np.float64], spacing: float,
+) -> NDArray[np.float64] | None:
     """The shortest path (K, 2) [m] from ``a`` to ``b`` along the medial axis of ``shell`` (a polygon
     without holes), sampled every ``spacing`` [m] along its boundary; None when the axis does not
-    join them. Each joint joins the axis at every vertex within its clearance (its distance to the
-    boundary), so a pin in a boss enters the axis by a straight chord inside the boss."""
+    join them. Each joint joins the axis at its vertices nearest to it (within ``JOIN_REACH`` samples
+    of the nearest): a pin at the centre of a round boss or a bar's round end is where the axis
+    ends."""
     # scipy's graphs only for curved members: an analysis of straight links never loads it
     from scipy.sparse import coo_array
     from scipy.sparse.csgraph import dijkstra
@@ -46,7 +52,7 @@ def medial_path(shell: Polygon, a: NDArray[np.float64], b: NDArray[np.float64], 
     weights = [np.hypot(*(ends[:, 1] - ends[:, 0]).T)]
     for k, joint in enumerate((a, b)):
         gap = np.hypot(*(points - joint).T)
-        near = np.flatnonzero(gap <= max(ring.distance(Point(joint)), float(gap.min())))
+        near = np.flatnonzero(gap <= float(gap.min()) + JOIN_REACH * spacing)
         rows.append(np.full(len(near), count + k))
         cols.append(near)
         weights.append(np.maximum(gap[near], MERGE * spacing))  # a zero weight would be no edge
