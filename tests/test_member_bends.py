@@ -145,3 +145,21 @@ def test_no_away_from_holes_figure_comes_from_a_dog_legs_corner():
     where = np.flatnonzero(~nominal)[np.argmax(stress.von_mises[0, ~nominal])]
     assert abs(stations[where] - at) > H
     assert away[0] < stress.von_mises[0, worst]
+
+
+@pytest.mark.parametrize("from_pin", [0.12, 0.25, 0.5])
+def test_a_dog_leg_kinked_near_a_pin_is_not_taken_for_a_straight_bar(from_pin):
+    # A 300 mm bar kinked by 30 deg (3 mm inner fillet) at 12, 25 or 50 % of its length: close to a
+    # pin the kinked arm is only a few of the first midline's points, which a notch would move as
+    # much (a notch narrows the section, a kink does not): the member is curved, its corner flagged.
+    length, turn = 0.3, math.radians(30.0)
+    corner = np.array([from_pin * length, 0.0])
+    pins = np.array([[0.0, 0.0], corner + (1 - from_pin) * length * np.array([math.cos(turn), math.sin(turn)])])
+    body = LineString([pins[0], corner, pins[1]]).buffer(H / 2, join_style="mitre", quad_segs=32)
+    link = drilled(body.buffer(0.003, quad_segs=32).buffer(-0.003, quad_segs=32), pins)
+    member = frame_member(link, (0, 1))
+    assert member.curved
+    at = station_near(member, link.frame(0, 1).to_local(corner))
+    assert at == pytest.approx(from_pin * length, rel=2e-2)
+    cuts = member.cuts(member.stations(101))
+    assert cuts.bend[np.abs(cuts.s - at) < 0.5 * H].all()

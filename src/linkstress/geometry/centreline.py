@@ -26,6 +26,10 @@ REGULAR_WIDTH = 2.0
 """A first-midline cut wider than this many times the median runs along a lug or another arm."""
 
 
+NOTCHED = 0.95
+"""A first-midline cut narrower than this fraction of the usual width may be a notch's."""
+
+
 CENTRELINE_POINTS = 41
 """Points of a curved member's centreline between its joints."""
 
@@ -93,14 +97,17 @@ def centreline(
         local = (points[clear] - a) @ np.column_stack([along, [-along[1], along[0]]])
         x, y = local.T
         depth = median(width[clear])
-        # the bow of a cubic through the midline; the few points a notch or a hole moves off it (more
-        # than CURVED_WANDER depths) are left out of a second fit
+        # the bow of a cubic through the midline; the few points a notch moves off it (more than
+        # CURVED_WANDER depths; a notch narrows the section there) are left out of a second fit. A
+        # kink moves them too, without narrowing the bar: those count
         fit = np.polyval(np.polyfit(x, y, 3), x)
-        kept = np.abs(y - fit) <= CURVED_WANDER * depth
+        kept = (np.abs(y - fit) <= CURVED_WANDER * depth) | (width[clear] >= NOTCHED * depth)
         if kept.sum() >= max(4, 0.8 * len(x)):
             x, y = x[kept], y[kept]
-        bow = np.polyval(np.polyfit(x, y, 3), x) - np.polyval(np.polyfit(x, y, 1), x)
-        wander = float(np.ptp(bow)) / depth
+        line = np.polyval(np.polyfit(x, y, 1), x)
+        bow = np.polyval(np.polyfit(x, y, 3), x) - line
+        # a kink near a joint bends too few points for the cubic: their own spread about the line
+        wander = max(float(np.ptp(bow)), float(np.ptp(y - line))) / depth
     if wander <= CURVED_WANDER and not astray:
         return np.array([a, b]), depth, wander
     return _traced(edges, a, b, depth, wander)
