@@ -73,11 +73,13 @@ def centreline(
     ``REGULAR_WIDTH`` times the usual (median) width cut along a lug or another arm and are left out;
     the rest, more than their width from each joint (a lug's rounded end says nothing of the bar's
     axis), measure its bow: the spread of a least-squares cubic through them about their
-    least-squares line (refitted without the few points a notch or a hole moves off the first fit),
-    in their median width. A
-    member is curved when that bow exceeds ``CURVED_WANDER``, or when the line a-b leaves the material by more than half the
-    usual width (a U, a hook: their straight cuts run along the legs, and say little); else it keeps
-    the line a-b. A curved one's centreline is traced along the material (``_traced``)."""
+    least-squares line, or their own spread about it where larger (a kink close to a joint moves too
+    few points to bend the cubic), refitted without the few points a notch moves off the first fit
+    (those whose section is narrower than ``NOTCHED`` of the usual), in their median width. A member
+    is curved when that bow exceeds ``CURVED_WANDER``, or when the line a-b leaves the material by
+    more than half the usual width (a U, a hook: their straight cuts run along the legs, and say
+    little); else it keeps the line a-b. A curved one's centreline is traced along the material
+    (``_traced``)."""
     span = b - a
     length = float(np.hypot(*span))
     along = span / length
