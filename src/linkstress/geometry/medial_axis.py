@@ -43,9 +43,7 @@ def medial_path(
     ends = shapely.get_coordinates(edges[shapely.contains_properly(shell, edges)]).reshape(-1, 2, 2)
     if not len(ends):
         return None
-    keys = np.round(ends.reshape(-1, 2) / (MERGE * spacing)).astype(np.int64)
-    _, first, node = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    node = node.ravel()
+    node, first = _nodes(np.round(ends.reshape(-1, 2) / (MERGE * spacing)).astype(np.int64))
     points = ends.reshape(-1, 2)[first]
     count = len(points)
     rows, cols = [node[0::2]], [node[1::2]]
@@ -66,3 +64,15 @@ def medial_path(
     while order[-1] != count:
         order.append(int(previous[order[-1]]))
     return np.vstack([points, a, b])[order[::-1]]
+
+
+def _nodes(keys: NDArray[np.int64]) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """For integer points ``keys`` (K, 2): each one's node (K,), equal points one node, and each
+    node's first point; as ``np.unique(keys, axis=0, return_index=True, return_inverse=True)``
+    gives them, which imports numpy.ma."""
+    order = np.lexsort((keys[:, 1], keys[:, 0]))
+    ordered = keys[order]
+    new = np.r_[True, (ordered[1:] != ordered[:-1]).any(axis=1)]
+    node = np.empty(len(keys), dtype=np.intp)
+    node[order] = np.cumsum(new) - 1
+    return node, order[new]
