@@ -240,8 +240,8 @@ class MemberBeam:
 
     @property
     def away(self) -> NDArray[np.bool_]:
-        """(S,): the nominal stations, a section depth from pins and junctions."""
-        return ~(np.asarray(self.cuts.near_hole, bool) | np.asarray(self.cuts.junction, bool))
+        """(S,): the nominal stations, a section depth from pins, junctions and sharp bends."""
+        return ~(np.asarray(self.cuts.near_hole, bool) | np.asarray(self.cuts.junction, bool) | np.asarray(self.cuts.bend, bool))
 
     @property
     def depth(self) -> float:

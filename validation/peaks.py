@@ -29,7 +29,7 @@ from linkstress.loads import LinkLoadCase
 from linkstress.geometry.members import Member
 from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import larger_principal_sign, von_mises
-from linkstress.validation.stations import choose_stations, default_mesh
+from linkstress.validation.stations import choose_stations, default_mesh, member_stations
 from linkstress.validation.fea.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO
 from linkstress.validation.fea.link import reaction_ratio, region_length, solve_link
 from linkstress.validation.fea.mesh import MeshSettings
@@ -121,8 +121,10 @@ def peak_mesh(
     levels: int = PEAK_MESH_LEVELS,
 ) -> MeshSettings:
     """Validate's default mesh of the link, refined to the finest of a ``levels`` study, without
-    the comparison cuts (a peak is at a hole's rim or a fillet, not on a cut)."""
-    stations = choose_stations(link, frame_joints).x
+    the comparison cuts (a peak is at a hole's rim or a fillet, not on a cut); sized at the stations
+    of the frame's member among ``members`` (else of ``frame_member``)."""
+    frame = next((m for m in members if m.joints == tuple(frame_joints)), None)
+    stations = (member_stations(frame) if frame is not None else choose_stations(link, frame_joints)).x
     base = replace(default_mesh(link, frame_joints, stations, size, members), order=order)
     return replace(base.refined(REFINEMENT_RATIO ** (levels - 1)), stations=(), cuts=())
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from linkstress.analysis import Plan
+from linkstress.analysis import Plan, used_joints
 from linkstress.dynamics.machine_forces import MachineForces
 from linkstress.executors import DaskExecutor, LocalExecutor
 from linkstress.fatigue import NodeFatigue, criteria_available, node_fatigue
@@ -113,7 +113,7 @@ def scene_peaks(
     note = cycle_note(scene.motion.angle_deg, forces.feasible)
     tasks = [
         PeaksTask(name, scene.links[name], forces.link_loads[name], feasible, len(forces.feasible), size, order, note,
-                  plan.fatigue_criterion)
+                  plan.fatigue_criterion, used_joints(scene, name))
         for name in plan.peaks
     ]
     where = executor or LocalExecutor()
@@ -124,7 +124,8 @@ def scene_peaks(
 class PeaksTask:
     """What one link's peaks need, all of it data: the ``link``, its ``loads`` over the sweep of
     ``n_positions``, the ``feasible`` positions (indices), the mesh ``size`` [m] (None: default)
-    and element ``order``, the sweep's ``cycle_note`` and the fatigue ``criterion``."""
+    and element ``order``, the sweep's ``cycle_note``, the fatigue ``criterion`` and the joints the
+    scene uses (``linkstress.analysis.used_joints``: the link's members join those alone)."""
 
     name: str
     link: SceneLink
@@ -135,6 +136,7 @@ class PeaksTask:
     order: int
     cycle_note: str
     criterion: str
+    used_joints: tuple[int, ...] | None = None
 
 
 def link_peaks(task: PeaksTask) -> LinkPeaks:
@@ -143,7 +145,7 @@ def link_peaks(task: PeaksTask) -> LinkPeaks:
     with blas_alone():
         link, loads, feasible = task.link, task.loads, task.feasible
         profile = link.profile
-        members = link_members(profile, loads.frame_joints, link.members)
+        members = link_members(profile, loads.frame_joints, link.members, task.used_joints)
         mesh = peak_mesh(profile, loads.frame_joints, members, task.size, task.order)
         cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG)
         sweep = sweep_peaks(cases, loads, feasible)

@@ -59,12 +59,14 @@ def choose_stations(
     frame_joints: tuple[int, int],
     count: int = COMPARISON_STATIONS,
     members: ArrayLike | None = None,
+    used_joints: Sequence[int] | None = None,
 ) -> ComparisonStations:
     """``member_stations`` of the link's member between its frame joints (``frame_member``, of the
-    scene's ``members`` pairs if given): clear of pin holes and of the other members, between the
-    joints (past a joint a link carries only its own inertia: small resultants among large local
-    stresses around a loaded pin, a comparison that says nothing about the beam)."""
-    return member_stations(frame_member(link, frame_joints, members), count)
+    scene's ``members`` pairs if given, else of the tree over the ``used_joints``): clear of pin holes
+    and of the other members, between the joints (past a joint a link carries only its own inertia:
+    small resultants among large local stresses around a loaded pin, a comparison that says nothing
+    about the beam)."""
+    return member_stations(frame_member(link, frame_joints, members, used_joints), count)
 
 
 def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> ComparisonStations:
@@ -119,7 +121,7 @@ def default_mesh(
     """Mesh settings sized from the link: about ELEMENTS_PER_DEPTH elements across its slenderest
     compared section (at ``stations`` and at the ``members``' comparison stations),
     ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
-    frame = frame_member(link, frame_joints)
+    frame = next((m for m in members if m.joints == tuple(frame_joints)), None) or frame_member(link, frame_joints)
     tables = [frame.cuts(stations).table, *(m.cuts(member_stations(m).x).table for m in members)]
     depth = float(min((t.top - t.bottom).min() for t in tables))
     size = size or depth / ELEMENTS_PER_DEPTH

@@ -21,10 +21,9 @@ import numpy as np
 from numpy.typing import NDArray
 from tqdm import tqdm
 
-from linkstress.analysis import AnalysisResult, Plan, run_analysis
+from linkstress.analysis import AnalysisResult, Plan, run_analysis, scene_link_members, used_joints
 from linkstress.errors import GeometryError
 from linkstress.executors import DaskExecutor, LocalExecutor
-from linkstress.geometry.members import link_members
 from linkstress.scene import Scene
 from linkstress.validation.compare import (
     LinkBeams,
@@ -216,8 +215,9 @@ def _link_work(scene: Scene, plan: Plan, analysis: AnalysisResult, name: str, ch
     if not len(chosen):
         raise FEAError("no feasible position to compare")
     link, loads = scene.links[name].profile, analysis.forces.link_loads[name]
-    stations = choose_stations(link, loads.frame_joints, members=scene.links[name].members)
-    members = link_members(link, loads.frame_joints, scene.links[name].members)
+    stations = choose_stations(link, loads.frame_joints, members=scene.links[name].members,
+                               used_joints=used_joints(scene, name))
+    members = scene_link_members(scene, name, loads.frame_joints)
     mesh = replace(default_mesh(link, loads.frame_joints, stations.x, size, members), order=order)
     if order == 1 and size is None:
         mesh = mesh.refined(LINEAR_REFINEMENT)

@@ -18,7 +18,8 @@ from linkstress.dynamics.machine_forces import MachineForces, machine_forces
 from linkstress.dynamics.section_stress import StressSummary, links_section_stresses
 from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
-from linkstress.geometry.members import link_members
+from linkstress.geometry.members import Member, link_members
+from linkstress.loads import hole_at
 from linkstress.scene import Scene
 from linkstress.threads import blas_alone
 
@@ -181,7 +182,7 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
         jobs = []
         for name in plan.stresses:
             profile, loads = scene.links[name].profile, forces.link_loads[name]
-            members = link_members(profile, loads.frame_joints, scene.links[name].members)
+            members = scene_link_members(scene, name, loads.frame_joints)
             jobs.append((profile, loads, members, plan.stations))
         stresses = dict(zip(plan.stresses, links_section_stresses(jobs, plan.body_load_near_holes)))
         seconds["stresses"] = time.perf_counter() - start
@@ -194,3 +195,31 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
         peaks = scene_peaks(scene, plan, forces)
         seconds["peaks"] = time.perf_counter() - start
     return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds, peaks)
+
+
+def used_joints(scene: Scene, name: str) -> tuple[int, ...]:
+    """The joints of link ``name`` that ``scene`` uses, in order: those its mechanisms pin (the axis
+    joints of every role the link plays), those its couples act at, those whose pin hole holds one of
+    its point forces, and those its named members join. Its other joints (the centre of a lightening
+    hole, taken as a joint by the sketch) end no member: their holes are plain holes."""
+    link = scene.links[name]
+    used = {k for loop in scene.machine.loops for role in loop.roles.values() if role.link == name for k in role.joints}
+    used |= {c.at_joint for c in scene.loads.couples if c.link == name}
+    used |= {k for pair in link.members or () for k in pair}
+    profile = link.profile
+    if profile is not None:
+        i, j = link.frame_joints
+        at = np.array([f.at for f in scene.loads.forces if f.link == name], float).reshape(-1, 2)
+        # a point force's ``at`` is in the link's member frame (a slider's: its sketch moved to its joint)
+        drawn = profile.frame(i, j).to_global(at) if i != j else at + profile.joints[i]
+        holes = {hole_at(profile.outline, point) for point in drawn}
+        used |= {k for k, hole in enumerate(profile.joint_holes) if hole is not None and hole in holes}
+    return tuple(sorted(used))
+
+
+def scene_link_members(scene: Scene, name: str, frame_joints: tuple[int, int]) -> tuple[Member, ...]:
+    """Link ``name``'s members in the load frame of ``frame_joints``: those its scene names, else the
+    tree over the joints the scene uses (``used_joints``), the same for the beam, validate and the
+    FEA peaks."""
+    link = scene.links[name]
+    return link_members(link.profile, frame_joints, link.members, used_joints(scene, name))

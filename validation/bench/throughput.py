@@ -24,12 +24,11 @@ from pathlib import Path
 
 import numpy as np
 
-from linkstress.analysis import DEFAULT_STATIONS, plan_for, run_analysis
+from linkstress.analysis import DEFAULT_STATIONS, plan_for, run_analysis, scene_link_members
 from linkstress.dynamics.machine_forces import machine_forces
 from linkstress.dynamics.section_stress import links_section_stresses
 from linkstress.kinematics import solve_machine
 from linkstress.kinematics.motion import angle_motion
-from linkstress.geometry.members import link_members
 from linkstress.scene import load_scene
 from linkstress.validation.stations import comparison_stations, default_mesh
 from linkstress.validation.fea.link import solve_link
@@ -83,7 +82,7 @@ def sweep_rates(scene_path: Path, positions: int, repeat: int) -> list[StageRate
     profiles = {name: scene.links[name].profile for name in plan.stresses}
 
     jobs = [
-        (link, forces.link_loads[name], link_members(link, forces.link_loads[name].frame_joints, scene.links[name].members),
+        (link, forces.link_loads[name], scene_link_members(scene, name, forces.link_loads[name].frame_joints),
          DEFAULT_STATIONS)
         for name, link in profiles.items()
     ]

@@ -27,7 +27,8 @@ and the chord's interior maxima are found by ``fibre_peaks.single_chord_peak``. 
 bars the term is 2-4 % of the nominal stress and takes the beam-versus-FEA difference there from up
 to 3.8 % to under 0.6 %.
 
-Near a hole (and at a junction of members, ``linkstress.geometry.members``) the values are nominal: elementary beam theory, the stress a Kt
+Near a hole (and at a junction of members or a bend sharper than the curved-beam range,
+``linkstress.geometry.members``) the values are nominal: elementary beam theory, the stress a Kt
 multiplies. The correction refines beam theory where it holds, so there it is left out, as on
 sections split by holes, unless asked for (``body_load_near_holes``). It is also where it costs
 most: the near-hole stations of an inertia-loaded link (its rounded ends, where N and M fade and
@@ -72,8 +73,9 @@ class SectionStresses:
 
     ``forces``: N, V, M. ``von_mises`` (P, S) [Pa]: the largest von Mises over the section's fibres,
     reached at ``fibre_y`` (P, S) [m]; ``sigma``/``tau`` (P, S) [Pa] at that fibre (made when asked
-    for, from the section forces). ``near_hole`` (S,):
-    station within one section depth of a hole's centre (nominal values only); ``pin_holes``: the
+    for, from the section forces). ``near_hole`` (S,): the
+    stations whose values are nominal (``MemberCuts.nominal``: within a section depth of a hole's
+    centre, a junction or a sharp bend); ``pin_holes``: the
     Kt x nominal estimate at each pin hole (``pin_holes.py``), labelled as an estimate. ``max_von_mises`` (P,) and
     ``max_at`` (P, 2) [m]: the largest over all stations; ``max_away_from_holes`` likewise over
     stations not near a hole (None where every station is near one).
@@ -170,7 +172,7 @@ class MemberSummary:
 
     ``max_von_mises`` (P,) [Pa] and ``max_at`` (P, 2) [m, load frame]: the largest von Mises over all
     stations and where; ``max_away_from_holes`` (P,) [Pa] likewise over the stations that are not
-    nominal (near a hole or a junction; None where every station is); ``mismatch`` (P,): the
+    nominal (near a hole, a junction or a sharp bend; None where every station is); ``mismatch`` (P,): the
     equilibrium check of ``InternalForces``. ``at(positions)`` recomputes the full station arrays of
     a block of positions; on the blocks of ``blocks`` (those the sweep was evaluated in) they are
     exactly those the reductions came from.

@@ -2,17 +2,19 @@
 
 A member is straight unless the material between its joints curves. Cuts square to the line
 between the joints give a first midline, whose bow says whether it does (``centreline``); a curved
-member's centreline is then traced along the material from one joint to the other (``_march``) and
-its points moved onto the midpoints of the cuts square to it. Everything is in the link's load frame.
+member's centreline is then traced along the material from one joint to the other (its medial axis:
+``linkstress.geometry.medial_axis``, through a boss to its pin and round every bend) and its points
+moved onto the midpoints of the cuts square to it. Everything is in the link's load frame.
 """
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
+import shapely
 from numpy.typing import NDArray
+from shapely.geometry import LineString, Point, Polygon
 
+from linkstress.geometry.medial_axis import medial_path
 from linkstress.geometry.member_cuts import CutLines, Edges, cut_lines, through_axis
 
 CURVED_WANDER = 0.1
@@ -24,26 +26,28 @@ REGULAR_WIDTH = 2.0
 """A first-midline cut wider than this many times the median runs along a lug or another arm."""
 
 
+NOTCHED = 0.95
+"""A first-midline cut narrower than this fraction of the usual width may be a notch's."""
+
+
 CENTRELINE_POINTS = 41
 """Points of a curved member's centreline between its joints."""
 
 
-MARCH_STEP = 0.1
-"""Steps of the centreline's tracing, in section depths."""
+TRACE_STEP = 0.1
+"""Spacing of the traced centreline's points, and of the outline's samples its medial axis is found
+from, in bar widths."""
 
 
-POLISH_PASSES = 20
-"""Moves of the traced centreline's points onto the midpoints of the cuts square to it (the chord
-between their neighbours), which straighten the kink of the tracing's first steps."""
+POLISH_PASSES = 3
+"""Moves of the traced centreline's points from the medial axis onto the midpoints of the cuts
+through them square to the centreline (the chord between their neighbours): the medial axis is
+equidistant from the edges, the centreline midway across the cuts, which differ a little where the
+bar tapers. Each pass takes the tangents of the last."""
 
-
-ARRIVAL_COS = math.cos(math.radians(45.0))
-"""Within half a width of its end joint, a tracing heading within 45 degrees of it has arrived (its
-last steps would run through the joint's lug)."""
-
-
-START_RAYS = 72
-"""Directions tried for where a bar leaves its joint."""
+POLISH_REACH = 0.1
+"""Bar widths from the medial axis beyond which a cut's midpoint is not taken: such a cut runs into a
+corner's other arm or a junction, where the medial axis is the better centreline."""
 
 
 def _widths(edges: Edges, path: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -69,12 +73,13 @@ def centreline(
     ``REGULAR_WIDTH`` times the usual (median) width cut along a lug or another arm and are left out;
     the rest, more than their width from each joint (a lug's rounded end says nothing of the bar's
     axis), measure its bow: the spread of a least-squares cubic through them about their
-    least-squares line (refitted without the few points a notch or a hole moves off the first fit),
-    in their median width. A
-    member is curved when that bow exceeds ``CURVED_WANDER``, or when the line a-b leaves the material by more than half the
-    usual width (a U, a hook: their straight cuts run along the legs, and say little); else it keeps
-    the line a-b. A curved one's centreline is traced from a along the bar (``_march``; from b if
-    that does not arrive)."""
+    least-squares line, or their own spread about it where larger (a kink close to a joint moves too
+    few points to bend the cubic), refitted without the few points a notch moves off the first fit
+    (those whose section is narrower than ``NOTCHED`` of the usual), in their median width. A member
+    is curved when that bow exceeds ``CURVED_WANDER``, or when the line a-b leaves the material by
+    more than half the usual width (a U, a hook: their straight cuts run along the legs, and say
+    little); else it keeps the line a-b. A curved one's centreline is traced along the material
+    (``_traced``)."""
     span = b - a
     length = float(np.hypot(*span))
     along = span / length
@@ -94,90 +99,62 @@ def centreline(
         local = (points[clear] - a) @ np.column_stack([along, [-along[1], along[0]]])
         x, y = local.T
         depth = median(width[clear])
-        # the bow of a cubic through the midline; the few points a notch or a hole moves off it (more
-        # than CURVED_WANDER depths) are left out of a second fit
+        # the bow of a cubic through the midline; the few points a notch moves off it (more than
+        # CURVED_WANDER depths; a notch narrows the section there) are left out of a second fit. A
+        # kink moves them too, without narrowing the bar: those count
         fit = np.polyval(np.polyfit(x, y, 3), x)
-        kept = np.abs(y - fit) <= CURVED_WANDER * depth
+        kept = (np.abs(y - fit) <= CURVED_WANDER * depth) | (width[clear] >= NOTCHED * depth)
         if kept.sum() >= max(4, 0.8 * len(x)):
             x, y = x[kept], y[kept]
-        bow = np.polyval(np.polyfit(x, y, 3), x) - np.polyval(np.polyfit(x, y, 1), x)
-        wander = float(np.ptp(bow)) / depth
+        line = np.polyval(np.polyfit(x, y, 1), x)
+        bow = np.polyval(np.polyfit(x, y, 3), x) - line
+        # a kink near a joint bends too few points for the cubic: their own spread about the line
+        wander = max(float(np.ptp(bow)), float(np.ptp(y - line))) / depth
     if wander <= CURVED_WANDER and not astray:
         return np.array([a, b]), depth, wander
-    # from either joint, toward the first midline's points clear of the joints, else along the bar
-    tries = [(a, b, None), (b, a, None)]
-    if clear.sum() >= 3:
-        tries = [(a, b, (points[clear][0] - a, usual)), (b, a, (points[clear][-1] - b, usual)), *tries]
-    for start, end, heading in tries:
-        path = _march(edges, start, end, heading)
-        if path is not None:
-            path = path if start is a else path[::-1]
-            break
-    else:
+    return _traced(edges, a, b, depth, wander)
+
+
+def _traced(edges: Edges, a, b, depth: float, wander: float) -> tuple[NDArray[np.float64], float, float]:
+    """A curved member's centreline from ``a`` to ``b`` (``centreline``): the path along the
+    material's medial axis (``linkstress.geometry.medial_axis``), resampled every ``TRACE_STEP`` of the
+    bar's width, its points clear of the joints' lugs moved onto the midpoints of the cuts square to
+    it; the line a-b (with ``depth`` and ``wander``) where no path joins them."""
+    shell = Polygon(edges.outline.exterior)
+    # the mean width of a bar: its area over half its perimeter (a boss adds a little)
+    width = 2 * shell.area / shell.length
+    path = medial_path(shell, a, b, TRACE_STEP * width)
+    if path is None:
         return np.array([a, b]), depth, wander
-    usual = median(_widths(edges, path))
+    line = LineString(path)
+    path = shapely.get_coordinates(shapely.line_interpolate_point(
+        line, np.linspace(0.0, line.length, max(3, int(np.ceil(line.length / (TRACE_STEP * width))) + 1)),
+    ))
+    widths = _widths(edges, path)
+    usual = median(widths)
+    along = (b - a) / np.hypot(*(b - a))
     # how far the traced centreline strays from the line a-b, in depths
     wander = float(np.abs((path - a) @ np.array([-along[1], along[0]])).max()) / usual
-    # a section depth from each joint: the points there cut through a lug
-    inner = np.flatnonzero((np.hypot(*(path - a).T) > usual) & (np.hypot(*(path - b).T) > usual))
-    inner = inner[(inner > 0) & (inner < len(path) - 1)]
+    # clear of each joint's lug (a boss: its radius; a bar's end: half its width), and
+    # cut square across the bar, not along a lug or another arm
+    lugs = [max(shell.exterior.distance(Point(p)), usual / 2) for p in (a, b)]
+    clear = (np.hypot(*(path - a).T) > lugs[0]) & (np.hypot(*(path - b).T) > lugs[1])
+    clear[1:-1] &= widths <= REGULAR_WIDTH * usual
+    inner = np.flatnonzero(clear[1:-1]) + 1
+    medial = path[inner]
     for _ in range(POLISH_PASSES):
         chord = path[inner + 1] - path[inner - 1]
         tangent = chord / np.hypot(*chord.T)[:, None]
-        bottom, top, _ = through_axis(cut_lines(edges, path[inner], tangent), len(inner))
-        path[inner] += ((bottom + top) / 2)[:, None] * np.column_stack([-tangent[:, 1], tangent[:, 0]])
+        bottom, top, _ = through_axis(cut_lines(edges, medial, tangent), len(inner))
+        middle = medial + ((bottom + top) / 2)[:, None] * np.column_stack([-tangent[:, 1], tangent[:, 0]])
+        # a midpoint far off the medial axis is that of a cut into a corner or a junction, not a bar's
+        near = np.hypot(*(middle - medial).T) <= POLISH_REACH * usual
+        path[inner] = np.where(near[:, None], middle, medial)
     points = path[1:-1]
     width = _widths(edges, path)
     far = (np.hypot(*(points - a).T) > width) & (np.hypot(*(points - b).T) > width)
     depth = float(width[far].min()) if far.any() else depth
-    return np.vstack([a, points, b]), depth, wander
-
-
-def _march(edges: Edges, a, b, start: tuple[NDArray[np.float64], float] | None = None) -> NDArray[np.float64] | None:
-    """The centreline (K, 2) [m] from ``a`` to ``b`` traced in steps of ``MARCH_STEP`` of the bar's
-    width, starting along ``start`` (a direction and the bar's width [m]; by default along the bar,
-    ``_bar_start``): each step looks a step ahead along the last chord,
-    moves to the midpoint of the cut square to it there, and takes the chord to that point as the
-    next direction; None if it does not arrive at ``b`` (``ARRIVAL_COS``) before it has run half the
-    outline's perimeter."""
-    direction, width = start or _bar_start(edges, a, b)
-    tangent = np.asarray(direction, float) / np.hypot(*direction)
-    step = MARCH_STEP * width
-    point, points = np.asarray(a, float), [np.asarray(a, float)]
-    for _ in range(int(edges.perimeter / 2 / step) + 1):
-        gap = b - point
-        distance = np.hypot(*gap)
-        # arrived: a step away, or within the lug (half a width) heading into it
-        if distance <= 1.5 * step or (distance <= width / 2 and gap @ tangent >= distance * ARRIVAL_COS):
-            return np.vstack([*points, b])
-        ahead = point + step * tangent
-        lines = cut_lines(edges, ahead[None, :], tangent[None, :])
-        if not len(lines.station):
-            return None  # stepped off the material
-        bottom, top, _ = through_axis(lines, 1)
-        middle = ahead + (bottom[0] + top[0]) / 2 * np.array([-tangent[1], tangent[0]])
-        chord = middle - point
-        tangent = chord / np.hypot(*chord)
-        point = middle
-        points.append(point)
-    return None
-
-
-def _bar_start(edges: Edges, a, b) -> tuple[NDArray[np.float64], float]:
-    """The direction (2,) in which the bar leaves joint ``a`` toward ``b``, and its width [m] there: of
-    ``START_RAYS`` rays from a, the one along which the material runs farthest, weighted by (1 + cos)
-    / 2 of its angle to b (so a bar running on past a joint goes toward b); the width is that of the
-    cut square to it, a third of that run along."""
-    angles = 2 * np.pi * np.arange(START_RAYS) / START_RAYS
-    rays = np.column_stack([np.cos(angles), np.sin(angles)])
-    # a cut square to the ray's normal lies along the ray: its top is how far the material runs
-    lines = cut_lines(edges, np.broadcast_to(a, rays.shape).copy(), np.column_stack([rays[:, 1], -rays[:, 0]]))
-    _, run, _ = through_axis(lines, START_RAYS)
-    toward = (b - a) / np.hypot(*(b - a))
-    k = int(np.argmax(run * (1 + rays @ toward) / 2))
-    across = a + rays[k] * run[k] / 3
-    bottom, top, _ = through_axis(cut_lines(edges, across[None, :], rays[k][None, :]), 1)
-    return rays[k], float(top[0] - bottom[0])
+    return path, depth, wander
 
 
 def median(values: NDArray[np.float64]) -> float:

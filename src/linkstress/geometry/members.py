@@ -23,12 +23,15 @@ another arm) the outline is split along the section's segment.
 Flags. A station is near a hole when a hole's centre lies closer to its cut segment than the
 section's depth (St-Venant: a pin's load spreads into a beam-like stress state about one depth from
 where it acts), at a junction when its axis point lies closer than the depth to another member's
-axis, and tight when a curved section nearly reaches its centre of curvature: there the values are
-nominal.
+axis, at a bend when it lies within its depth (along the axis) of a stretch of the centreline that
+turns faster than the curved-beam range allows (``linkstress.geometry.bends``: a radius under a section
+depth, a dog-leg's corner), and tight when a curved section nearly reaches its centre of curvature:
+there the values are nominal.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -38,6 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import split
 
+from linkstress.geometry.bends import near_bends, sharp_arcs
 from linkstress.geometry.centreline import centreline, first_midline
 from linkstress.geometry.curved_beam import centre_reach
 from linkstress.errors import GeometryError
@@ -72,31 +76,37 @@ NEAR_SLACK = 1e-9
 """A station exactly one depth from a pin (the midpoint of a bar as long as two depths) is not near it."""
 
 
-def member_tree(link: LinkProfile, root: tuple[int, int] = (0, 1)) -> tuple[tuple[int, int], ...]:
-    """The members of ``link``: the minimum spanning tree of its joints, each pair weighted by the
-    length of the straight line between them plus ``OUTSIDE_PENALTY`` times its length outside the
-    material, oriented away from joint ``root[0]`` (the member of ``root``, if in the tree, keeps its
-    direction). Joints in holes count as in material."""
-    joints = link.joints
-    n = len(joints)
-    if n < 2:
+def member_tree(
+    link: LinkProfile, root: tuple[int, int] = (0, 1), joints: Sequence[int] | None = None,
+) -> tuple[tuple[int, int], ...]:
+    """The members of ``link``: the minimum spanning tree of its ``joints`` (default: all of them),
+    each pair weighted by the length of the straight line between them plus ``OUTSIDE_PENALTY`` times
+    its length outside the material, oriented away from joint ``root[0]`` (the member of ``root``, if
+    in the tree, keeps its direction). Joints in holes count as in material."""
+    n = len(link.joints)
+    start = root[0] % n if n else 0
+    # sorted by hand: np.unique imports numpy.ma, 10 ms of every analyze's start
+    chosen = np.arange(n) if joints is None else np.array(sorted({int(k) % n for k in (*joints, start)}), dtype=int)
+    m = len(chosen)
+    if m < 2:
         return ()
-    if n == 2:
-        return ((root[0] % n, root[1] % n),)
-    first, second = np.triu_indices(n, 1)
-    lines = shapely.linestrings(np.stack([joints[first], joints[second]], axis=1))
+    if m == 2:
+        return ((start, int(chosen[chosen != start][0])),)
+    points = link.joints[chosen]
+    first, second = np.triu_indices(m, 1)
+    lines = shapely.linestrings(np.stack([points[first], points[second]], axis=1))
     inside = shapely.length(shapely.intersection(lines, Polygon(link.outline.exterior)))
     length = shapely.length(lines)
-    weight = np.zeros((n, n))
+    weight = np.zeros((m, m))
     weight[first, second] = weight[second, first] = length + OUTSIDE_PENALTY * (length - inside)
-    start = root[0] % n
-    joined, edges = [start], []
-    best = weight[start].copy()
-    parent = np.full(n, start)
-    best[start] = np.inf
-    for _ in range(n - 1):
-        k = int(np.argmin(np.where(np.isin(np.arange(n), joined), np.inf, best)))
-        edges.append((int(parent[k]), k))
+    home = int(np.flatnonzero(chosen == start)[0])
+    joined, edges = [home], []
+    best = weight[home].copy()
+    parent = np.full(m, home)
+    best[home] = np.inf
+    for _ in range(m - 1):
+        k = int(np.argmin(np.where(np.isin(np.arange(m), joined), np.inf, best)))
+        edges.append((int(chosen[parent[k]]), int(chosen[k])))
         joined.append(k)
         closer = weight[k] < best
         parent[closer], best[closer] = k, weight[k][closer]
@@ -105,9 +115,12 @@ def member_tree(link: LinkProfile, root: tuple[int, int] = (0, 1)) -> tuple[tupl
     return tuple(sorted(edges, key=lambda edge: edge != (start, root[1] % n)))
 
 
-def check_members(link: LinkProfile, members: ArrayLike) -> tuple[tuple[int, int], ...]:
+def check_members(
+    link: LinkProfile, members: ArrayLike, joints: Sequence[int] | None = None,
+) -> tuple[tuple[int, int], ...]:
     """``members`` given by a scene as joint pairs, checked: each names two distinct joints of the link
-    and together they join every joint without a loop (a tree); else a GeometryError that says so."""
+    and together they join every one of ``joints`` (default: all the link's joints) and the joints
+    they name, without a loop (a tree); else a GeometryError that says so."""
     n = len(link.joints)
     pairs = [tuple(int(v) for v in pair) for pair in np.asarray(members, dtype=int).reshape(-1, 2)]
     for i, j in pairs:
@@ -127,9 +140,17 @@ def check_members(link: LinkProfile, members: ArrayLike) -> tuple[tuple[int, int
         if a == b:
             raise GeometryError(f"link {link.name!r}: members {pairs} close a loop at member {[i, j]}; give a tree")
         group[a] = b
-    if len(pairs) != n - 1:
+    if joints is None:
+        if len(pairs) != n - 1:
+            raise GeometryError(
+                f"link {link.name!r}: members {pairs} do not join all {n} joints; give {n - 1} pairs that join them all"
+            )
+        return tuple(pairs)
+    needed = sorted({int(k) % n for k in joints} | {k for pair in pairs for k in pair})
+    if len({find(k) for k in needed}) != 1:
         raise GeometryError(
-            f"link {link.name!r}: members {pairs} do not join all {n} joints; give {n - 1} pairs that join them all"
+            f"link {link.name!r}: members {pairs} do not join the joints {needed} that its mechanisms, loads and "
+            f"members use; give {len(needed) - 1} pairs that join them all"
         )
     return tuple(pairs)
 
@@ -141,7 +162,8 @@ class MemberCuts:
     ``origin`` (S, 2) [m]: the axis point; ``tangent`` (S, 2): the unit vector along the axis, and
     ``normal`` the one across it (tangent turned +90 degrees); ``curvature`` (S,) [1/m]: signed, > 0
     when the axis turns toward +normal; ``table``: the sections (x = s, chords in v [m] along the
-    normal from ``origin``); ``near_hole`` and ``junction`` (S,): stations whose values are nominal;
+    normal from ``origin``); ``near_hole``, ``junction`` and ``bend`` (S,): stations whose values are
+    nominal (near a hole's centre, another member's axis, or a bend sharper than the curved-beam range);
     ``left_moments`` (4, S): A, int x dA, int y dA, int (x^2 + y^2) dA [per unit thickness, about the
     load frame's origin] of the left piece (the one that holds joint i); ``right_pieces``: the right
     piece's filled outline at the stations whose cut line crosses other material (elsewhere the
@@ -154,6 +176,7 @@ class MemberCuts:
     table: SectionTable
     near_hole: NDArray[np.bool_]
     junction: NDArray[np.bool_]
+    bend: NDArray[np.bool_]
     left_moments: NDArray[np.float64]
     total_moments: NDArray[np.float64]
     right_pieces: dict[int, Polygon]
@@ -174,8 +197,9 @@ class MemberCuts:
 
     @property
     def nominal(self) -> NDArray[np.bool_]:
-        """(S,): stations near a hole, at a junction or ``tight``, where beam values are nominal."""
-        return self.near_hole | self.junction | self.tight
+        """(S,): stations near a hole, at a junction, at a sharp bend or ``tight``, where beam values
+        are nominal."""
+        return self.near_hole | self.junction | self.bend | self.tight
 
     @property
     def ends(self) -> NDArray[np.float64]:
@@ -251,9 +275,10 @@ class Member:
             d = self.path[-1] - self.path[0]
             return origin, np.broadcast_to(d / np.hypot(*d), origin.shape).copy(), np.zeros(len(s))
         h = min(CURVATURE_REACH * self.depth, self.length / 3)
-        # the circles keep a section depth clear of the joints, where the centreline runs through a lug
-        margin = min(h + self.depth, self.length / 2)
-        centre = np.clip(s, margin, self.length - margin)
+        # the circles keep clear of the joints' lugs (a section depth, or a boss's radius), through
+        # which the centreline runs straight to the pin
+        first, last = (min(h + max(self.depth, lug), self.length / 2) for lug in self.lugs)
+        centre = np.clip(s, first, self.length - last)
         # the path's own vertices (on the centreline) nearest to s - h, s, s + h: a chord's interpolated
         # points lie inside the arc by its sagitta
         a, b, c = (self.path[self._vertex(x)] for x in (centre - h, centre, centre + h))
@@ -277,6 +302,22 @@ class Member:
     def _end_tangent(self, end: int) -> NDArray[np.float64]:
         d = self.path[1] - self.path[0] if end == 0 else self.path[-1] - self.path[-2]
         return d / np.hypot(*d)
+
+    @cached_property
+    def lugs(self) -> tuple[float, float]:
+        """The radii [m] of the lugs round joints i and j: how far each joint is from the outline's
+        outer boundary (a boss's radius; half a bar's width at a joint on its midline)."""
+        ring = self.edges.outline.exterior
+        return tuple(float(ring.distance(Point(p))) for p in (self.path[0], self.path[-1]))
+
+    @cached_property
+    def sharp(self) -> NDArray[np.float64]:
+        """Arc lengths [m] where a curved member's centreline turns faster than the curved-beam range
+        allows (``linkstress.geometry.bends``), clear of the joints' lugs; none on a straight member."""
+        if not self.curved:
+            return np.zeros(0)
+        clear = (max(self.lugs[0], self.depth / 2), self.length - max(self.lugs[1], self.depth / 2))
+        return sharp_arcs(self.path, self.arc, self.depth, clear)
 
     @cached_property
     def end_depths(self) -> tuple[float, float]:
@@ -334,8 +375,9 @@ def _member_cuts(member: Member, s, origin, tangent, curvature) -> MemberCuts:
     for path in member.others:
         pieces = np.stack([path[:-1], path[1:]], axis=1)
         junction |= (segment_distance(origin, pieces) < depth[:, None] * (1 - NEAR_SLACK)).any(axis=1)
+    bend = near_bends(s, depth, member.sharp)
     return MemberCuts(
-        member.joints, origin, tangent, curvature, table, near_hole, junction, left, edges.moments, right_pieces,
+        member.joints, origin, tangent, curvature, table, near_hole, junction, bend, left, edges.moments, right_pieces,
     )
 
 
@@ -369,11 +411,15 @@ def _right_piece(member: Member, origin, tangent, normal, table: SectionTable, k
 
 def link_members(
     link: LinkProfile, frame_joints: tuple[int, int], members: ArrayLike | None = None,
+    used_joints: Sequence[int] | None = None,
 ) -> tuple[Member, ...]:
     """The members of ``link`` in the load frame of ``frame_joints``: the scene's ``members`` (checked
-    by ``check_members``), else ``member_tree``. Made once per link, frame and ``members`` (the
-    profile is immutable; like its ``boundary``, they are kept with it)."""
-    pairs = check_members(link, members) if members is not None else member_tree(link, frame_joints)
+    by ``check_members``), else ``member_tree`` over ``used_joints`` (those a scene's mechanisms,
+    loads and members use; default: every joint) and the frame joints. A joint left out (the centre
+    of a lightening hole) ends no member: its hole is a plain hole. Made once per link, frame and
+    member pairs (the profile is immutable; like its ``boundary``, they are kept with it)."""
+    joints = None if used_joints is None else (*used_joints, *frame_joints)
+    pairs = check_members(link, members, joints) if members is not None else member_tree(link, frame_joints, joints)
     n = len(link.joints)
     key = (frame_joints[0] % n, frame_joints[1] % n, pairs)
     cache = link.__dict__.setdefault("_members", {})
@@ -394,10 +440,13 @@ def _link_members(link: LinkProfile, frame_joints: tuple[int, int], pairs) -> tu
     )
 
 
-def frame_member(link: LinkProfile, frame_joints: tuple[int, int], members: ArrayLike | None = None) -> Member:
+def frame_member(
+    link: LinkProfile, frame_joints: tuple[int, int], members: ArrayLike | None = None,
+    used_joints: Sequence[int] | None = None,
+) -> Member:
     """The member of ``link`` along its ``frame_joints`` (``link_members``), or, where that pair is not
     a member, the pair taken as a member alone (both its ends free)."""
-    for member in link_members(link, frame_joints, members):
+    for member in link_members(link, frame_joints, members, used_joints):
         if member.joints == tuple(frame_joints):
             return member
     joints = link.frame(*frame_joints).to_local(link.joints)

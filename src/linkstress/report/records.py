@@ -167,9 +167,15 @@ def _finite_rows(values: NDArray[np.float64], block: slice) -> list[float | None
 
 
 def _station_lists(stress) -> dict[str, object]:
-    """Arrays along the link, member frame: ``x_m`` shared, the rest one list per position."""
+    """Arrays along the link's first member: where the stations are (``x_m`` and ``s_m``, the arc
+    length from its joint i along its axis; ``at_member_m``, the axis point, and ``normal_member``,
+    the unit normal the fibres' ``fibre_y_m`` runs along, in the link's member frame) and their
+    flags, shared; the rest one list per position."""
     return {
         "x_m": stress.x.tolist(),
+        "s_m": stress.x.tolist(),
+        "at_member_m": stress.cuts.origin.tolist(),
+        "normal_member": stress.cuts.normal.tolist(),
         "near_hole": stress.near_hole.tolist(),
         "normal_n": stress.forces.normal.tolist(),
         "shear_n": stress.forces.shear.tolist(),
@@ -253,4 +259,6 @@ def _at(values: dict, k: int) -> dict:
     return out
 
 
-SHARED = ("x_m", "near_hole", "joint", "hole_diameter_m", "depth_m", "kt", "basis")
+SHARED = (
+    "x_m", "s_m", "at_member_m", "normal_member", "near_hole", "joint", "hole_diameter_m", "depth_m", "kt", "basis",
+)
