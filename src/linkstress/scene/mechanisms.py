@@ -21,8 +21,10 @@ from numpy.typing import NDArray
 
 from linkstress.errors import SceneError
 from linkstress.kinematics.fourbar import BRANCHES
-from linkstress.kinematics.machine import KINDS, Drive, Loop, Role
+from linkstress.kinematics.linkage.graph import LinkageGraph
+from linkstress.kinematics.machine import KINDS, Drive, Loop, Machine, Role
 from linkstress.scene.keys import Table
+from linkstress.scene.linkage import read_linkage
 
 ROLES = {
     "four-bar": ("crank", "coupler", "output", "ground"),
@@ -38,6 +40,24 @@ ROLE_KEYS = ("link", "joints")
 """The keys of a role given as an inline table: ``crank = {link = "NAME", joints = [i, j]}``."""
 
 
+def read_machine(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> Machine | LinkageGraph:
+    """The scene's machine: a ``type = "linkage"`` mechanism (then the scene's only one,
+    ``scene.linkage``), else the loops of every [mechanisms.NAME] chained into a ``Machine``."""
+    names = list(table.data)
+    linkages = [
+        name for name in names if isinstance(table.data[name], dict) and table.data[name].get("type") == "linkage"
+    ]
+    if linkages:
+        if len(names) > 1:
+            other = next(name for name in names if name != linkages[0])
+            raise table.error(
+                other, f"a scene with a type = \"linkage\" mechanism ({linkages[0]!r}) has no other mechanism: a linkage "
+                "holds every loop of the machine; write this one's links and pins into it"
+            )
+        return read_linkage(table.table(linkages[0]), linkages[0], drawn)
+    return Machine(dict(drawn), tuple(read_mechanisms(table, drawn)))
+
+
 def read_mechanisms(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> list[Loop]:
     """Every [mechanisms.NAME] as a kinematic ``Loop`` (the machine checks links and the drive graph).
 
@@ -51,8 +71,8 @@ def read_mechanisms(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> l
 
 def _read_loop(entry: Table, name: str, drawn: Mapping[str, NDArray[np.float64]]) -> Loop:
     entry.allow(MECHANISM_KEYS)
-    entry.require("type", "type = \"four-bar\" or type = \"slider-crank\"")
-    kind = entry.string("type", choices=KINDS)
+    entry.require("type", "type = \"four-bar\", type = \"slider-crank\" or type = \"linkage\"")
+    kind = entry.string("type", choices=KINDS + ("linkage",))
     if kind == "four-bar":
         for key in SLIDER_ONLY:
             if entry.has(key):

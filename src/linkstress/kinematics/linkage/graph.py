@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from types import MappingProxyType
 
 import numpy as np
@@ -117,6 +118,23 @@ class LinkageGraph:
     @property
     def key(self) -> str:
         return f"mechanisms.{self.name}"
+
+    @cached_property
+    def groups(self):
+        """The input and the groups in solving order (``groups.decompose``)."""
+        from linkstress.kinematics.linkage.groups import decompose
+
+        return decompose(self)
+
+    @property
+    def link_frames(self) -> Mapping[str, tuple[int, int]]:
+        """``frames``, under the name a loop machine gives them."""
+        return self.frames
+
+    @property
+    def loops(self) -> tuple:
+        """A linkage has no four-bar or slider-crank loops: code that walks a machine's loops skips it."""
+        return ()
 
     @property
     def blocks(self) -> dict[str, int]:

@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 
 from linkstress.kinematics.linkage.constraints import GroupEquations
 from linkstress.kinematics.linkage.graph import Joint, LinkageGraph
-from linkstress.kinematics.linkage.groups import Group, decompose
+from linkstress.kinematics.linkage.groups import Group
 from linkstress.kinematics.linkage.placing import Placer
 from linkstress.kinematics.linkage.rates import group_rates
 from linkstress.kinematics.linkage.tracks import Track
@@ -96,7 +96,7 @@ class LinkageMotion:
 def solve_linkage(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
     """Positions, velocities and accelerations of every link and joint of ``graph`` over ``motion``
     (the crank's angles [rad], or the input slider's strokes [m], with their rates)."""
-    groups = decompose(graph)
+    groups = graph.groups
     stroke = graph.input.is_stroke
     drawn = graph.drawn_stroke(graph.sliders[graph.input.slider]) if stroke else _drawn_angle(graph)
     path = input_path(drawn, motion.angle, MAX_STEP[1] * graph.size if stroke else MAX_STEP[0], not stroke)
