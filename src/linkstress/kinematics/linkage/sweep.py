@@ -96,6 +96,11 @@ class LinkageMotion:
 def solve_linkage(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
     """Positions, velocities and accelerations of every link and joint of ``graph`` over ``motion``
     (the crank's angles [rad], or the input slider's strokes [m], with their rates)."""
+    with np.errstate(invalid="ignore", divide="ignore"):  # where a group cannot close: nan, then flagged
+        return _solve(graph, motion)
+
+
+def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
     groups = graph.groups
     stroke = graph.input.is_stroke
     drawn = graph.drawn_stroke(graph.sliders[graph.input.slider]) if stroke else _drawn_angle(graph)
