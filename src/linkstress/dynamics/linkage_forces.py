@@ -321,7 +321,7 @@ def linkage_forces(scene, motion: MachineMotion):
         tuple(tuple(str(j) for j in pin) for pin in graph.all_pins), motion.linkage.pin_positions, pins, sliders,
     )
     name = f"T {graph.input.link}" if torque is not None else None
-    mechanism = MechanismForces(labelled, name, torque, push, linkage=detail)
+    mechanism = MechanismForces(labelled, name, torque, push, linkage=detail, force_name="P input")
     return MachineForces(feasible, tuple(reasons), {graph.name: mechanism}, loads, solution)
 
 
