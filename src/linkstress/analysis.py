@@ -14,6 +14,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.dynamics.linkage_forces import moving_contacts
 from linkstress.dynamics.machine_forces import MachineForces, machine_forces
 from linkstress.dynamics.section_stress import StressSummary, links_section_stresses
 from linkstress.errors import SceneError
@@ -73,7 +74,9 @@ def plan_for(scene: Scene) -> Plan:
     profiled = [n for n in moving if scene.links[n].profile is not None and scene.links[n].material is not None]
     # A slider block's frame is its one joint: no member between two joints to section.
     sliders = [n for n in profiled if len(set(scene.links[n].frame_joints)) == 1]
-    stressable = [n for n in profiled if n not in sliders]
+    # A linkage's guide carries its slider's contact at a point that moves along it.
+    guides = [n for n in profiled if scene.linkage is not None and n in moving_contacts(scene.linkage)]
+    stressable = [n for n in profiled if n not in sliders and n not in guides]
     asked = scene.analysis
     notes = []
     if asked is None:
@@ -99,12 +102,22 @@ def plan_for(scene: Scene) -> Plan:
                     f"analysis.validate: link {name!r} is a slider, with one joint: there is no member between two "
                     "joints to compare along; leave it out"
                 )
+            if name in guides:
+                raise SceneError(
+                    f"analysis.validate: link {name!r} guides a slider whose contact moves along it; its section "
+                    "stresses are not computed, so there is nothing to compare: leave it out"
+                )
             if name not in stressable:
                 raise SceneError(f"analysis.validate: link {name!r} needs a sketch, a thickness and a material")
         stations = asked.stations or DEFAULT_STATIONS
     for name in moving:
         if name in sliders and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: a slider, with one joint, has no member between two to section")
+        elif name in guides and (asked is None or asked.stresses):
+            notes.append(
+                f"no section stresses for {name}: a slider's block slides along it, and a contact that moves along a "
+                "link is not sectioned (its joint forces and the block's force on it are in the forces)"
+            )
         elif name not in stressable and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
     body_load_near_holes = asked is not None and asked.body_load_near_holes

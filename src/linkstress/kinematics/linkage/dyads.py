@@ -82,18 +82,20 @@ def rpr_sign(u: FloatArray, a: FloatArray, b: FloatArray) -> float:
     return float(np.sign(u @ (b - a)))
 
 
-def pose_through(a: FloatArray, a_local: FloatArray, b: FloatArray, b_local: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """The angle (F,) [rad] and origin (F, 2) [m] of a link whose points ``a_local`` and ``b_local``
-    (2,) [m, member frame] are at A and B (F, 2)."""
-    d_local = b_local - a_local
-    angle = np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0]) - np.arctan2(d_local[1], d_local[0])
-    return angle, origin_from(a, a_local, angle)
+def pose_through(a: FloatArray, a_local: FloatArray, b: FloatArray, b_local: FloatArray):
+    """The angle (F,) [rad], its cosine and sine (F,) and origin (F, 2) [m] of a link whose points
+    ``a_local`` and ``b_local`` (2,) [m, member frame] are at A and B (F, 2): the rotation taking
+    b_local - a_local onto B - A, without trigonometry but the angle's one arctan2."""
+    lx, ly = b_local - a_local
+    dx, dy = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1]
+    norm = np.sqrt(dx * dx + dy * dy) * np.hypot(lx, ly)
+    cos, sin = (lx * dx + ly * dy) / norm, (lx * dy - ly * dx) / norm
+    return np.arctan2(sin, cos), cos, sin, origin_from(a, a_local, cos, sin)
 
 
-def origin_from(a: FloatArray, a_local: FloatArray, angle: FloatArray) -> FloatArray:
-    """The origin (F, 2) of a link at ``angle`` (F,) whose point ``a_local`` (2,) is at A (F, 2)."""
-    c, s = np.cos(angle), np.sin(angle)
+def origin_from(a: FloatArray, a_local: FloatArray, cos: FloatArray, sin: FloatArray) -> FloatArray:
+    """The origin (F, 2) of a link at the angle of ``cos``, ``sin`` (F,) whose point ``a_local`` (2,) is at A (F, 2)."""
     origin = np.empty_like(a)
-    origin[:, 0] = a[:, 0] - (c * a_local[0] - s * a_local[1])
-    origin[:, 1] = a[:, 1] - (s * a_local[0] + c * a_local[1])
+    origin[:, 0] = a[:, 0] - (cos * a_local[0] - sin * a_local[1])
+    origin[:, 1] = a[:, 1] - (sin * a_local[0] + cos * a_local[1])
     return origin

@@ -26,8 +26,8 @@ def _unit(v: FloatArray) -> FloatArray:
     return v / math.hypot(*v)
 
 
-def _rotated(angle: FloatArray, local: FloatArray) -> FloatArray:
-    c, s = np.cos(angle), np.sin(angle)
+def _turned(c: FloatArray, s: FloatArray, local: FloatArray) -> FloatArray:
+    """R local (F, 2) for rotations of cosine ``c`` and sine ``s`` (F,)."""
     return np.column_stack([c * local[0] - s * local[1], s * local[0] + c * local[1]])
 
 
@@ -37,9 +37,9 @@ class Placer:
     def __init__(self, graph: LinkageGraph, tracks: dict[str, Track]) -> None:
         self.graph, self.tracks = graph, tracks
 
-    def known_point(self, joint: Joint):
-        """Position and derivatives (F, 2) of a known link's joint."""
-        return self.tracks[joint.link].point(self.graph.local[joint.link][joint.index])
+    def known_point(self, joint: Joint, rows: slice):
+        """Position and derivatives (B, 2) of a known link's joint at path positions ``rows``."""
+        return self.tracks[joint.link].point(self.graph.local[joint.link][joint.index], rows)
 
     def _length(self, link: str, i: int, j: int, group: Group) -> float:
         local = self.graph.local[link]
@@ -59,28 +59,29 @@ class Placer:
             )
         return value
 
-    def place(self, group: Group, x: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """Solve a closed-form ``group`` at path inputs ``x`` (F,): (clearance, conditioning)."""
+    def place(self, group: Group, x: FloatArray, rows: slice) -> tuple[FloatArray, FloatArray]:
+        """Solve a closed-form ``group`` at the path positions ``rows`` of inputs ``x`` (F,):
+        (clearance, conditioning) there."""
         if group.kind == "crank":
-            return self._crank(group, x)
+            return self._crank(group, x, rows)
         if group.kind == "RRR":
-            return self._rrr(group)
+            return self._rrr(group, rows)
         if group.kind == "RRP":
-            return self._rrp(group)
-        return self._rpr(group)
+            return self._rrp(group, rows)
+        return self._rpr(group, rows)
 
-    def _crank(self, group: Group, x):
+    def _crank(self, group: Group, x, rows):
         (crank, ground), = group.pairs
         g = self.graph
         direction = g.links[crank.link][g.input.to] - g.links[crank.link][g.input.pivot]
         offset = g.drawn_angles[crank.link] - math.atan2(direction[1], direction[0])
         track = self.tracks[crank.link]
-        pivot, pivot1, pivot2 = self.known_point(ground)
-        track.angle[:] = x + offset
-        track.origin[:] = dyads.origin_from(pivot, g.local[crank.link][crank.index], track.angle)
-        track.angle1[:], track.angle2[:] = 1.0, 0.0
-        track.set_rates_about(slice(None), pivot, pivot1, pivot2)
-        ones = np.ones(len(x))
+        pivot, pivot1, pivot2 = self.known_point(ground, rows)
+        track.set_angle(rows, x[rows] + offset)
+        track.origin[rows] = dyads.origin_from(pivot, g.local[crank.link][crank.index], track.cos[rows], track.sin[rows])
+        track.angle1[rows], track.angle2[rows] = 1.0, 0.0
+        track.set_rates_about(rows, pivot, pivot1, pivot2)
+        ones = np.ones(len(pivot))
         return ones, ones
 
     def _outer(self, group: Group):
@@ -88,7 +89,7 @@ class Placer:
         inner = [p for p in group.pairs if p[1].link in group.links]
         return outer, inner
 
-    def _rrr(self, group: Group):
+    def _rrr(self, group: Group, rows):
         g = self.graph
         outer, ((j1, j2),) = self._outer(group)
         by_link = {p[0].link: p for p in outer}
@@ -97,50 +98,50 @@ class Placer:
         r1 = self._length(first, a_joint.index, j1.index, group)
         r2 = self._length(second, b_joint.index, j2.index, group)
         sign = self._sign(dyads.rrr_sign(g.drawn(a_known), g.drawn(b_known), g.drawn(j1)), group)
-        a, a1, a2 = self.known_point(a_known)
-        b, b1, b2 = self.known_point(b_known)
+        a, a1, a2 = self.known_point(a_known, rows)
+        b, b1, b2 = self.known_point(b_known, rows)
         c, clearance = dyads.rrr(a, b, r1, r2, sign)
         c1, c2, ratio = rates.rrr_rates(c, a, a1, a2, b, b1, b2)
-        for link, pivot, joint_pivot, joint_c, p, p1, p2 in (
-            (first, a_joint, a_joint, j1, a, a1, a2), (second, b_joint, b_joint, j2, b, b1, b2),
-        ):
-            self._through(link, joint_pivot.index, joint_c.index, p, p1, p2, c, c1, c2)
+        self._through(first, a_joint.index, j1.index, (a, a1, a2), (c, c1, c2), rows)
+        self._through(second, b_joint.index, j2.index, (b, b1, b2), (c, c1, c2), rows)
         return clearance, ratio
 
-    def _through(self, link, i, j, a, a1, a2, c, c1, c2) -> None:
-        """Link ``link`` with its joint i at A and joint j at C (positions and derivatives)."""
+    def _through(self, link, i, j, at_i, at_j, rows) -> None:
+        """Link ``link`` with its joint i at A and joint j at C (each position and its derivatives)."""
+        (a, a1, a2), (c, c1, c2) = at_i, at_j
         local = self.graph.local[link]
         track = self.tracks[link]
-        track.angle[:], track.origin[:] = dyads.pose_through(a, local[i], c, local[j])
-        track.angle1[:], track.angle2[:] = rates.angle_rates(a, a1, a2, c, c1, c2)
-        track.set_rates_about(slice(None), a, a1, a2)
+        angle, cos, sin, track.origin[rows] = dyads.pose_through(a, local[i], c, local[j])
+        track.set_angle(rows, angle, cos, sin)
+        track.angle1[rows], track.angle2[rows] = rates.angle_rates(a, a1, a2, c, c1, c2)
+        track.set_rates_about(rows, a, a1, a2)
 
-    def _line(self, k: int):
+    def _line(self, k: int, rows):
         """The guide's line of slider ``k``: its point Q (with derivatives), direction u (F, 2) and
         the guide's angle derivatives (F,)."""
         g = self.graph
         slider = g.sliders[k]
         guide = self.tracks[slider.on]
         i, j = slider.line
-        q = guide.point(g.local[slider.on][i])
-        u = _rotated(guide.angle, _unit(g.local[slider.on][j] - g.local[slider.on][i]))
-        return q, u, guide.angle1, guide.angle2
+        q = guide.point(g.local[slider.on][i], rows)
+        u = _turned(guide.cos[rows], guide.sin[rows], _unit(g.local[slider.on][j] - g.local[slider.on][i]))
+        return q, u, guide.angle1[rows], guide.angle2[rows]
 
-    def _rrp(self, group: Group):
+    def _rrp(self, group: Group, rows):
         g = self.graph
         (pin, known), = group.pairs
         slider = g.sliders[group.slides[0]]
         link = pin.link
         r = self._length(link, pin.index, slider.point.index, group)
         sign = self._sign(dyads.rrp_sign(g.drawn(known), g.drawn(slider.point), g.line_direction(slider)), group)
-        a, a1, a2 = self.known_point(known)
-        (q, q1, q2), u, w, al = self._line(group.slides[0])
+        a, a1, a2 = self.known_point(known, rows)
+        (q, q1, q2), u, w, al = self._line(group.slides[0], rows)
         b, clearance = dyads.rrp(a, r, q, u, sign)
         b1, b2, ratio = rates.rrp_rates(b, a, a1, a2, q, q1, q2, u, w, al)
-        self._through(link, pin.index, slider.point.index, a, a1, a2, b, b1, b2)
+        self._through(link, pin.index, slider.point.index, (a, a1, a2), (b, b1, b2), rows)
         return clearance, ratio
 
-    def _rpr(self, group: Group):
+    def _rpr(self, group: Group, rows):
         g = self.graph
         (pin, known), = group.pairs
         slider = g.sliders[group.slides[0]]
@@ -151,24 +152,24 @@ class Placer:
         n_local = np.array([-u_local[1], u_local[0]])
         offset = float(n_local @ (local[i] - local[pin.index]))
         sign = self._sign(dyads.rpr_sign(g.line_direction(slider), g.drawn(known), g.drawn(slider.point)), group)
-        a, a1, a2 = self.known_point(known)
-        b, b1, b2 = self.known_point(slider.point)
+        a, a1, a2 = self.known_point(known, rows)
+        b, b1, b2 = self.known_point(slider.point, rows)
         track = self.tracks[link]
         angle, clearance = dyads.rpr(a, b, math.atan2(n_local[1], n_local[0]), offset, sign)
-        track.angle[:] = angle
-        track.origin[:] = dyads.origin_from(a, local[pin.index], angle)
-        q = track.position(local[i])
-        u = _rotated(angle, u_local)
-        track.angle1[:], track.angle2[:], ratio = rates.rpr_rates(a, a1, a2, b, b1, b2, q, u)
-        track.set_rates_about(slice(None), a, a1, a2)
+        track.set_angle(rows, angle)
+        track.origin[rows] = dyads.origin_from(a, local[pin.index], track.cos[rows], track.sin[rows])
+        q = track.position(local[i], rows)
+        u = _turned(track.cos[rows], track.sin[rows], u_local)
+        track.angle1[rows], track.angle2[rows], ratio = rates.rpr_rates(a, a1, a2, b, b1, b2, q, u)
+        track.set_rates_about(rows, a, a1, a2)
         return clearance, ratio
 
-    def ride(self, block: str) -> None:
+    def ride(self, block: str, rows: slice = slice(None)) -> None:
         """A block: pinned to its slider's point (its joint 0) and turning with the guide."""
         g = self.graph
         slider = g.sliders[g.blocks[block]]
         guide, track = self.tracks[slider.on], self.tracks[block]
-        p, p1, p2 = self.known_point(slider.point)
-        track.angle[:] = guide.angle + (g.drawn_angles[block] - g.drawn_angles[slider.on])
-        track.angle1[:], track.angle2[:] = guide.angle1, guide.angle2
-        track.origin[:], track.origin1[:], track.origin2[:] = p, p1, p2
+        p, p1, p2 = self.known_point(slider.point, rows)
+        track.set_angle(rows, guide.angle[rows] + (g.drawn_angles[block] - g.drawn_angles[slider.on]))
+        track.angle1[rows], track.angle2[rows] = guide.angle1[rows], guide.angle2[rows]
+        track.origin[rows], track.origin1[rows], track.origin2[rows] = p, p1, p2

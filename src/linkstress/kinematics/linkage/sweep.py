@@ -31,11 +31,12 @@ from linkstress.kinematics.linkage.constraints import GroupEquations
 from linkstress.kinematics.linkage.graph import Joint, LinkageGraph
 from linkstress.kinematics.linkage.groups import Group
 from linkstress.kinematics.linkage.placing import Placer
-from linkstress.kinematics.linkage.rates import group_rates
+from linkstress.kinematics.linkage.rates import SINGULAR, group_rates
 from linkstress.kinematics.linkage.tracks import Track
 from linkstress.kinematics.linkage.triads import march
 from linkstress.kinematics.motion import InputMotion
-from linkstress.kinematics.results import JointMotion, LinkMotion, MachineMotion
+from linkstress.kinematics.results import JointMotion, LinkMotion, MachineMotion, fixed_link
+from linkstress.threads import cores, even_blocks, in_parallel
 
 FloatArray = NDArray[np.float64]
 
@@ -66,6 +67,8 @@ def input_path(drawn: float, samples: FloatArray, longest: float, periodic: bool
     start = samples[0] + math.remainder(drawn - samples[0], 2 * math.pi) if periodic else drawn
     knots = np.concatenate([[start], samples])
     deltas = np.diff(knots)
+    if np.abs(deltas).max() <= longest:  # a dense sweep: the samples themselves
+        return Path(knots, np.arange(1, len(knots)), np.arange(-1, len(samples)))
     pieces = np.maximum(np.ceil(np.abs(deltas) / longest).astype(np.intp), 1)
     ends = np.cumsum(pieces)
     step_of = np.repeat(np.arange(len(samples)), pieces)
@@ -77,15 +80,27 @@ def input_path(drawn: float, samples: FloatArray, longest: float, periodic: bool
 
 @dataclass(frozen=True)
 class LinkageMotion:
-    """A linkage over P positions: the graph and its groups in solving order; ``joints["LINK:i"]``
-    every link joint's motion (ground frame); ``strokes[k]`` slider k's point along its line from
-    the line's joint i, + toward j [m], with its rates (a ``JointMotion`` of (P, 1) arrays
-    flattened to (P,): position, velocity, acceleration)."""
+    """A linkage over P positions: the graph, its groups in solving order and every link's motion.
+
+    ``joints["LINK:i"]``: every link joint's motion (ground frame); ``strokes[k]``: slider k's
+    point along its line from the line's joint i, + toward j [m], with its velocity [m/s] and
+    acceleration [m/s^2] (P,) each. Both are made when first read."""
 
     graph: LinkageGraph
     groups: tuple[Group, ...]
-    joints: dict[str, JointMotion]
-    strokes: tuple[tuple[FloatArray, FloatArray, FloatArray], ...]
+    links: dict[str, LinkMotion]
+
+    @cached_property
+    def joints(self) -> dict[str, JointMotion]:
+        joints = {}
+        for name, motion in self.links.items():
+            for k, local in enumerate(self.graph.local[name]):
+                joints[str(Joint(name, k))] = JointMotion(*motion.point(local))
+        return joints
+
+    @cached_property
+    def strokes(self) -> tuple[tuple[FloatArray, FloatArray, FloatArray], ...]:
+        return tuple(_stroke(self.graph, k, self.links, self.joints) for k in range(len(self.graph.sliders)))
 
     @cached_property
     def pin_positions(self) -> tuple[FloatArray, ...]:
@@ -115,20 +130,17 @@ def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
     events: list[tuple[int, str]] = []
     for group in groups:
         if group.closed_form:
-            clearance, ratio = placer.place(group, path.x)
-            scale = _scale(graph, group)
-            finite = np.isfinite(clearance)
-            toggle = finite & ((np.abs(clearance) <= TOGGLE * scale) | (ratio <= 1e-10) | ~np.isfinite(ratio))
-            fails = ~finite | (clearance < 0) | toggle
-            events += _dyad_events(path, np.sqrt(np.maximum(clearance, 0.0)), fails, group)
-            reasons = np.where(toggle & (clearance >= 0), 2, 1)
+            fails, toggles, height = _placed(placer, group, path.x, TOGGLE * _scale(graph, group))
+            if group.kind != "crank":
+                events += _dyad_events(path, height, fails, group)
+            reasons = np.where(toggles, 2, 1)
         else:
-            marched = march(graph, group, tracks, path.x, _start(graph, group), graph.size if stroke else 1.0)
+            marched = march(graph, group, tracks, path.x, _start(graph, group), graph.size if stroke else 1.0, closed)
             fails = _newton_rates(graph, group, tracks, marched)
             events += _newton_events(graph, group, tracks, path, marched, fails)
             reasons = np.ones(n_path, np.intp)
         for block in group.riders:
-            placer.ride(block)
+            in_parallel(lambda rows, block=block: placer.ride(block, rows), _blocks(n_path))
         new = closed & fails
         if new.any():
             base = len(texts)
@@ -136,6 +148,34 @@ def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
             status[new] = base + reasons[new] - 1
         closed &= ~fails
     return _machine_motion(graph, groups, tracks, path, motion, closed, status, texts, events)
+
+
+CHUNK = 16384
+"""Path positions placed together: a closed-form group's temporaries of a chunk stay in the
+processor's cache (a million positions at once ran 16 times slower than 100,000)."""
+
+
+def _blocks(count: int) -> list[slice]:
+    """The path's positions in chunks of at most ``CHUNK``, at least one per core."""
+    return even_blocks(count, max(cores(), -(-count // CHUNK)) if count >= CHUNK else 1)
+
+
+def _placed(placer: Placer, group: Group, x: FloatArray, tiny: float):
+    """A closed-form group placed over the whole path, chunk by chunk on every core. Where it
+    fails (F,): it cannot close (clearance < 0), or at a toggle (``toggles``: clearance below
+    ``tiny`` [m^2], or its rate equations singular); and its height (F,) [m], the clearance's square
+    root, for the change points."""
+    fails, toggles, height = np.empty(len(x), bool), np.empty(len(x), bool), np.empty(len(x))
+
+    def work(rows: slice) -> None:
+        clearance, ratio = placer.place(group, x, rows)
+        toggle = (np.abs(clearance) <= tiny) | ~(ratio > SINGULAR)
+        fails[rows] = toggle | ~(clearance >= 0)
+        toggles[rows] = toggle & (clearance >= 0)
+        height[rows] = np.sqrt(np.maximum(clearance, 0.0))
+
+    in_parallel(work, _blocks(len(x)))
+    return fails, toggles, height
 
 
 def _drawn_angle(graph: LinkageGraph) -> float:
@@ -159,12 +199,17 @@ def _newton_rates(graph, group, tracks, marched) -> NDArray[np.bool_]:
     """Write a Newton group's poses and rates to its tracks; where it fails (F,)."""
     rows = np.flatnonzero(marched.closed)
     good = np.zeros(len(marched.q), bool)
+    for name in group.links:
+        t = tracks[name]
+        for array in (t.angle, t.origin, t.angle1, t.origin1, t.angle2, t.origin2, t.cos, t.sin):
+            array[~marched.closed] = np.nan
     if len(rows):
         q = marched.q[rows]
         q1, q2, regular, _ = group_rates(GroupEquations(graph, group, tracks, rows), q)
         for k, name in enumerate(group.links):
             t, c = tracks[name], 3 * k
-            t.origin[rows], t.angle[rows] = q[:, c:c + 2], q[:, c + 2]
+            t.origin[rows] = q[:, c:c + 2]
+            t.set_angle(rows, q[:, c + 2])
             t.origin1[rows], t.angle1[rows] = q1[:, c:c + 2], q1[:, c + 2]
             t.origin2[rows], t.angle2[rows] = q2[:, c:c + 2], q2[:, c + 2]
         good[rows] = regular & np.all(np.isfinite(q1) & np.isfinite(q2), axis=1)
@@ -187,13 +232,12 @@ def _dyad_events(path: Path, height: FloatArray, fails: NDArray[np.bool_], group
         events.append((row, "gap"))
     h, x = height, path.x
     if len(h) >= 5:
-        mid = np.arange(2, len(h) - 2)
-        ok = ~(fails[mid - 2] | fails[mid - 1] | fails[mid] | fails[mid + 1] | fails[mid + 2])
-        forward = np.sign(x[mid + 2] - x[mid - 2])
-        steady = ok & (np.sign(x[mid - 1] - x[mid - 2]) == forward) & (np.sign(x[mid + 2] - x[mid + 1]) == forward) & (
-            np.sign(x[mid] - x[mid - 1]) == forward) & (np.sign(x[mid + 1] - x[mid]) == forward) & (forward != 0)
-        dip = steady & (h[mid] <= h[mid - 1]) & (h[mid] <= h[mid + 1])
-        for f in mid[dip].tolist():
+        mid = 1 + np.flatnonzero((h[1:-1] < h[:-2]) & (h[1:-1] <= h[2:]))
+        mid = mid[(mid >= 2) & (mid <= len(h) - 3)]
+        window = np.stack([mid - 2, mid - 1, mid, mid + 1, mid + 2])
+        steps = np.sign(np.diff(x[window], axis=0))
+        steady = ~fails[window].any(axis=0) & (steps == steps[0]).all(axis=0) & (steps[0] != 0)
+        for f in mid[steady].tolist():
             left = (h[f - 1] - h[f - 2]) / (x[f - 1] - x[f - 2])
             right = (h[f + 2] - h[f + 1]) / (x[f + 2] - x[f + 1])
             if left * right >= 0 or right == left:
@@ -227,8 +271,8 @@ WHAT = {
               "the rows from here keep that group's drawn assembly, which a smooth motion may leave there",
     "gap": "passes inputs where the {label} cannot close: the rows from here keep its drawn assembly; sample the "
            "sweep more finely there to see where",
-    "restart": "passes inputs where the {label} cannot close; it was solved again from its last closed position "
-               "and may be in another assembly from here: check it",
+    "restart": "passes inputs where the mechanism cannot close; the {label} was solved again from its last closed "
+               "position and may be in another assembly from here: check it",
 }
 
 
@@ -245,32 +289,47 @@ def _machine_motion(graph, groups, tracks, path, motion, closed, status, texts, 
         crossings.append((row, f"mechanism {graph.name}: {_step_text(path, row, unit, values)} "
                                + WHAT[kind].format(label=label)))
     speed, acceleration = motion.speed, motion.acceleration
-    links = {}
-    for name, track in tracks.items():
-        if name == graph.ground:
-            links[name] = LinkMotion(graph.frames[name], track.angle[rows], np.zeros(len(rows)), np.zeros(len(rows)),
-                                     track.origin[rows], np.zeros((len(rows), 2)), np.zeros((len(rows), 2)))
-            continue
-        w1, w2 = _filled(track.angle1[rows], feasible), _filled(track.angle2[rows], feasible)
-        o1, o2 = _filled(track.origin1[rows], feasible), _filled(track.origin2[rows], feasible)
-        links[name] = LinkMotion(
-            graph.frames[name], _filled(track.angle[rows], feasible), w1 * speed, w2 * speed**2 + w1 * acceleration,
-            _filled(track.origin[rows], feasible), o1 * speed[:, None],
-            o2 * (speed**2)[:, None] + o1 * acceleration[:, None],
-        )
-    joints = {}
-    for name, link_motion in links.items():
-        local = graph.local[name]
-        if len(local):
-            p, v, a = link_motion.point(local)
-            for k in range(len(local)):
-                joints[str(Joint(name, k))] = JointMotion(p[:, k], v[:, k], a[:, k])
-    strokes = tuple(_stroke(graph, k, links, joints) for k in range(len(graph.sliders)))
-    reasons = np.asarray(texts, dtype=object)[status[rows]]
+    dense = len(rows) == len(path.x) - 1  # no points between samples: the rows are a slice
+    pick = slice(1, len(path.x)) if dense else rows
+    links = {name: _link_motion(graph, name, track, pick, feasible, motion) for name, track in tracks.items()}
+    if feasible.all():
+        reasons = ("",) * len(rows)
+    else:
+        reasons = tuple(np.asarray(texts, dtype=object)[status[rows]].tolist())
     return MachineMotion(
-        motion.angle, speed, acceleration, motion.time, feasible, tuple(reasons.tolist()), links, {},
-        tuple(crossings), linkage=LinkageMotion(graph, groups, joints, strokes),
+        motion.angle, speed, acceleration, motion.time, feasible, reasons, links, {},
+        tuple(crossings), linkage=LinkageMotion(graph, groups, links),
     )
+
+
+def _link_motion(graph, name, track, pick, feasible, motion) -> LinkMotion:
+    """Link ``name``'s motion at the sample rows ``pick`` of its track: rates per unit input times
+    the input's speed and acceleration (chain rule), finite filler where infeasible. Made in
+    place in the track's arrays, chunk by chunk (the track is not read again)."""
+    n = len(feasible)
+    if name == graph.ground:
+        return fixed_link(graph.frames[name], graph.drawn_angles[name], graph.links[name][0], n)
+    angle, origin = track.angle[pick], track.origin[pick]
+    w1, w2, o1, o2 = track.angle1[pick], track.angle2[pick], track.origin1[pick], track.origin2[pick]
+    everywhere = bool(feasible.all())
+
+    def work(out: slice) -> None:
+        if not everywhere:
+            bad = ~feasible[out]
+            for array in (angle, w1, w2):
+                array[out][bad] = 0.0
+            for array in (origin, o1, o2):
+                array[out][bad] = 0.0
+        w, a = motion.speed[out], motion.acceleration[out]
+        w2[out] *= w * w
+        w2[out] += w1[out] * a
+        w1[out] *= w
+        o2[out] *= (w * w)[:, None]
+        o2[out] += o1[out] * a[:, None]
+        o1[out] *= w[:, None]
+
+    in_parallel(work, _blocks(n))
+    return LinkMotion(graph.frames[name], angle, w1, w2, origin, o1, o2)
 
 
 def _filled(values: FloatArray, feasible: NDArray[np.bool_]) -> FloatArray:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.kinematics.errors import LinkageError
 from linkstress.kinematics.linkage.constraints import GroupEquations
 from linkstress.kinematics.linkage.graph import LinkageGraph
 from linkstress.kinematics.linkage.groups import Group
@@ -70,44 +71,51 @@ def newton(equations: GroupEquations, guess: FloatArray, x: FloatArray, size: fl
 
 
 def march(graph: LinkageGraph, group: Group, tracks: dict[str, Track], x: FloatArray, start: FloatArray,
-          unit: float) -> Marched:
+          unit: float, usable: NDArray[np.bool_]) -> Marched:
     """Solve ``group`` along the input path ``x`` (F,) from the drawn coordinates ``start`` (m,) at
-    ``x[0]``; ``unit`` scales the spans (1 for an angle, the mechanism's size for a stroke)."""
+    ``x[0]``, at the positions where the links before it are ``usable`` (F,); ``unit`` scales the
+    spans (1 for an angle, the mechanism's size for a stroke)."""
     size = graph.size
     n, m = len(x), len(start)
     q = np.full((n, m), np.nan)
     closed = np.zeros(n, bool)
-    first, ok = newton(GroupEquations(graph, group, tracks, slice(0, 1)), start[None, :], x[:1], size)
+    first, ok = newton(GroupEquations(graph, group, tracks, np.array([0])), start[None, :], x[:1], size)
     if not ok[0]:
-        raise ValueError(f"{group.label} does not close at the drawn pose")
+        raise LinkageError(f"{graph.key}: the {group.label} does not close at the drawn pose; check its joints")
     q[0], closed[0] = first[0], True
+    where = np.flatnonzero(usable)
+    where = where[where > 0]
     anchor, taylor = 0, _taylor(graph, group, tracks, q, 0)
     span, largest, smallest = (s * unit for s in SPANS)
     restarts: list[int] = []
     gap = False
-    i = 1
-    while i < n:
-        window = np.abs(x[i:i + MAX_BLOCK] - x[anchor])
+    i = 0
+    while i < len(where):
+        gap = gap or where[i] != anchor + 1 and not closed[where[i] - 1]
+        window = np.abs(x[where[i:i + MAX_BLOCK]] - x[anchor])
         beyond = np.flatnonzero(window > span)
         stop = i + max(int(beyond[0]) if len(beyond) else len(window), 1)
-        rows = slice(i, stop)
+        if gap:
+            stop = i + 1
+        rows = where[i:stop]
         dx = (x[rows] - x[anchor])[:, None]
-        guess = q[anchor] + dx * taylor[0] + 0.5 * dx * dx * taylor[1]
         if gap:  # across positions where it could not close: from the last closed pose
-            guess = np.broadcast_to(q[anchor], guess.shape).copy()
+            guess = np.broadcast_to(q[anchor], (len(rows), m)).copy()
+        else:
+            guess = q[anchor] + dx * taylor[0] + 0.5 * dx * dx * taylor[1]
         solution, converged = newton(GroupEquations(graph, group, tracks, rows), guess, x[rows], size)
         good = converged & (gap | _near(solution, guess, group, size))
         lead = int(np.argmin(good)) if not good.all() else len(good)
         if lead:
-            q[i:i + lead], closed[i:i + lead] = solution[:lead], True
+            q[rows[:lead]], closed[rows[:lead]] = solution[:lead], True
             if gap:
-                restarts.append(i)
+                restarts.append(int(rows[0]))
             gap = False
-            anchor = i + lead - 1
+            anchor = int(rows[lead - 1])
             taylor = _taylor(graph, group, tracks, q, anchor)
             i += lead
             span = min(2 * span, largest) if lead == len(good) else max(span / 2, smallest)
-        elif stop - i > 1 and span > smallest:
+        elif len(rows) > 1 and span > smallest:
             span = max(span / 2, smallest)
         else:
             gap = True
@@ -116,7 +124,7 @@ def march(graph: LinkageGraph, group: Group, tracks: dict[str, Track], x: FloatA
 
 
 def _taylor(graph, group, tracks, q, row) -> tuple[FloatArray, FloatArray]:
-    q1, q2, good, _ = group_rates(GroupEquations(graph, group, tracks, slice(row, row + 1)), q[row:row + 1])
+    q1, q2, good, _ = group_rates(GroupEquations(graph, group, tracks, np.array([row])), q[row:row + 1])
     if not good[0]:
         return np.zeros(q.shape[1]), np.zeros(q.shape[1])
     return q1[0], q2[0]
