@@ -138,9 +138,10 @@ def pylinkage_jansen(n: int) -> Callable[[], NDArray[np.float64]]:
 
 
 def jansen_agreement(trajectory: NDArray[np.float64], n: int) -> float:
-    """Largest distance [m] between pylinkage's foot and linkstress's, over the first 1,000 steps."""
+    """Largest distance [m] between pylinkage's foot and linkstress's, over the first 1,000 steps
+    (pylinkage's row k is the crank turned k + 2 steps from its start: compared so)."""
     count = min(n, 1000)
-    theta = np.arange(1, count + 1) * 360.0 / n
+    theta = np.arange(2, count + 2) * 360.0 / n
     ours = solve_linkage(jansen_leg(0.0), angle_motion(theta)).linkage.joints["leg:2"].position
     feet = trajectory[:count, -1]
     return float(np.nanmax(np.abs(feet - ours)))
