@@ -102,3 +102,18 @@ def _pins(pins) -> tuple[tuple[Joint, ...], ...]:
     for pin in pins:
         out.append(tuple(Joint(text.rsplit(":", 1)[0], int(text.rsplit(":", 1)[1])) for text in pin))
     return tuple(out)
+
+
+def loader_arm(stroke: float = 0.45) -> LinkageGraph:
+    """A loader's arm lifted by a hydraulic cylinder: the arm turns about O1 = (0, 0) and carries
+    the rod's pin P 0.3 m out; the barrel turns about O2 = (0.1, -0.35) and its line runs from O2
+    through its joint 1; the rod is the block pinned at P, sliding in the barrel. The input is the
+    stroke: P's distance from O2 along the barrel (|P - O2|), drawn at ``stroke`` [m]."""
+    o1, o2 = np.array([0.0, 0.0]), np.array([0.1, -0.35])
+    p = circles(o1, 0.3, o2, stroke, lambda a, b: a if a[0] > b[0] else b)
+    tip = o1 + (p - o1) / 0.3 * 1.2
+    barrel_end = o2 + (p - o2) / stroke * 0.25
+    links = {"frame": [o1, o2], "arm": [o1, p, tip], "barrel": [o2, barrel_end], "rod": [p]}
+    pins = [("frame:0", "arm:0"), ("frame:1", "barrel:0")]
+    sliders = (Slider(Joint("arm", 1), "barrel", (0, 1), "rod"),)
+    return LinkageGraph("loader", links, "frame", _pins(pins), sliders, Input(slider=0))

@@ -116,10 +116,38 @@ def solve_linkage(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
 
 
 def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
-    groups = graph.groups
     stroke = graph.input.is_stroke
     drawn = graph.drawn_stroke(graph.sliders[graph.input.slider]) if stroke else _drawn_angle(graph)
     path = input_path(drawn, motion.angle, MAX_STEP[1] * graph.size if stroke else MAX_STEP[0], not stroke)
+    shortest = MIN_STEP * (graph.size if stroke else 1.0)
+    for _ in range(REFINEMENTS):
+        solved = _solve_path(graph, path, stroke)
+        lost = solved[-1]
+        lost = lost[np.abs(path.x[lost] - path.x[lost - 1]) > shortest]
+        if not len(lost):
+            break
+        path = refined(path, lost)
+    return _machine_motion(graph, graph.groups, *solved[:-1], path, motion)
+
+
+REFINEMENTS = 12
+"""Times the path may be refined where a Newton group lost its assembly within one step."""
+MIN_STEP = 1e-4
+"""A step no shorter than this (rad, or times the mechanism's size for a stroke) is not refined."""
+
+
+def refined(path: Path, steps: NDArray[np.intp]) -> Path:
+    """``path`` with a point halfway along each step into the path indices ``steps``."""
+    at = np.sort(steps)
+    x = np.insert(path.x, at, 0.5 * (path.x[at - 1] + path.x[at]))
+    step_of = np.insert(path.step_of, at, path.step_of[at])
+    rows = path.rows + np.searchsorted(at, path.rows, side="right")
+    return Path(x, rows, step_of)
+
+
+def _solve_path(graph: LinkageGraph, path: Path, stroke: bool):
+    """Every group over ``path``: (tracks, closed, status, texts, events, lost) with ``lost`` the path
+    indices where a Newton group failed right after a position where it closed."""
     n_path = len(path.x)
     tracks = {name: Track.empty(n_path) for name in graph.links}
     tracks[graph.ground] = Track.fixed(graph.drawn_angles[graph.ground], graph.links[graph.ground][0], n_path)
@@ -128,7 +156,8 @@ def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
     status = np.zeros(n_path, np.intp)
     texts = [""]
     events: list[tuple[int, str]] = []
-    for group in groups:
+    lost = np.zeros(0, np.intp)
+    for group in graph.groups:
         if group.closed_form:
             fails, toggles, height = _placed(placer, group, path.x, TOGGLE * _scale(graph, group))
             if group.kind != "crank":
@@ -136,6 +165,8 @@ def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
             reasons = np.where(toggles, 2, 1)
         else:
             marched = march(graph, group, tracks, path.x, _start(graph, group), graph.size if stroke else 1.0, closed)
+            failed = closed & ~marched.closed
+            lost = np.union1d(lost, 1 + np.flatnonzero(failed[1:] & marched.closed[:-1]))
             fails = _newton_rates(graph, group, tracks, marched)
             events += _newton_events(graph, group, tracks, path, marched, fails)
             reasons = np.ones(n_path, np.intp)
@@ -147,7 +178,7 @@ def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
             texts += [f"the {group.label} cannot close", f"toggle of the {group.label}: its rates are unbounded"]
             status[new] = base + reasons[new] - 1
         closed &= ~fails
-    return _machine_motion(graph, groups, tracks, path, motion, closed, status, texts, events)
+    return tracks, closed, status, texts, events, lost
 
 
 CHUNK = 16384
@@ -209,7 +240,7 @@ def _newton_rates(graph, group, tracks, marched) -> NDArray[np.bool_]:
         for k, name in enumerate(group.links):
             t, c = tracks[name], 3 * k
             t.origin[rows] = q[:, c:c + 2]
-            t.set_angle(rows, q[:, c + 2])
+            t.set_angle(rows, np.remainder(q[:, c + 2] + np.pi, 2 * np.pi) - np.pi)
             t.origin1[rows], t.angle1[rows] = q1[:, c:c + 2], q1[:, c + 2]
             t.origin2[rows], t.angle2[rows] = q2[:, c:c + 2], q2[:, c + 2]
         good[rows] = regular & np.all(np.isfinite(q1) & np.isfinite(q2), axis=1)
@@ -276,16 +307,16 @@ WHAT = {
 }
 
 
-def _machine_motion(graph, groups, tracks, path, motion, closed, status, texts, events) -> MachineMotion:
+def _machine_motion(graph, groups, tracks, closed, status, texts, events, path, motion) -> MachineMotion:
     rows = path.rows
     feasible = closed[rows]
     unit = "m" if graph.input.is_stroke else "deg"
     values = motion.angle if graph.input.is_stroke else motion.angle_deg
     crossings = []
     for row, what in sorted(set(events)):
-        if not (feasible[row] and (row == 0 or feasible[row - 1])):
-            continue
         kind, label = what.split("|", 1)
+        if not (feasible[row] and (row == 0 or feasible[row - 1] or kind == "restart")):
+            continue
         crossings.append((row, f"mechanism {graph.name}: {_step_text(path, row, unit, values)} "
                                + WHAT[kind].format(label=label)))
     speed, acceleration = motion.speed, motion.acceleration

@@ -67,6 +67,11 @@ def newton(equations: GroupEquations, guess: FloatArray, x: FloatArray, size: fl
         if not move.any():
             break
         q[move] += step[move]
+    # one more step where converged: quadratic convergence takes the residual to round-off
+    residual, jacobian = equations.residual_jacobian(q, x)
+    step, good = batched_solve(jacobian, -residual)
+    polish = done & good & np.all(np.isfinite(step), axis=1)
+    q[polish] += step[polish]
     return q, done & np.all(np.isfinite(q), axis=1)
 
 
