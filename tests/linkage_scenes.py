@@ -41,3 +41,27 @@ def linkage_scene(tmp_path: Path, links: str, pins, motion: str, *, sliders=(), 
     path = tmp_path / name
     path.write_text(text)
     return load_scene(path)
+
+
+def scene_of_graph(tmp_path: Path, graph, motion: str, *, masses: dict | None = None, extra: str = "",
+                   name: str = "graph.toml"):
+    """The scene of a ``LinkageGraph`` (its drawn joints, pins, sliders and input) with mass data:
+    ``masses[link] = (mass, inertia, centre of mass in the member frame)``, by default 0.1 kg per
+    0.1 m of the link's extent, its inertia that of a rod, its centre at the joints' mean."""
+    links = ""
+    for link, joints in graph.links.items():
+        if link == graph.ground:
+            links += link_table(link, joints)
+            continue
+        local = graph.local[link]
+        size = max(float(np.ptp(local, axis=0).max()), 0.02)
+        mass, inertia, com = (masses or {}).get(link, (size, size**3 / 12, local.mean(axis=0)))
+        links += link_table(link, joints, mass, com, inertia)
+    pins = [[str(j) for j in pin] for pin in graph.pins]
+    sliders = [{"point": str(s.point), "on": s.on, "line": s.line, "block": s.block} for s in graph.sliders]
+    if graph.input.is_stroke:
+        input_ = f"{{slider = {graph.input.slider}}}"
+    else:
+        input_ = f'{{link = "{graph.input.link}", pivot = {graph.input.pivot}, to = {graph.input.to}}}'
+    return linkage_scene(tmp_path, links, pins, motion, sliders=sliders, ground=graph.ground, input_=input_,
+                         extra=extra, name=name)

@@ -202,7 +202,7 @@ class LinkageAssembly:
             u = self.direction(k)
             total = solution.slide_forces[slide.name]
             normal = total[:, 1] * u[:, 0] - total[:, 0] * u[:, 1]
-            friction = total[:, 0] * u[:, 0] + total[:, 1] * u[:, 1]
+            friction = total[:, 0] * u[:, 0] + total[:, 1] * u[:, 1] if slide.friction else np.zeros(self.n)
             key = f"{slider.block or self.virtual[k]}:0"
             pin = next(f for f in pins if key in f)[key]
             out.append(SliderForces(str(slider.point), slider.on, self.motion.linkage.strokes[k][0], normal,
