@@ -36,7 +36,7 @@ def test_a_drawn_four_bar_reads_as_a_linkage(tmp_path):
 
 
 def test_a_missing_pin_leaves_two_degrees_of_freedom_and_names_the_floating_links(tmp_path):
-    """Without the output's pivot: F = 3 (4 - 1) - 2 x 3 = 3 - ... the coupler and output float."""
+    """Without the output's pivot: F = 3 (4 - 1) - 2 x 3 = 3; the coupler and output float."""
     message = refused(tmp_path, pins=PINS[:3])
     assert "mechanisms.main: Gruebler: F = 3 (n - 1) - 2 j1 - j2 = 3 (4 - 1) - 2 x 3 - 0 = 3 degrees of freedom" in message
     assert "links coupler, output float" in message
