@@ -7,7 +7,8 @@ of a bell crank is whichever two pins happen to come first. ``branch`` is "open"
 ``offset_m`` (the slider line's signed distance from O2, positive to the left of its direction) and
 ``slider_angle_deg`` (its direction from the ground frame's +x; default: the ground link's axis).
 A loop other than the main one has ``driven_by = "LOOP.crank"`` or ``"LOOP.output"`` and, when its
-crank is a different link from the driver's, an optional ``phase_deg``.
+crank is a different link from the driver's, an optional ``phase_deg``. A ``type = "linkage"``
+mechanism (``scene.linkage``) is the scene's only one (``read_machine``).
 """
 
 from __future__ import annotations
