@@ -120,11 +120,11 @@ def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
     drawn = graph.drawn_stroke(graph.sliders[graph.input.slider]) if stroke else _drawn_angle(graph)
     path = input_path(drawn, motion.angle, MAX_STEP[1] * graph.size if stroke else MAX_STEP[0], not stroke)
     shortest = MIN_STEP * (graph.size if stroke else 1.0)
-    for _ in range(REFINEMENTS):
+    for round_ in range(REFINEMENTS + 1):
         solved = _solve_path(graph, path, stroke)
         lost = solved[-1]
         lost = lost[np.abs(path.x[lost] - path.x[lost - 1]) > shortest]
-        if not len(lost):
+        if not len(lost) or round_ == REFINEMENTS:
             break
         path = refined(path, lost)
     return _machine_motion(graph, graph.groups, *solved[:-1], path, motion)
