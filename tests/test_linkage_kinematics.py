@@ -284,3 +284,17 @@ def test_a_stroke_input_drives_a_cylinder_loader_arm():
     assert np.allclose(motion.links["rod"].angle, motion.links["barrel"].angle, atol=1e-12)
     assert np.abs(motion.linkage.strokes[0][0] - strokes).max() < 1e-12
     assert np.abs(motion.linkage.strokes[0][1] - 0.1).max() < 1e-12
+
+
+def test_the_input_path_runs_from_the_drawn_angle_the_short_way_in_steps_of_at_most_2_deg():
+    """Drawn at 350 deg, sampled at 10 and 40 deg: the path starts at -10 deg (350 the short way
+    to 10), reaches 10 in 10 steps of 2 deg and 40 in 15 more; the samples are exactly on it."""
+    from linkstress.kinematics.linkage.sweep import input_path, refined
+
+    path = input_path(math.radians(350.0), np.radians([10.0, 40.0]), math.radians(2.0), periodic=True)
+    assert np.degrees(path.x[0]) == pytest.approx(-10.0)
+    assert path.rows.tolist() == [10, 25] and path.x[path.rows].tolist() == np.radians([10.0, 40.0]).tolist()
+    assert np.abs(np.diff(np.degrees(path.x))).max() <= 2.0 + 1e-12
+    assert path.step_of.tolist() == [-1] + [0] * 10 + [1] * 15
+    finer = refined(path, np.array([25]))
+    assert finer.rows.tolist() == [10, 26] and np.degrees(finer.x[25]) == pytest.approx(39.0)
