@@ -9,7 +9,7 @@ import pytest
 
 from linkstress.analysis import run_analysis
 from linkstress.dynamics.linkage_forces import power_balance
-from linkstress.kinematics.linkage.examples import jansen_leg, loader_arm, triad_six_bar, whitworth
+from linkstress.kinematics.linkage.examples import jansen_leg, loader_arm, slotted_arm, triad_six_bar, whitworth
 
 from linkage_scenes import scene_of_graph
 
@@ -20,6 +20,8 @@ CASES = {
     "Whitworth with friction": (whitworth, TURN,
                                 "[loads]\ngravity_m_s2 = [0.0, -9.81]\n[loads.friction]\ncollar = 0.2\nram = 0.15\n"
                                 "[loads.couples]\nrod = 1.5\n"),
+    "slotted coupler with friction": (slotted_arm, TURN,
+                                      "[loads]\n[loads.friction]\npad = 0.25\n[loads.couples]\narm = -2.0\n"),
     "triad six-bar": (lambda: triad_six_bar(20.0),
                       "input_angle_deg = {start = 20.0, stop = 36.0, num = 33}\ninput_speed_rad_s = -4.0",
                       "[loads]\ngravity_m_s2 = [0.0, -9.81]\n[loads.couples]\nplate = -0.8\n"),

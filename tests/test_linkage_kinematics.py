@@ -13,7 +13,7 @@ from scipy.optimize import fsolve
 from linkstress.kinematics import angle_motion
 from linkstress.kinematics.linkage import Input, Joint, LinkageGraph, Slider, solve_linkage
 from linkstress.kinematics.linkage.examples import (
-    JANSEN_CM, circles, jansen_leg, jansen_pose, loader_arm, triad_six_bar, whitworth,
+    JANSEN_CM, circles, jansen_leg, jansen_pose, loader_arm, slotted_arm, triad_six_bar, whitworth,
 )
 from linkstress.kinematics.motion import stroke_motion
 
@@ -150,6 +150,8 @@ def test_a_triad_matches_scipy_on_its_loop_equations():
 MECHANISMS = {
     "Jansen's leg": (lambda: jansen_leg(0.0), lambda: angle_motion(np.linspace(0, 350, 36), 2.0, 0.7), 1e-6),
     "Whitworth": (whitworth, lambda: angle_motion(np.linspace(0, 350, 36), 3.0, -1.0), 1e-6),
+    "slotted coupler (RRP on a turning guide)": (slotted_arm, lambda: angle_motion(np.linspace(0, 355, 72), 3.0, 1.0),
+                                                 1e-6),
     "triad six-bar": (lambda: triad_six_bar(20.0), lambda: angle_motion(np.linspace(20, 34, 15), 5.0, 2.0), 1e-6),
     "loader arm": (loader_arm, lambda: stroke_motion(np.linspace(0.32, 0.58, 14), 0.05, 0.3), 1e-6),
 }

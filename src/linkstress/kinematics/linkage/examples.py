@@ -117,3 +117,21 @@ def loader_arm(stroke: float = 0.45) -> LinkageGraph:
     pins = [("frame:0", "arm:0"), ("frame:1", "barrel:0")]
     sliders = (Slider(Joint("arm", 1), "barrel", (0, 1), "rod"),)
     return LinkageGraph("loader", links, "frame", _pins(pins), sliders, Input(slider=0))
+
+
+def slotted_arm(crank_deg: float = 40.0) -> LinkageGraph:
+    """A crank-rocker (crank 0.04 m about O2, coupler 0.15, rocker 0.1 about O4 = (0.12, 0)) whose
+    coupler is slotted: an ``arm`` pivoted at O6 = (0.05, 0.16) holds a block ``pad`` at its end E
+    that slides along the coupler's line (an RRP dyad on a moving, turning guide)."""
+    o2, o4, o6 = np.zeros(2), np.array([0.12, 0.0]), np.array([0.05, 0.16])
+    t = math.radians(crank_deg)
+    a = 0.04 * np.array([math.cos(t), math.sin(t)])
+    b = circles(a, 0.15, o4, 0.1, lambda p, q: p if p[1] > q[1] else q)
+    u = (b - a) / math.hypot(*(b - a))
+    e = a + u * (u @ (o6 - a)) + u * 0.06  # a point of the slot 0.06 m past the foot from O6
+    links = {"ground": [o2, o4, o6], "crank": [o2, a], "coupler": [a, b], "rocker": [o4, b], "arm": [o6, e],
+             "pad": [e]}
+    pins = [("ground:0", "crank:0"), ("crank:1", "coupler:0"), ("coupler:1", "rocker:1"), ("ground:1", "rocker:0"),
+            ("ground:2", "arm:0")]
+    return LinkageGraph("slotted", links, "ground", _pins(pins), (Slider(Joint("arm", 1), "coupler", (0, 1), "pad"),),
+                        Input("crank", 0, 1))
