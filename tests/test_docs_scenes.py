@@ -16,8 +16,9 @@ from linkstress.scene import load_scene
 from linkstress.scene.keys import RANGES
 from linkstress.scene.links import LINK_KEYS, MATERIAL_KEYS
 from linkstress.scene.loads import ANALYSIS_KEYS, COUPLE_KEYS, FORCE_KEYS, LOAD_KEYS
+from linkstress.scene.linkage import INPUT_KEYS, LINKAGE_KEYS, SLIDER_KEYS
 from linkstress.scene.mechanisms import MECHANISM_KEYS, ROLE_KEYS
-from linkstress.scene.motion import EXPRESSION_KEYS, MOTION_KEYS, RANGE_KEYS
+from linkstress.scene.motion import EXPRESSION_KEYS, MOTION_KEYS, RANGE_KEYS, STROKE_KEYS
 from linkstress.scene.reader import TOP_KEYS
 
 REPO = Path(__file__).resolve().parents[1]
@@ -30,8 +31,8 @@ SECTIONS = {
     "Top level": TOP_KEYS,
     "`[materials.NAME]`": MATERIAL_KEYS,
     "`[links.NAME]`": LINK_KEYS,
-    "`[mechanisms.NAME]`": MECHANISM_KEYS + ROLE_KEYS,
-    "`[motion]`": MOTION_KEYS + RANGE_KEYS + EXPRESSION_KEYS,
+    "`[mechanisms.NAME]`": MECHANISM_KEYS + ROLE_KEYS + LINKAGE_KEYS + INPUT_KEYS + SLIDER_KEYS,
+    "`[motion]`": MOTION_KEYS + RANGE_KEYS + EXPRESSION_KEYS + STROKE_KEYS,
     "`[loads]`": LOAD_KEYS + COUPLE_KEYS + FORCE_KEYS,
     "`[analysis]`": ANALYSIS_KEYS,
 }
@@ -72,12 +73,13 @@ def test_every_table_of_the_scene_has_a_section():
     assert {heading.strip("`[]").split(".")[0] for heading in SECTIONS if heading != "Top level"} == tables
 
 
-def test_the_docs_have_three_example_scenes():
-    assert len(examples(DOC.read_text())) == 3
+def test_the_docs_have_four_example_scenes():
+    assert len(examples(DOC.read_text())) == 4
 
 
 @pytest.mark.parametrize(("index", "title"), [(0, "Seed ANSYS four-bar"), (1, "Six-bar, two loops"),
-                                                 (2, "Norton's four-bar, problem 4-1 g")])
+                                                 (2, "Norton's four-bar, problem 4-1 g"),
+                                                 (3, "Crank-shaper quick-return")])
 def test_each_example_scene_reads(tmp_path, index, title):
     text = examples(DOC.read_text())[index]
     shutil.copy(SEED / "ansys_four_bars.dxf", tmp_path)

@@ -165,3 +165,21 @@ def test_a_couple_at_a_joint_uses_it(tmp_path):
     scene = load_scene(tmp_path / "scene.toml")
     assert used_joints(scene, "coupler") == (0, 1, 3)
     assert 1 in {k for m in scene_link_members(scene, "coupler", (0, 3)) for k in m.joints}
+
+
+def test_a_linkage_uses_the_joints_its_pins_sliders_and_input_name(tmp_path):
+    """A four-bar written as a linkage whose coupler lists a fourth joint no pin names (the centre of
+    a lightening hole): the coupler's used joints are its two pins; the crank's its input pivot and pin."""
+    from linkage_scenes import link_table, linkage_scene
+
+    links = (
+        link_table("ground", [[0.0, 0.0], [0.2, 0.0]])
+        + link_table("crank", [[0.0, 0.0], [0.05, 0.0]], 0.1, (0.025, 0.0), 1e-4)
+        + link_table("coupler", [[0.05, 0.0], [0.22, 0.12], [0.13, 0.03]], 0.2, (0.08, 0.0), 1e-3)
+        + link_table("rocker", [[0.2, 0.0], [0.22, 0.12]], 0.1, (0.06, 0.0), 1e-4)
+    )
+    pins = [["ground:0", "crank:0"], ["crank:1", "coupler:0"], ["coupler:1", "rocker:1"], ["ground:1", "rocker:0"]]
+    scene = linkage_scene(tmp_path, links, pins, "input_angle_deg = 0.0")
+    assert used_joints(scene, "coupler") == (0, 1)
+    assert used_joints(scene, "crank") == (0, 1)
+    assert used_joints(scene, "rocker") == (0, 1)

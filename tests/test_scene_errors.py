@@ -78,7 +78,7 @@ CASES = [
     ("joints = [[0.0, 0.0], [0.07, 0.0]]", "joints = [[0.0, 0.0], [0.07]]", "links.coupler.joints[1]: must be a pair [x, y] m"),
     ("joints = [[0.0, 0.0], [0.07, 0.0]]", 'joints = [[0.0, 0.0], [0.07, 0.0]]\nlayer = "coupler"',
      "links.coupler.layer: only for a sketch link; bare joints are in metres"),
-    ('type = "four-bar"', 'type = "fourbar"', "mechanisms.main.type: must be one of 'four-bar', 'slider-crank', got 'fourbar'"),
+    ('type = "four-bar"', 'type = "fourbar"', "mechanisms.main.type: must be one of 'four-bar', 'slider-crank', 'linkage', got 'fourbar'"),
     ('type = "four-bar"', 'type = "four-bar"\nbranch = "closed"', "mechanisms.main.branch: must be one of 'open', 'crossed'"),
     ('type = "four-bar"', 'type = "four-bar"\noffset_m = 0.01', "mechanisms.main.offset_m: only for type = \"slider-crank\""),
     ('type = "four-bar"', 'type = "four-bar"\nphase_deg = 10.0', "mechanisms.main.phase_deg: only for a loop with driven_by"),

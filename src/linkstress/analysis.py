@@ -14,6 +14,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.dynamics.linkage_forces import moving_contacts
 from linkstress.dynamics.machine_forces import MachineForces, machine_forces
 from linkstress.dynamics.section_stress import StressSummary, links_section_stresses
 from linkstress.errors import SceneError
@@ -74,7 +75,9 @@ def plan_for(scene: Scene) -> Plan:
     profiled = [n for n in moving if scene.links[n].profile is not None and scene.links[n].material is not None]
     # A slider block's frame is its one joint: no member between two joints to section.
     sliders = [n for n in profiled if len(set(scene.links[n].frame_joints)) == 1]
-    stressable = [n for n in profiled if n not in sliders]
+    # A linkage's guide carries its slider's contact at a point that moves along it.
+    guides = [n for n in profiled if scene.linkage is not None and n in moving_contacts(scene.linkage)]
+    stressable = [n for n in profiled if n not in sliders and n not in guides]
     asked = scene.analysis
     notes = []
     if asked is None:
@@ -100,12 +103,22 @@ def plan_for(scene: Scene) -> Plan:
                     f"analysis.validate: link {name!r} is a slider, with one joint: there is no member between two "
                     "joints to compare along; leave it out"
                 )
+            if name in guides:
+                raise SceneError(
+                    f"analysis.validate: link {name!r} guides a slider whose contact moves along it; its section "
+                    "stresses are not computed, so there is nothing to compare: leave it out"
+                )
             if name not in stressable:
                 raise SceneError(f"analysis.validate: link {name!r} needs a sketch, a thickness and a material")
         stations = asked.stations or DEFAULT_STATIONS
     for name in moving:
         if name in sliders and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: a slider, with one joint, has no member between two to section")
+        elif name in guides and (asked is None or asked.stresses):
+            notes.append(
+                f"no section stresses for {name}: a slider's block slides along it, and a contact that moves along a "
+                "link is not sectioned (its joint forces and the block's force on it are in the forces)"
+            )
         elif name not in stressable and (asked is None or asked.stresses):
             notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
     body_load_near_holes = asked is not None and asked.body_load_near_holes
@@ -199,11 +212,11 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
 
 def used_joints(scene: Scene, name: str) -> tuple[int, ...]:
     """The joints of link ``name`` that ``scene`` uses, in order: those its mechanisms pin (the axis
-    joints of every role the link plays), those its couples act at, those whose pin hole holds one of
+    joints of every role the link plays; a linkage's pins, sliders and input), those its couples act at, those whose pin hole holds one of
     its point forces, and those its named members join. Its other joints (the centre of a lightening
     hole, taken as a joint by the sketch) end no member: their holes are plain holes."""
     link = scene.links[name]
-    used = {k for loop in scene.machine.loops for role in loop.roles.values() if role.link == name for k in role.joints}
+    used = scene.machine.used_joints(name)
     used |= {c.at_joint for c in scene.loads.couples if c.link == name}
     used |= {k for pair in link.members or () for k in pair}
     profile = link.profile

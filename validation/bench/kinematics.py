@@ -14,6 +14,11 @@ It prints figures and asserts nothing about time (machines are shared and noisy)
   same four-bar's joint positions in a plain Python loop (``math`` module) and in one vectorised
   numpy pass.
 - A machine of four chained loops over 3,600 positions (target: under 50 ms).
+- Theo Jansen's leg as a ``type = "linkage"`` (``kinematics.linkage.examples``): every link's
+  angle, angular velocity and acceleration over ``--positions`` crank angles, against pylinkage's
+  compiled positions-only sweep of the same leg (a crank and five RRR dyads): the target is
+  linkstress at least as fast. And the textbook four-bar written as a linkage against the
+  dedicated four-bar path: the target is within 2 x.
 """
 
 from __future__ import annotations
@@ -30,6 +35,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.kinematics import Drive, FourBar, Loop, Machine, Role, angle_motion, solve_fourbar, solve_machine
+from linkstress.kinematics.linkage import Input, Joint, LinkageGraph, solve_linkage
+from linkstress.kinematics.linkage.examples import JANSEN_CM, jansen_leg, jansen_pose
 from linkstress.tables import format_table
 from linkstress.threads import cores
 from linkstress.validation.bench.timing import best_time
@@ -38,6 +45,10 @@ TARGET_RATIO = 2.0
 """linkstress with rates against pylinkage's positions only."""
 
 MACHINE_TARGET_S = 0.05
+JANSEN_TARGET_RATIO = 1.0
+"""linkstress's Jansen leg with rates against pylinkage's positions only."""
+LINKAGE_FOURBAR_TARGET = 2.0
+"""A four-bar written as a linkage against the dedicated four-bar path: at most this many times slower."""
 
 TEXTBOOK = FourBar((0.0, 0.0), (0.06, 0.0), 0.08, 0.08, 0.09, "open")
 """Norton, Design of Machinery, problem 4-1 row g: ground 6, crank 8, coupler 8, output 9 cm."""
@@ -103,6 +114,47 @@ def pylinkage_status() -> str:
     if importlib.util.find_spec("numba") is None:
         return "pylinkage installed without numba (its uncompiled path): pip install numba to measure it"
     return ""
+
+
+def pylinkage_jansen(n: int) -> Callable[[], NDArray[np.float64]]:
+    """pylinkage's compiled sweep of Jansen's leg over ``n`` crank steps of 2 pi / n from 0: a
+    crank and five RRR dyads (the rigid triangles' third points are dyads on two of their corners),
+    each starting at its drawn position. Returns (n, 8, 2) joint positions [m]."""
+    from pylinkage import Crank, Ground, RRRDyad
+    from pylinkage.simulation import Linkage
+
+    p = jansen_pose(0.0)
+    L = {k: v * 0.01 for k, v in JANSEN_CM.items()}
+    o, b = Ground(*p["O"], name="O"), Ground(*p["B"], name="B")
+    crank = Crank(anchor=o, radius=L["m"], angular_velocity=2 * math.pi / n, name="A")
+    c = RRRDyad(crank.output, b, L["j"], L["b"], x=p["C"][0], y=p["C"][1], name="C")
+    d = RRRDyad(crank.output, b, L["k"], L["c"], x=p["D"][0], y=p["D"][1], name="D")
+    e = RRRDyad(b, c, L["d"], L["e"], x=p["E"][0], y=p["E"][1], name="E")
+    f = RRRDyad(e, d, L["f"], L["g"], x=p["F"][0], y=p["F"][1], name="F")
+    g = RRRDyad(f, d, L["h"], L["i"], x=p["G"][0], y=p["G"][1], name="G")
+    leg = Linkage([o, b, crank, c, d, e, f, g], name="jansen")
+    leg.step_fast(iterations=1)  # compiles
+    return lambda: leg.step_fast(iterations=n)
+
+
+def jansen_agreement(trajectory: NDArray[np.float64], n: int) -> float:
+    """Largest distance [m] between pylinkage's foot and linkstress's, over the first 1,000 steps
+    (pylinkage's row k is the crank turned k + 2 steps from its start: compared so)."""
+    count = min(n, 1000)
+    theta = np.arange(2, count + 2) * 360.0 / n
+    ours = solve_linkage(jansen_leg(0.0), angle_motion(theta)).linkage.joints["leg:2"].position
+    feet = trajectory[:count, -1]
+    return float(np.nanmax(np.abs(feet - ours)))
+
+
+def linkage_fourbar(linkage: FourBar) -> LinkageGraph:
+    """``linkage`` written as a ``type = "linkage"``, drawn at crank angle 0 on its branch."""
+    pose = solve_fourbar(linkage, [0.0]).joints
+    a, b = pose["A"].position[0], pose["B"].position[0]
+    links = {"ground": [linkage.o2, linkage.o4], "crank": [linkage.o2, a], "coupler": [a, b], "output": [linkage.o4, b]}
+    pins = [("ground", 0, "crank", 0), ("crank", 1, "coupler", 0), ("coupler", 1, "output", 1), ("ground", 1, "output", 0)]
+    return LinkageGraph("main", links, "ground", tuple((Joint(a, i), Joint(b, j)) for a, i, b, j in pins), (),
+                        Input("crank", 0, 1))
 
 
 def four_loop_machine() -> Machine:
@@ -197,6 +249,43 @@ def main(argv: list[str] | None = None) -> None:
         print(f"linkstress / pylinkage: {by_wall:.2f} by wall time, target {TARGET_RATIO:g}: "
               f"{'met' if by_wall >= TARGET_RATIO else 'NOT met'}; {by_cpu:.2f} by CPU time (what one free "
               f"core would show); pylinkage's B within {drift:.1e} m of linkstress's")
+
+    leg = jansen_leg(0.0)
+    motion = angle_motion(np.degrees(theta), omega, alpha)
+    works = {"jansen": lambda: solve_linkage(leg, motion)}
+    names = {"jansen": f"linkstress linkage ({cores()} threads): angle, omega, alpha of every link"}
+    if not missing:
+        works["pylinkage"] = pylinkage_jansen(n)
+        drift = jansen_agreement(works["pylinkage"](), n)
+        names["pylinkage"] = f"pylinkage {metadata.version('pylinkage')} Linkage.step_fast (numba): joint positions only"
+    as_linkage = linkage_fourbar(TEXTBOOK)
+    as_loop = Machine({"ground": [TEXTBOOK.o2, TEXTBOOK.o4], "crank": [[0, 0], [TEXTBOOK.crank, 0]],
+                       "coupler": [[0, 0], [TEXTBOOK.coupler, 0]], "output": [[0, 0], [TEXTBOOK.output, 0]]},
+                      (Loop("main", "four-bar", Role("crank"), Role("coupler"), Role("ground"), output=Role("output")),))
+    works["four-bar"] = lambda: solve_machine(as_loop, motion)
+    works["four-bar linkage"] = lambda: solve_linkage(as_linkage, motion)
+    names["four-bar"] = "the same four-bar by the dedicated path (solve_machine of a four-bar loop)"
+    names["four-bar linkage"] = "the same four-bar written as a linkage (solve_linkage)"
+    times = best_times(works, args.repeat)
+    table = [
+        (names[key], f"{n:,}", f"{times[key][0] * 1e3:.1f}", f"{times[key][1] * 1e3:.1f}", f"{n / times[key][0] / 1e6:.3g}")
+        for key in works
+    ]
+    print()
+    print(format_table(("Jansen's leg and a four-bar as linkages", "positions", "best [ms]", "CPU [ms]", "M positions/s"),
+                       table))
+    if missing:
+        print(missing)
+    else:
+        by_wall = times["pylinkage"][0] / times["jansen"][0]
+        by_cpu = times["pylinkage"][1] / times["jansen"][1]
+        print(f"Jansen leg, linkstress / pylinkage: {by_wall:.2f} by wall time, target {JANSEN_TARGET_RATIO:g}: "
+              f"{'met' if by_wall >= JANSEN_TARGET_RATIO else 'NOT met'}; {by_cpu:.2f} by CPU time; pylinkage's foot "
+              f"within {drift:.1e} m of linkstress's")
+    slower = times["four-bar linkage"][0] / times["four-bar"][0]
+    print(f"four-bar as a linkage / dedicated four-bar path: {slower:.2f} x by wall time, "
+          f"{times['four-bar linkage'][1] / times['four-bar'][1]:.2f} x by CPU time, target at most "
+          f"{LINKAGE_FOURBAR_TARGET:g} x: {'met' if slower <= LINKAGE_FOURBAR_TARGET else 'NOT met'}")
 
     machine = four_loop_machine()
     motion = angle_motion(np.arange(3600) / 10.0, 100.0, 18.0)

@@ -42,6 +42,13 @@ class MechanismForces:
     torque_name: str | None
     driving_torque: NDArray[np.float64] | None
     driving_force: NDArray[np.float64] | None = None
+    linkage: object | None = None
+    """A linkage's pins and sliders (``linkage_forces.LinkageForces``); None for a loop. Its
+    ``forces`` are named by pin: "pin crank:1-rod:0" the force of the first joint's link on the
+    second's ("pin A:i-B:j-C:k on B:j" for each joint but the first of a pin of three or more),
+    "slider crank:1 on lever" the guide's push on the block."""
+    force_name: str = "P14"
+    """What the text and HTML reports call ``driving_force``."""
 
 
 @dataclass(frozen=True)
@@ -65,7 +72,12 @@ class _Contact:
 
 
 def machine_forces(scene: Scene, motion: MachineMotion) -> MachineForces:
-    """Newton-Euler forces of ``scene``'s machine over the sweep ``motion``."""
+    """Newton-Euler forces of ``scene``'s machine over the sweep ``motion`` (a linkage's:
+    ``linkage_forces``)."""
+    if scene.linkage is not None:
+        from linkstress.dynamics.linkage_forces import linkage_forces
+
+        return linkage_forces(scene, motion)
     builder = _AssemblyBuilder(scene, motion)
     assembly = builder.assembly()
     solution = solve_forces(assembly, motion.feasible)

@@ -7,7 +7,10 @@ Each moving body k gives three equations (Norton, Design of Machinery, eqs. 11.1
 The unknowns are the pin forces (two per pin), the reaction of each slide (a force normal to its
 line and a couple), the torque of each actuator and the force of each force actuator. For a four-bar this is exactly Norton's 9 x 9
 system (eq. 11.9); for a slider-crank his eq. 11.14 with Coulomb friction F = -mu |N| sign(v) on the
-slide. All positions are assembled at once and solved as a batch; a position where the system is
+slide. A slide's guide may be a moving body (a block in a slotted lever): it takes the opposite
+force at the same point and the opposite couple, and friction follows the relative sliding
+velocity. A pin joining k bodies is k - 1 ``Pin``s, each between one of them and the same other
+body (``pins_of``): the pin itself, massless, passes the rest to that body. All positions are assembled at once and solved as a batch; a position where the system is
 singular (a toggle, where the joint forces are unbounded) is reported, not solved.
 """
 
@@ -54,10 +57,12 @@ class Pin:
 
 @dataclass(frozen=True)
 class Slide:
-    """A prismatic joint between ``body`` and the ground along the unit ``direction`` (2,).
+    """A prismatic joint between ``body`` and its ``guide`` (GROUND: the frame) along the unit
+    ``direction`` (2,) or (P, 2).
 
-    The ground pushes ``body`` with N n + f u at ``position`` (P, 2), n = k x u, plus a couple;
-    with ``friction`` mu > 0, f = -mu |N| sign(velocity) for ``velocity`` (P,) [m/s] along u.
+    The guide pushes ``body`` with N n + f u at ``position`` (P, 2), n = k x u, plus a couple, and
+    takes the opposite; with ``friction`` mu > 0, f = -mu |N| sign(velocity) for ``velocity`` (P,)
+    [m/s], the body's sliding velocity along u relative to the guide.
     """
 
     name: str
@@ -66,6 +71,7 @@ class Slide:
     position: NDArray[np.float64]
     velocity: NDArray[np.float64]
     friction: float = 0.0
+    guide: int = GROUND
 
 
 @dataclass(frozen=True)
@@ -79,13 +85,14 @@ class Actuator:
 
 @dataclass(frozen=True)
 class ForceActuator:
-    """An unknown force P [N] on ``body`` along the unit ``direction`` (2,) at ``position`` (P, 2)
-    (a cylinder pushing a slider), reacting on the ground."""
+    """An unknown force P [N] on ``body`` along the unit ``direction`` (2,) or (P, 2) at ``position``
+    (P, 2) (a cylinder pushing a slider), reacting on ``other`` (GROUND: the frame) at the same point."""
 
     name: str
     body: int
     direction: NDArray[np.float64]
     position: NDArray[np.float64]
+    other: int = GROUND
 
 
 @dataclass(frozen=True)
@@ -136,6 +143,13 @@ class ForceSolution:
     torques: dict[str, NDArray[np.float64]]
     actuator_forces: dict[str, NDArray[np.float64]]
     solved: NDArray[np.bool_]
+
+
+def pins_of(name: str, bodies: list[int], position: NDArray[np.float64]) -> tuple[Pin, ...]:
+    """A pin at ``position`` (P, 2) joining ``bodies`` (two or more; GROUND allowed, first if
+    present): one ``Pin`` "NAME|k" per body but the first, its force on that body from the first."""
+    first, *rest = sorted(bodies, key=lambda b: b != GROUND)
+    return tuple(Pin(f"{name}|{k}", body, first, position) for k, body in enumerate(rest))
 
 
 def _cross(r: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -252,7 +266,10 @@ def _matrix(assembly: Assembly, n_pos: int, scale: float, friction_sign) -> NDAr
         n = np.stack([-u[:, 1], u[:, 0]], axis=-1)
         along = n + _friction_coefficients(slide, friction_sign[:, s])[:, None] * u
         force_columns(slide.body, 1.0, col, None, slide.position, along, None)
+        force_columns(slide.guide, -1.0, col, None, slide.position, along, None)
         a[:, 3 * slide.body + 2, col + 1] += 1.0  # the guide's couple, solved for as C / scale
+        if slide.guide != GROUND:
+            a[:, 3 * slide.guide + 2, col + 1] -= 1.0
         col += 2
     for actuator in assembly.actuators:
         a[:, 3 * actuator.body + 2, col] += 1.0
@@ -262,6 +279,7 @@ def _matrix(assembly: Assembly, n_pos: int, scale: float, friction_sign) -> NDAr
     for actuator in assembly.force_actuators:
         u = np.broadcast_to(np.asarray(actuator.direction, float), (n_pos, 2))
         force_columns(actuator.body, 1.0, col, None, actuator.position, u, None)
+        force_columns(actuator.other, -1.0, col, None, actuator.position, u, None)
         col += 1
     return a
 

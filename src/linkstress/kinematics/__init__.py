@@ -2,7 +2,8 @@
 
 - ``fourbar.FourBar`` / ``solve_fourbar`` and ``slider_crank.SliderCrank`` / ``solve_slider_crank``:
   one loop, closed form, one call for a whole sweep of crank angles.
-- ``machine.Machine``: loops chained by a power graph; ``solve.solve_machine`` sweeps it.
+- ``machine.Machine``: loops chained by a power graph; ``solve.solve_machine`` sweeps it (and a
+  ``linkage.LinkageGraph``: any one-DOF linkage of pins and sliders, ``linkage.solve_linkage``).
 - ``linkage_class``: Grashof class, Barker type, toggles, limit positions, feasible input ranges.
 - ``crossings``: steps of a sweep that pass a loop's toggle or change point (``Crossing``).
 - ``blocks``: a loop's sweep solved a block of positions at a time, the blocks on every core.

@@ -132,6 +132,10 @@ class Machine:
                 return loop
         raise KeyError(name)
 
+    def used_joints(self, name: str) -> set[int]:
+        """The joints of link ``name`` the loops use: the axis joints of every role it plays."""
+        return {k for loop in self.loops for role in loop.roles.values() if role.link == name for k in role.joints}
+
     def axis(self, role: Role) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The drawn joints (2,), (2,) [m] at the two ends of ``role``'s axis."""
         joints = self.links[role.link]

@@ -29,7 +29,9 @@ class InputMotion:
     """The main crank's motion at P positions.
 
     angle_deg (P,) [deg] as given; angle (P,) [rad]; speed (P,) [rad/s]; acceleration (P,)
-    [rad/s^2]; time (P,) [s] when the motion is a function of time, else None.
+    [rad/s^2]; time (P,) [s] when the motion is a function of time, else None. A linkage driven by
+    a slider's stroke has ``quantity`` "stroke": then ``angle_deg`` and ``angle`` both hold the
+    stroke [m], ``speed`` [m/s] and ``acceleration`` [m/s^2] its rates.
     """
 
     angle_deg: FloatArray
@@ -37,6 +39,11 @@ class InputMotion:
     speed: FloatArray
     acceleration: FloatArray
     time: FloatArray | None = None
+    quantity: str = "angle"
+
+    @property
+    def is_stroke(self) -> bool:
+        return self.quantity == "stroke"
 
     @property
     def n_positions(self) -> int:
@@ -55,6 +62,24 @@ def angle_motion(
     w = _per_position(speed, n, f"{where}.input_speed_rad_s")
     al = _per_position(acceleration, n, f"{where}.input_acceleration_rad_s2")
     return InputMotion(angle_deg, np.deg2rad(angle_deg), w, al)
+
+
+def stroke_motion(strokes_m: ArrayLike, speed: ArrayLike = 0.0, acceleration: ArrayLike = 0.0,
+                  where: str = "motion") -> InputMotion:
+    """A slider's strokes [m] with speeds [m/s] and accelerations [m/s^2]: scalars or one per stroke."""
+    stroke = _finite_vector(strokes_m, f"{where}.input_stroke_m")
+    n = stroke.shape[0]
+    v = _per_position(speed, n, f"{where}.input_speed_m_s")
+    a = _per_position(acceleration, n, f"{where}.input_acceleration_m_s2")
+    return InputMotion(stroke, stroke.copy(), v, a, quantity="stroke")
+
+
+def timed_stroke(stroke_m_of_t: Expression, time: ArrayLike) -> InputMotion:
+    """A slider's stroke [m] as a function of time [s], its rates from exact derivatives."""
+    t = _finite_vector(time, f"{stroke_m_of_t.where} time")
+    value, rate, curvature = stroke_m_of_t.jet(t)
+    return InputMotion(np.array(value), np.array(value), np.asarray(rate, float), np.asarray(curvature, float), t,
+                       quantity="stroke")
 
 
 def angle_range(start: float, stop: float, num: int) -> FloatArray:

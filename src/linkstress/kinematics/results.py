@@ -12,9 +12,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from linkstress.kinematics.linkage.sweep import LinkageMotion
 
 FloatArray = NDArray[np.float64]
 
@@ -155,6 +159,8 @@ class MachineMotion:
     link by scene name (grounds with zero motion); ``loops`` every loop by mechanism name.
     ``crossings``: (row, message) for every step into that row that passes a loop's toggle or
     change point between feasible positions (the row stays feasible; ``warnings`` per position).
+    ``linkage``: for a ``type = "linkage"`` mechanism (no loops), every joint's motion and the
+    groups it was solved in (``linkage.sweep.LinkageMotion``); None for loops.
     """
 
     input_angle: FloatArray
@@ -166,6 +172,7 @@ class MachineMotion:
     links: dict[str, LinkMotion]
     loops: dict[str, LoopMotion]
     crossings: tuple[tuple[int, str], ...] = ()
+    linkage: LinkageMotion | None = None
 
     @cached_property
     def warnings(self) -> tuple[tuple[str, ...], ...]:

@@ -1,4 +1,5 @@
-"""Sweep a whole machine: every loop in solving order, each one call over all positions."""
+"""Sweep a whole machine: every loop in solving order, each one call over all positions; a
+``type = "linkage"`` mechanism by its groups (``kinematics.linkage``)."""
 
 from __future__ import annotations
 
@@ -8,14 +9,17 @@ import numpy as np
 
 from linkstress.kinematics.crossings import describe, wrapped_steps
 from linkstress.kinematics.fourbar import FourBar, solve_fourbar
+from linkstress.kinematics.linkage.graph import LinkageGraph
+from linkstress.kinematics.linkage.sweep import solve_linkage
 from linkstress.kinematics.machine import Loop, Machine
 from linkstress.kinematics.motion import InputMotion
 from linkstress.kinematics.results import LinkMotion, LoopMotion, MachineMotion, fixed_link
 from linkstress.kinematics.slider_crank import solve_slider_crank
 
 
-def solve_machine(machine: Machine, motion: InputMotion) -> MachineMotion:
-    """Kinematics of every link and loop of ``machine`` over the input ``motion`` of its main crank.
+def solve_machine(machine: Machine | LinkageGraph, motion: InputMotion) -> MachineMotion:
+    """Kinematics of every link and loop of ``machine`` over the input ``motion`` of its main crank
+    (a linkage: ``linkage.sweep.solve_linkage``).
 
     A driven loop's crank angle is its driver's axis angle (theta2 or theta4) plus
     ``machine.drive_offset``; its speed and acceleration are the driver's. A position is feasible
@@ -27,6 +31,8 @@ def solve_machine(machine: Machine, motion: InputMotion) -> MachineMotion:
     the crossing's message in ``MachineMotion.warnings``. A driven crank's turn per step is its
     driver's crank's, or its driver's output's taken the short way round.
     """
+    if isinstance(machine, LinkageGraph):
+        return solve_linkage(machine, motion)
     n = motion.n_positions
     loops: dict[str, LoopMotion] = {}
     links: dict[str, LinkMotion] = {}

@@ -96,6 +96,9 @@ def link_rings(result: AnalysisResult, name: str) -> list[NDArray[np.float64]]:
     if link.profile is not None and frame[0] != frame[1]:
         outline = link.profile.local_outline(*frame)
         return [np.asarray(r.coords) for r in [outline.exterior, *outline.interiors]]
+    if link.profile is not None and result.scene.linkage is not None:  # a block, along its slider's line
+        outline = link.profile.outline
+        return [link.to_member(np.asarray(r.coords)) for r in [outline.exterior, *outline.interiors]]
     return [link.to_member(link.joints)]
 
 
@@ -144,11 +147,10 @@ def mechanism_sweep_figure(result: AnalysisResult, positions: list[int]) -> Figu
             ax.plot(xy[:, 0], xy[:, 1], color=colour, lw=0.8, alpha=float(shade),
                     label=name if k == positions[-1] else None)
     ok = result.feasible
-    for loop in result.kinematics.loops.values():
-        for joint in loop.joints.values():
-            path = joint.position[ok]
-            if np.ptp(path, axis=0).max() > 0:
-                ax.plot(path[:, 0], path[:, 1], ":", color="0.4", lw=0.8)
+    for position in joint_paths(result).values():
+        path = position[ok]
+        if np.ptp(path, axis=0).max() > 0:
+            ax.plot(path[:, 0], path[:, 1], ":", color="0.4", lw=0.8)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m], ground frame")
     ax.set_ylabel("y [m], ground frame")
@@ -164,6 +166,14 @@ def joint_forces(result: AnalysisResult) -> list[tuple[str, str, NDArray[np.floa
     link i on link j), ``joint`` "loop.NAME" of the joint it acts at (``joint_paths``), ``force``
     (P, 2) [N], ground frame."""
     arrows = []
+    linkage = result.kinematics.linkage
+    if linkage is not None:
+        detail = result.forces.mechanisms[linkage.graph.name].linkage
+        for pin, forces in zip(detail.pins, detail.forces):
+            moving = [j for j in pin if not j.startswith(linkage.graph.ground + ":")]
+            label = linkage.graph.pin_label(tuple(linkage.graph.all_pins[detail.pins.index(pin)]))
+            arrows += [(f"{label} on {j}" if len(pin) > 2 else label, j, forces[j]) for j in moving[-1:] if j in forces]
+        return arrows
     for loop_name, mech in result.forces.mechanisms.items():
         joints = result.kinematics.loops[loop_name].joints
         at = {"F12": "O2", "F32": "A", "F43": "B", "F14": "O4" if "O4" in joints else "B"}
@@ -172,7 +182,9 @@ def joint_forces(result: AnalysisResult) -> list[tuple[str, str, NDArray[np.floa
 
 
 def joint_paths(result: AnalysisResult) -> dict[str, NDArray[np.float64]]:
-    """Every loop's joints as "loop.NAME": position (P, 2) [m], ground frame."""
+    """Every loop's joints as "loop.NAME" (a linkage's: "LINK:i"): position (P, 2) [m], ground frame."""
+    if result.kinematics.linkage is not None:
+        return {name: joint.position for name, joint in result.kinematics.linkage.joints.items()}
     return {
         f"{loop_name}.{name}": joint.position
         for loop_name, loop in result.kinematics.loops.items()
@@ -250,7 +262,7 @@ def sweep_figure(result: AnalysisResult) -> Figure:
             if mech.driving_torque is not None:
                 ax.plot(angle[ok], mech.driving_torque[ok], ".-", ms=3, label=f"{name} {mech.torque_name}")
             if mech.driving_force is not None:
-                ax.plot(angle[ok], mech.driving_force[ok], ".-", ms=3, label=f"{name} P14 [N]")
+                ax.plot(angle[ok], mech.driving_force[ok], ".-", ms=3, label=f"{name} {mech.force_name} [N]")
         ax.set_ylabel("driving torque [N m]")
         outside_legend(ax)
         ax.grid(alpha=0.3)
@@ -262,9 +274,13 @@ def sweep_figure(result: AnalysisResult) -> Figure:
         outside_legend(ax)
         ax.grid(alpha=0.3)
     ax = axes.pop(0)
+    if result.kinematics.linkage is not None:  # no loops: every moving link's angle
+        for name in result.scene.moving_links:
+            ax.plot(angle[ok], np.degrees(np.unwrap(result.kinematics.links[name].angle[ok])), ".-", ms=3, label=name)
+        ax.set_ylabel("link angle [deg]")
     for name, loop in result.kinematics.loops.items():
         ax.plot(angle[ok], np.degrees(loop.transmission_angle[ok]), ".-", ms=3, label=name)
-    ax.set_ylabel("transmission angle [deg]")
+        ax.set_ylabel("transmission angle [deg]")
     ax.set_xlabel("input angle [deg]")
     outside_legend(ax)
     ax.grid(alpha=0.3)

@@ -25,6 +25,7 @@ from linkstress.report.figures import (
     sweep_figure,
 )
 from linkstress.report.maxima import link_figures, worst_position
+from linkstress.report.linkage_summary import describe_linkage
 from linkstress.report.mechanism_view import view_html
 from linkstress.report.records import link_columns
 from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings, uncovered_text
@@ -144,6 +145,8 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
         "<h2>Loads applied</h2>", loads_html(result),
         "<h2>Mechanism</h2>",
     ]
+    if scene.linkage is not None:
+        sections.append(f"<pre>{html.escape(describe_linkage(scene.linkage))}</pre>")
     for k in drawn_positions(result):
         sections.append(figure_tag(mechanism_figure(result, k), f"mechanism at position {k}"))
     if int(feasible.sum()) > MAX_DRAWN_POSITIONS:
@@ -311,7 +314,7 @@ def _forces_table(result: AnalysisResult) -> str:
             if mech.driving_torque is not None:
                 rows.append((angle, name, f"{mech.torque_name} [N m]", float(mech.driving_torque[k]), ""))
             if mech.driving_force is not None:
-                rows.append((angle, name, "P14 [N]", float(mech.driving_force[k]), ""))
+                rows.append((angle, name, f"{mech.force_name} [N]", float(mech.driving_force[k]), ""))
     return table_html(("input [deg]", "mechanism", "force", "x [N]", "y [N]"), rows)
 
 

@@ -20,6 +20,12 @@ own ``max_von_mises_pa`` and ``max_at_m``); per mechanism ``forces_n`` (Norton n
 ``driving_torque_nm`` (or ``driving_force_n`` for an actuated slider) where forces were computed;
 with FEA peaks, per link ``peak_von_mises_pa``, ``peak_at_m`` and ``peak_yield_safety_factor``
 (``linkstress.report.peak_records``).
+A ``type = "linkage"`` mechanism adds per link ``joints_m`` (its joints in the ground frame, in the
+link's joint order) and per mechanism ``pins`` (each pin's ``joints``, ``at_m`` and ``forces_n``: the
+force it puts on each joint's link), ``sliders`` (``point``, ``on``, ``stroke_m``,
+``normal_force_n``, ``couple_nm``, ``friction_force_n``, ``pin_force_n``) and ``driving_torque_nm``
+or ``driving_force_n``; a linkage driven by a slider's stroke gives ``input_stroke_m`` in place of
+``input_angle_deg``.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 The records are made a block of positions at a time (``stream_position_records``), for
 ``output.write_json_stream`` to write as they come.
@@ -86,6 +92,8 @@ def stream_position_records(result: AnalysisResult, stations: bool = False) -> I
             values = {"angle_deg": c.angle_deg, "omega_rad_s": c.omega, "alpha_rad_s2": c.alpha}
             if c.acc_g is not None:
                 values["acc_G_m_s2"] = c.acc_g
+            if result.scene.linkage is not None:
+                values["joints_m"] = partial(_joint_rows, result, name)
             link_values[name] = values
     for name, stress in result.stresses.items():
         values = link_values.setdefault(name, {})
@@ -115,8 +123,9 @@ def stream_position_records(result: AnalysisResult, stations: bool = False) -> I
         feasible = result.feasible[block].tolist()
         reasons = result.reasons[block]
         warnings = result.kinematics.warnings[block]
+        input_key = "input_stroke_m" if result.scene.motion.is_stroke else "input_angle_deg"
         for k, angle in enumerate(result.scene.motion.angle_deg[block].tolist()):
-            record = {"input_angle_deg": angle, "feasible": feasible[k], "reason": reasons[k]}
+            record = {input_key: angle, "feasible": feasible[k], "reason": reasons[k]}
             if warnings[k]:
                 record["warnings"] = list(warnings[k])
             record["links"] = {}
@@ -218,8 +227,35 @@ def _mechanism_lists(result: AnalysisResult) -> dict[str, dict[str, object]]:
             values["torque"] = mech.torque_name
         if mech.driving_force is not None:
             values["driving_force_n"] = mech.driving_force
+        if mech.linkage is not None:
+            values.update(_linkage_lists(mech.linkage))
         out[name] = values
     return out
+
+
+def _linkage_lists(detail) -> dict[str, object]:
+    """A linkage's pins and sliders, per position (``dynamics.linkage_forces.LinkageForces``)."""
+    pins = [
+        {"joints": list(joints), "at_m": at, "forces_n": dict(forces)}
+        for joints, at, forces in zip(detail.pins, detail.positions, detail.forces)
+    ]
+    sliders = [
+        {"point": s.point, "on": s.on, "stroke_m": s.stroke, "normal_force_n": s.normal, "couple_nm": s.couple,
+         "friction_force_n": s.friction, "pin_force_n": s.pin_force}
+        for s in detail.sliders
+    ]
+    return {"pins": pins, "sliders": sliders}
+
+
+def _joint_rows(result: AnalysisResult, name: str, block: slice) -> list:
+    """Link ``name``'s joints in the ground frame, per position of ``block``: (B, J, 2) as lists."""
+    local = result.scene.linkage.local[name]
+    motion = result.kinematics.links[name]
+    angle, origin = motion.angle[block], motion.origin[block]
+    c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
+    x = origin[:, 0:1] + c * local[:, 0] - s * local[:, 1]
+    y = origin[:, 1:2] + s * local[:, 0] + c * local[:, 1]
+    return np.stack([x, y], axis=-1).tolist()
 
 
 def _rows(values: dict, block: slice) -> dict:
@@ -236,7 +272,7 @@ def _rows(values: dict, block: slice) -> dict:
             out[key] = column.tolist() if key in SHARED else column[block].tolist()
         elif isinstance(column, list) and column and isinstance(column[0], dict):
             out[key] = [_rows(item, block) for item in column]
-        elif isinstance(column, list) and key not in SHARED:
+        elif isinstance(column, list) and column and key not in SHARED:
             out[key] = column[block]
         else:
             out[key] = column
@@ -252,7 +288,7 @@ def _at(values: dict, k: int) -> dict:
             out[key] = _at(column, k)
         elif isinstance(column, list) and column and isinstance(column[0], dict):
             out[key] = [_at(item, k) for item in column]
-        elif isinstance(column, list) and key not in SHARED:
+        elif isinstance(column, list) and column and key not in SHARED:
             out[key] = column[k]
         else:
             out[key] = column
@@ -261,4 +297,5 @@ def _at(values: dict, k: int) -> dict:
 
 SHARED = (
     "x_m", "s_m", "at_member_m", "normal_member", "near_hole", "joint", "hole_diameter_m", "depth_m", "kt", "basis",
+    "joints",
 )

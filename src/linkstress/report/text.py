@@ -22,6 +22,7 @@ from linkstress.kinematics.linkage_class import (
     stroke,
     toggle_angles,
 )
+from linkstress.report.linkage_summary import describe_linkage
 from linkstress.report.maxima import LinkFigures, link_figures
 from linkstress.report.peak_text import peaks_table
 from linkstress.report.records import link_columns
@@ -40,6 +41,8 @@ def report(result: AnalysisResult) -> str:
     feasible = result.feasible
     parts = [f"scene {scene.path.name}: {len(feasible)} positions, {int(feasible.sum())} feasible"]
     parts += [describe_loop(scene, loop.name) for loop in scene.machine.loops]
+    if scene.linkage is not None:
+        parts.append(describe_linkage(scene.linkage))
     analysis = scene.analysis
     if analysis is None or analysis.kinematics:
         parts.append(motion_table(result))
@@ -186,7 +189,7 @@ def forces_table(result: AnalysisResult) -> str:
             if mech.driving_torque is not None:
                 rows.append((angle, name, f"{mech.torque_name} [N m]", float(mech.driving_torque[k]), "", ""))
             if mech.driving_force is not None:
-                rows.append((angle, name, "P14 [N]", float(mech.driving_force[k]), "", ""))
+                rows.append((angle, name, f"{mech.force_name} [N]", float(mech.driving_force[k]), "", ""))
     headers = ("input [deg]", "mechanism", "force", "x [N]", "y [N]", "|F| [N]")
     return "\n".join(filter(None, ["joint forces (Fij: of link i on link j) and driving torque", format_table(headers, rows), note]))
 

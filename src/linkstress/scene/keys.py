@@ -24,6 +24,7 @@ RANGES: dict[str, tuple[float, float, str]] = {
     "s": (0.0, 1e9, "a time"),
     "rad/s": (0.0, 1e5, "an angular speed"),
     "rad/s^2": (0.0, 1e9, "an angular acceleration"),
+    "m/s": (0.0, 1e5, "a speed"),
     "m/s^2": (0.0, 1e6, "an acceleration"),
     "N": (0.0, 1e12, "a force"),
     "N m": (0.0, 1e12, "a couple"),

@@ -6,7 +6,7 @@ the origin of the link's member frame); ``[[loads.forces]]`` with ``link``, ``at
 and ``force_n`` (ground frame), at a point of the link's material or in one of its holes (a pin's
 load: in a hole it bears on the hole as a pin force; off a drawn link's outline it is an error);
 ``[loads.friction]`` with ``SLIDER = mu``, SLIDER being a slider's link name or its slider-crank's
-mechanism name.
+mechanism name; in a linkage, a slider's block, or its point (``"LINK:i" = mu``).
 
 [analysis]: ``kinematics``, ``forces``, ``stresses`` (booleans, default false once the table
 exists), ``stations`` (>= 2), ``validate`` (link names with profiles), ``mesh_size_m`` (> 0),
@@ -22,6 +22,7 @@ import numpy as np
 import shapely
 
 from linkstress.fatigue import CRITERIA
+from linkstress.kinematics.linkage.graph import LinkageGraph
 from linkstress.kinematics.machine import Machine
 from linkstress.messages import capped
 from linkstress.loads import distance_outside
@@ -115,6 +116,8 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
 
 
 def _moving(machine: Machine) -> list[str]:
+    if isinstance(machine, LinkageGraph):
+        return list(machine.moving)
     names = [r.link for loop in machine.loops for k, r in loop.roles.items() if k != "ground"]
     return list(dict.fromkeys(names))
 
@@ -146,12 +149,25 @@ def _check_on_link(spec: Table, link: SceneLink, at: np.ndarray) -> None:
 def _friction(table: Table | None, machine: Machine) -> dict[str, float]:
     if table is None:
         return {}
+    if isinstance(machine, LinkageGraph):
+        sliders = {str(s.point): slider_key(machine, k) for k, s in enumerate(machine.sliders)}
+        sliders.update({s.block: slider_key(machine, k) for k, s in enumerate(machine.sliders) if s.block})
+        return _coefficients(table, sliders, "a slider's block or its point \"LINK:i\"")
     sliders = {loop.name: loop.name for loop in machine.loops if loop.kind == "slider-crank"}
     sliders.update({loop.slider.link: loop.name for loop in machine.loops if loop.slider is not None})
+    return _coefficients(table, sliders, "a slider's link or slider-crank's name")
+
+
+def slider_key(machine: LinkageGraph, k: int) -> str:
+    """The ``Loads.friction`` key of a linkage's slider k: "NAME.sliders[k]"."""
+    return f"{machine.name}.sliders[{k}]"
+
+
+def _coefficients(table: Table, sliders: dict[str, str], what: str) -> dict[str, float]:
     friction = {}
     for name in table.data:
         if name not in sliders:
-            known = capped(sliders) or "none: the scene has no slider-crank"
-            raise table.error(name, f"no slider named {name!r}; give a slider's link or slider-crank's name: {known}")
+            known = capped(sliders) or "none: the scene has no slider"
+            raise table.error(name, f"no slider named {name!r}; give {what}: {known}")
         friction[sliders[name]] = table.number(name, minimum=0.0)
     return friction

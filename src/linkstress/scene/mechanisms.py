@@ -7,7 +7,8 @@ of a bell crank is whichever two pins happen to come first. ``branch`` is "open"
 ``offset_m`` (the slider line's signed distance from O2, positive to the left of its direction) and
 ``slider_angle_deg`` (its direction from the ground frame's +x; default: the ground link's axis).
 A loop other than the main one has ``driven_by = "LOOP.crank"`` or ``"LOOP.output"`` and, when its
-crank is a different link from the driver's, an optional ``phase_deg``.
+crank is a different link from the driver's, an optional ``phase_deg``. A ``type = "linkage"``
+mechanism (``scene.linkage``) is the scene's only one (``read_machine``).
 """
 
 from __future__ import annotations
@@ -21,9 +22,11 @@ from numpy.typing import NDArray
 
 from linkstress.errors import SceneError
 from linkstress.kinematics.fourbar import BRANCHES
-from linkstress.kinematics.machine import KINDS, Drive, Loop, Role
+from linkstress.kinematics.linkage.graph import LinkageGraph
+from linkstress.kinematics.machine import KINDS, Drive, Loop, Machine, Role
 from linkstress.messages import capped
 from linkstress.scene.keys import Table, shown_value
+from linkstress.scene.linkage import read_linkage
 
 ROLES = {
     "four-bar": ("crank", "coupler", "output", "ground"),
@@ -39,6 +42,24 @@ ROLE_KEYS = ("link", "joints")
 """The keys of a role given as an inline table: ``crank = {link = "NAME", joints = [i, j]}``."""
 
 
+def read_machine(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> Machine | LinkageGraph:
+    """The scene's machine: a ``type = "linkage"`` mechanism (then the scene's only one,
+    ``scene.linkage``), else the loops of every [mechanisms.NAME] chained into a ``Machine``."""
+    names = list(table.data)
+    linkages = [
+        name for name in names if isinstance(table.data[name], dict) and table.data[name].get("type") == "linkage"
+    ]
+    if linkages:
+        if len(names) > 1:
+            other = next(name for name in names if name != linkages[0])
+            raise table.error(
+                other, f"a scene with a type = \"linkage\" mechanism ({linkages[0]!r}) has no other mechanism: a linkage "
+                "holds every loop of the machine; write this one's links and pins into it"
+            )
+        return read_linkage(table.table(linkages[0]), linkages[0], drawn)
+    return Machine(dict(drawn), tuple(read_mechanisms(table, drawn)))
+
+
 def read_mechanisms(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> list[Loop]:
     """Every [mechanisms.NAME] as a kinematic ``Loop`` (the machine checks links and the drive graph).
 
@@ -52,8 +73,8 @@ def read_mechanisms(table: Table, drawn: Mapping[str, NDArray[np.float64]]) -> l
 
 def _read_loop(entry: Table, name: str, drawn: Mapping[str, NDArray[np.float64]]) -> Loop:
     entry.allow(MECHANISM_KEYS)
-    entry.require("type", "type = \"four-bar\" or type = \"slider-crank\"")
-    kind = entry.string("type", choices=KINDS)
+    entry.require("type", "type = \"four-bar\", type = \"slider-crank\" or type = \"linkage\"")
+    kind = entry.string("type", choices=KINDS + ("linkage",))
     if kind == "four-bar":
         for key in SLIDER_ONLY:
             if entry.has(key):

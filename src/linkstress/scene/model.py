@@ -3,7 +3,7 @@
 Member frames: a link's motion, its explicit centre of mass and the points where forces act are
 given in its member frame ``frame_joints`` (i, j): origin at joint i, +x toward joint j (a slider's
 frame is (k, k): origin at its joint, +x along the slider line, its sketch drawn with that line
-along the sketch's +x).
+along the sketch's +x; in a linkage, along the line as drawn, at ``frame_angle``).
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.kinematics.linkage.graph import LinkageGraph
 from linkstress.kinematics.machine import Machine
 from linkstress.kinematics.motion import InputMotion
 from linkstress.materials import Material
@@ -51,16 +52,21 @@ class SceneLink:
     layer: str | None = None
     members: tuple[tuple[int, int], ...] | None = None
     """The link's arms as joint pairs (``linkstress.geometry.members``); None: the tree that joins its joints."""
+    frame_angle: float = 0.0
+    """A one-joint frame's +x as drawn [rad]: a linkage block's slider line (0 elsewhere)."""
 
     def to_member(self, points: NDArray[np.float64]) -> NDArray[np.float64]:
         """Drawn points (..., 2) [m] into the member frame."""
         i, j = self.frame_joints
         origin = self.joints[i]
         if i == j:
-            return np.asarray(points, float) - origin
-        dx, dy = self.joints[j] - origin
-        length = np.hypot(dx, dy)
-        c, s = dx / length, dy / length
+            if self.frame_angle == 0.0:
+                return np.asarray(points, float) - origin
+            c, s = np.cos(self.frame_angle), np.sin(self.frame_angle)
+        else:
+            dx, dy = self.joints[j] - origin
+            length = np.hypot(dx, dy)
+            c, s = dx / length, dy / length
         p = np.asarray(points, float) - origin
         return np.stack([p[..., 0] * c + p[..., 1] * s, -p[..., 0] * s + p[..., 1] * c], axis=-1)
 
@@ -147,7 +153,7 @@ class Scene:
     units: str | None
     materials: Mapping[str, Material]
     links: Mapping[str, SceneLink]
-    machine: Machine
+    machine: Machine | LinkageGraph
     motion: InputMotion
     actuator: str
     loads: Loads
@@ -157,8 +163,16 @@ class Scene:
     warnings: tuple[str, ...] = ()
 
     @property
+    def linkage(self) -> LinkageGraph | None:
+        """The scene's ``type = "linkage"`` mechanism, or None for loops."""
+        return self.machine if isinstance(self.machine, LinkageGraph) else None
+
+    @property
     def moving_links(self) -> tuple[str, ...]:
-        """Names of the links that move (every role but ground), in solving order."""
+        """Names of the links that move (every role but ground; every link of a linkage but its
+        ground), in solving order."""
+        if self.linkage is not None:
+            return tuple(name for group in self.linkage.groups for name in group.links + group.riders)
         names: list[str] = []
         for loop in self.machine.loops:
             for role, r in loop.roles.items():

@@ -18,11 +18,14 @@ import numpy as np
 
 from linkstress.kinematics.expression import QUOTED, Expression
 from linkstress.kinematics.machine import Machine
-from linkstress.kinematics.motion import InputMotion, angle_motion, angle_range, timed_motion
+from linkstress.kinematics.linkage.graph import LinkageGraph
+from linkstress.kinematics.motion import InputMotion, angle_motion, angle_range, stroke_motion, timed_motion, timed_stroke
 from linkstress.messages import capped, quoted
 from linkstress.scene.keys import RANGES, Table
 
 MOTION_KEYS = ("input_angle_deg", "input_speed_rad_s", "input_acceleration_rad_s2", "actuator")
+STROKE_KEYS = ("input_stroke_m", "input_speed_m_s", "input_acceleration_m_s2")
+"""The [motion] keys of a linkage driven by a slider's stroke."""
 RANGE_KEYS = ("start", "stop", "num")
 EXPRESSION_KEYS = ("expression", "t")
 """The keys of ``input_angle_deg = {expression = "...", t = ...}``."""
@@ -31,12 +34,24 @@ RANGE_WORDS = {
     "num = 36} for a turn in 10 deg steps (stop = 360.0 would end on the pose at 0.0 again)",
     "s": "start, stop and num: num times from start to stop, both included, e.g. {start = 0.0, stop = 1.0, num = 101} "
     "for 1 s in 10 ms steps",
+    "m": "start, stop and num: num strokes from start to stop, both included, e.g. {start = 0.0, stop = 0.2, num = 101} "
+    "for 0.2 m in 2 mm steps",
 }
 """What a range needs, per unit: angles of a sweep [deg] or times [s]."""
 MAX_POSITIONS = 10_000_000
 
 
-def read_motion(table: Table) -> InputMotion:
+def read_motion(table: Table, machine=None) -> InputMotion:
+    """The input's motion; a linkage driven by a slider's stroke (``machine``) reads the stroke keys."""
+    if isinstance(machine, LinkageGraph):
+        if table.has("actuator"):
+            raise table.error("actuator", f"a linkage's input is its actuator: mechanisms.{machine.name}.input says which")
+        if machine.input.is_stroke:
+            return _stroke(table, machine)
+        for key in STROKE_KEYS:
+            if table.has(key):
+                raise table.error(key, f"for a linkage driven by a slider's stroke; mechanisms.{machine.name}.input "
+                                       "turns a crank: give input_angle_deg")
     table.allow(MOTION_KEYS)
     table.require(
         "input_angle_deg", "a number, a list, {start, stop, num} (num angles from start to stop, both included) "
@@ -56,8 +71,45 @@ def read_motion(table: Table) -> InputMotion:
     return angle_motion(angles, speed, acceleration)
 
 
+def _stroke(table: Table, machine: LinkageGraph) -> InputMotion:
+    table.allow(STROKE_KEYS)
+    slider = machine.sliders[machine.input.slider]
+    table.require(
+        "input_stroke_m", f"the stroke of slider {machine.input.slider} ({slider.point} on {slider.on!r}) along its line "
+        "from its joint i, + toward j [m]: a number, a list, {start, stop, num} or {expression, t}",
+    )
+    value = table.data["input_stroke_m"]
+    if isinstance(value, dict) and "expression" in value:
+        spec = table.table("input_stroke_m")
+        spec.allow(EXPRESSION_KEYS)
+        spec.require("t", "the times in seconds: t = {start = 0.0, stop = 1.0, num = 101} or a list")
+        for key in ("input_speed_m_s", "input_acceleration_m_s2"):
+            if table.has(key):
+                raise table.error(key, "not allowed with an expression: it is the expression's time derivative")
+        expression = Expression(spec.string("expression"), "t", spec.key_path("expression"))
+        times = _range(spec.table("t"), "s") if isinstance(spec.data["t"], dict) else spec.numbers("t", "s")
+        motion = timed_stroke(expression, times)
+        _check_ranges(spec, expression, motion, STROKE_QUANTITIES)
+        return motion
+    if isinstance(value, dict):
+        strokes = _range(table.table("input_stroke_m"), "m")
+    elif isinstance(value, list):
+        strokes = table.numbers("input_stroke_m", "m")
+    else:
+        strokes = np.array([table.number("input_stroke_m", unit="m")])
+    speed = _rate(table, "input_speed_m_s", len(strokes), "m/s")
+    acceleration = _rate(table, "input_acceleration_m_s2", len(strokes), "m/s^2")
+    return stroke_motion(strokes, speed, acceleration)
+
+
 def read_actuator(table: Table, machine: Machine) -> str:
-    """The actuated link: a crank, an output or a slider of some loop (default: the main crank)."""
+    """The actuated link: a crank, an output or a slider of some loop (default: the main crank); a
+    linkage's input link (its crank, or the input slider's block, else the slider's point's link)."""
+    if isinstance(machine, LinkageGraph):
+        if not machine.input.is_stroke:
+            return machine.input.link
+        slider = machine.sliders[machine.input.slider]
+        return slider.block or slider.point.link
     default = machine.main.crank.link
     name = table.string("actuator", default)
     grounded = [r.link for loop in machine.loops for k, r in loop.roles.items() if k in ("crank", "output", "slider")]
@@ -85,7 +137,7 @@ def _timed(table: Table) -> InputMotion:
     else:
         times = spec.numbers("t", "s")
     motion = timed_motion(expression, times)
-    _check_ranges(spec, expression, motion)
+    _check_ranges(spec, expression, motion, TIMED_QUANTITIES)
     return motion
 
 
@@ -94,14 +146,24 @@ TIMED_QUANTITIES = (
     ("speed", "rad/s", "an input speed (its time derivative)"),
     ("acceleration", "rad/s^2", "an input acceleration (its second time derivative)"),
 )
-"""What an expression gives, each held to the range of a plain value of its unit: (the motion's
-field, unit, what it is)."""
+"""What an angle expression gives, each held to the range of a plain value of its unit: (the
+motion's field, unit, what it is)."""
+STROKE_QUANTITIES = (
+    ("angle_deg", "m", "an input stroke"),
+    ("speed", "m/s", "an input stroke speed (its time derivative)"),
+    ("acceleration", "m/s^2", "an input stroke acceleration (its second time derivative)"),
+)
+"""The same for a stroke expression (a stroke motion holds its stroke [m] in ``angle_deg``)."""
 
 
-def _check_ranges(spec: Table, expression: Expression, motion: InputMotion) -> None:
-    """Refuse an expression whose angle, speed or acceleration at some time leaves the range a plain
-    ``input_angle_deg``, ``input_speed_rad_s`` or ``input_acceleration_rad_s2`` is held to."""
-    for field, unit, what in TIMED_QUANTITIES:
+UNIT_HINTS = {"deg": "degrees of angle", "m": "metres of stroke"}
+"""What the units of an expression are, by the unit of its value (the first of its quantities)."""
+
+
+def _check_ranges(spec: Table, expression: Expression, motion: InputMotion, quantities) -> None:
+    """Refuse an expression whose value, speed or acceleration at some time leaves the range a plain
+    value of the same key is held to (``quantities``: TIMED_QUANTITIES or STROKE_QUANTITIES)."""
+    for field, unit, what in quantities:
         values = getattr(motion, field)
         largest = RANGES[unit][1]
         outside = np.flatnonzero(np.abs(values) > largest)
@@ -110,7 +172,7 @@ def _check_ranges(spec: Table, expression: Expression, motion: InputMotion) -> N
             raise spec.error(
                 "expression",
                 f"{quoted(expression.text, QUOTED)} gives {what} of {values[k]:.6g} {unit} at t = {motion.time[k]:.6g} "
-                f"s, more than the {largest:g} {unit} a plain value may be (check the unit: degrees of angle, seconds)",
+                f"s, more than the {largest:g} {unit} a plain value may be (check the unit: {UNIT_HINTS[quantities[0][1]]}, seconds)",
             )
 
 

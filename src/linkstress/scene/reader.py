@@ -16,11 +16,10 @@ from types import MappingProxyType
 
 from linkstress.errors import InputError, SceneError
 from linkstress.inputs import SCENE_BYTES, read_bounded
-from linkstress.kinematics.machine import Machine
 from linkstress.scene.keys import Table
 from linkstress.scene.links import mass_data, read_links, read_materials
 from linkstress.scene.loads import read_analysis, read_loads
-from linkstress.scene.mechanisms import read_mechanisms
+from linkstress.scene.mechanisms import read_machine
 from linkstress.scene.model import Scene, SceneLink
 from linkstress.scene.motion import read_actuator, read_motion
 from linkstress.scene.plausibility import plausibility_warnings
@@ -44,6 +43,14 @@ def scene_from_text(text: str, path: Path) -> Scene:
         raise
     except InputError as error:
         raise SceneError(f"{path.name}: {error}") from None
+
+
+def _frame_angle(machine, name: str) -> float:
+    """A linkage's one-joint link's member-frame angle as drawn [rad] (its slider's line); 0 otherwise."""
+    angles = getattr(machine, "drawn_angles", None)
+    if angles is None or machine.link_frames[name][0] != machine.link_frames[name][1]:
+        return 0.0
+    return angles[name]
 
 
 def _text(path: Path) -> str:
@@ -90,20 +97,19 @@ def _scene(top: Table, path: Path) -> Scene:
     units = top.string("units")
     materials = read_materials(top.table("materials"))
     sources = read_links(top.table("links", required=True), materials, units, path.parent)
-    loops = read_mechanisms(top.table("mechanisms", required=True), {name: s.joints for name, s in sources.items()})
-    machine = Machine({name: s.joints for name, s in sources.items()}, tuple(loops))
+    machine = read_machine(top.table("mechanisms", required=True), {name: s.joints for name, s in sources.items()})
     unused = [name for name in sources if name not in machine.link_frames]
     if unused:
         raise top.error(f"links.{unused[0]}", "no mechanism uses this link; name it in a [mechanisms] table or remove it")
     links = {
         name: SceneLink(
             name, s.joints, machine.link_frames[name], s.thickness, s.material, s.profile, mass_data(s),
-            s.sketch, s.layer, s.members,
+            s.sketch, s.layer, s.members, _frame_angle(machine, name),
         )
         for name, s in sources.items()
     }
     motion_table = top.table("motion", required=True)
-    motion = read_motion(motion_table)
+    motion = read_motion(motion_table, machine)
     actuator = read_actuator(motion_table, machine)
     loads = read_loads(top.table("loads"), machine, links)
     analysis = read_analysis(top.table("analysis"), links)

@@ -1,0 +1,18 @@
+"""Any one-DOF planar linkage of pins and sliders: its joint graph, Assur groups and kinematics.
+
+- ``graph``: the links, pins, sliders, ground and input, with the checks (Gruebler, connected,
+  joints named once, the drawn pose closes).
+- ``groups``: the joint graph split into the input and groups solvable in order.
+- ``dyads``: closed-form RRR, RRP and RPR positions; ``placing`` puts those groups on the path.
+- ``triads``: Newton on a group's constraints (``constraints``), continued along the path.
+- ``rates``: velocities and accelerations from the constraints, exact.
+- ``sweep``: the whole sweep, following the drawn assembly, with its flags (``solve_linkage``).
+"""
+
+from linkstress.kinematics.linkage.graph import Input, Joint, LinkageGraph, Slider, parse_joint
+from linkstress.kinematics.linkage.groups import Group, decompose
+from linkstress.kinematics.linkage.sweep import LinkageMotion, solve_linkage
+
+__all__ = [
+    "Group", "Input", "Joint", "LinkageGraph", "LinkageMotion", "Slider", "decompose", "parse_joint", "solve_linkage",
+]
