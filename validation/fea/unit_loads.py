@@ -254,7 +254,7 @@ def unit_load_cases(
             return _from_entry(link, loads, mesh, layout, stored, time.perf_counter() - start)
     model = link_model(link, loads, mesh, cache)
     meshed = time.perf_counter()
-    forces = np.hstack([_group_loads(model, group, layout.directions, link.density, loads.frame_joints, mesh)
+    forces = np.hstack([group_loads(model, group, layout.directions, link.density, loads.frame_joints, mesh)
                         for group in layout.groups])
     fixed, _ = minimal_support(model)
     try:
@@ -326,7 +326,7 @@ def _from_entry(link, loads, mesh, layout, stored, seconds) -> UnitLoadCases:
     )
 
 
-def _group_loads(model: PlaneStressModel, group: UnitCaseGroup, directions: NDArray[np.float64], density: float,
+def group_loads(model: PlaneStressModel, group: UnitCaseGroup, directions: NDArray[np.float64], density: float,
                  frame_joints: tuple[int, int], mesh: MeshSettings) -> NDArray[np.float64]:
     """The nodal forces (dofs, cases) of one group of unit cases."""
     holes = model.plane.holes
