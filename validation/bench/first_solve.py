@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -78,6 +79,8 @@ rocker = 5.0
 """
 """The scene the README tutorial's import and edits give (6 mm steel, a whole turn at 100 rad/s, 5 N m on the rocker)."""
 PHASES = ("mesh (gmsh)", "assembly", "unit loads", "factorisation", "unit solves", "recovery")
+VECTOR_FORMS = "stiffness + projections by scikit-fem's vector forms (before)"
+SCALAR_BLOCKS = "stiffness + projections as scalar blocks (now)"
 
 
 def tutorial_scene(folder: Path) -> Path | None:
@@ -132,7 +135,8 @@ def link_phases(scene_path: Path, name: str, solver: str) -> dict[str, float]:
         mark = _mark(seconds, "unit solves", mark)
         stress_recovery(model).nodal_stress(displacement)
         _mark(seconds, "recovery", mark)
-        seconds["(scikit-fem vector forms: stiffness + projections)"] = _vector_forms(model)
+        seconds[VECTOR_FORMS] = _vector_forms(model)
+        seconds[SCALAR_BLOCKS] = _scalar_blocks(plane, model)
     seconds["dofs"], seconds["unit cases"] = model.n_dofs, unit.shape[1]
     return seconds
 
@@ -141,6 +145,15 @@ def _mark(seconds: dict[str, float], phase: str, since: float) -> float:
     now = time.perf_counter()
     seconds[phase] = now - since
     return now
+
+
+def _scalar_blocks(plane, model) -> float:
+    """Seconds to assemble the stiffness and the three stress projections as scalar blocks (a fresh model)."""
+    start = time.perf_counter()
+    fresh = plane_stress_model(plane, model.youngs_modulus, model.poisson_ratio, model.thickness)
+    fresh.stiffness
+    fresh.stress_projections()
+    return time.perf_counter() - start
 
 
 def _vector_forms(model) -> float:
@@ -168,10 +181,15 @@ def import_seconds(python: str, repeat: int) -> float:
     return min(float(subprocess.check_output([python, "-c", probe], text=True)) for _ in range(repeat))
 
 
-def process_seconds(command: list[str], environment: dict[str, str]) -> float:
+def process_seconds(command: list[str], environment: dict[str, str]) -> tuple[float, float]:
+    """Wall and CPU (user + system) seconds of running ``command`` (CPU time depends less on what
+    else the machine runs)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL, env=environment)
-    return time.perf_counter() - start
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def main() -> None:
@@ -207,7 +225,7 @@ def print_phases(scenes: dict[str, Path], links: list[tuple[str, str]], repeat: 
             first = best["superlu"]
             print(f"\n{case} {name}: {int(first['dofs'])} dofs, {int(first['unit cases'])} unit load cases "
                   f"(best of {repeat} [s])")
-            rows = [(phase, *(best[s][phase] for s in best)) for phase in (*PHASES, "(scikit-fem vector forms: stiffness + projections)")]
+            rows = [(phase, *(best[s][phase] for s in best)) for phase in (*PHASES, VECTOR_FORMS, SCALAR_BLOCKS)]
             rows.insert(len(PHASES), ("total", *(sum(best[s][p] for p in PHASES) for s in best)))
             print(format_table(("phase", *best), rows))
     finally:
@@ -225,15 +243,18 @@ def print_processes(case: str, scene: Path, cache: Path, repeat: int, before: st
     if before:
         settings["before (--before interpreter)"] = [before, "-m", "linkstress", "analyze", str(scene), "--peaks"]
     process_seconds(settings["second run (cache warm)"], environment)  # fills the cache
-    times: dict[str, list[float]] = {label: [] for label in settings}
+    times: dict[str, list[tuple[float, float]]] = {label: [] for label in settings}
     for _ in range(repeat):
         for label, command in settings.items():
             times[label].append(process_seconds(command, environment))
-    reference = min(times["first run (--no-cache)"])
-    rows = [(label, min(t), float(np.median(t)), min(t) / reference) for label, t in times.items()]
+    best = {label: np.min(t, axis=0) for label, t in times.items()}
+    first = best["first run (--no-cache)"]
+    rows = [(label, wall, float(np.median([w for w, _ in times[label]])), cpu, wall / first[0], cpu / first[1])
+            for label, (wall, cpu) in best.items()]
     size = DiskCache(CacheSettings(str(cache))).size()
-    print(f"\n{case}: linkstress analyze --peaks, whole processes alternated, {repeat} runs each [s]; cache {size / 1e6:.1f} MB")
-    print(format_table(("run", "best", "median", "best / first run"), rows))
+    print(f"\n{case}: linkstress analyze --peaks, whole processes alternated, {repeat} runs each [s]; "
+          f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; cache {size / 1e6:.1f} MB")
+    print(format_table(("run", "best wall", "median wall", "best CPU", "wall / first run", "CPU / first run"), rows))
 
 
 if __name__ == "__main__":
