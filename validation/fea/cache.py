@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib.metadata
+import importlib.util
 import json
 import math
 import os
@@ -58,6 +59,9 @@ CHECKSUM = "checksum__"
 KEY = "key__"
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "scikit-sparse")
 """Libraries whose version is part of every key (absent ones count as absent)."""
+CORE_SOURCES = ("linkstress.loads", "linkstress.stress_state")
+"""Modules outside the FEA engine whose code shapes what is cached (the body-load terms of
+``LinkLoadCase.body_force_density``, the von Mises of a direct peak): their source is hashed too."""
 
 
 @dataclass(frozen=True)
@@ -216,7 +220,7 @@ def _canonical(value):
 @lru_cache(maxsize=1)
 def code_fingerprint() -> dict:
     """This package's version, the versions of the libraries the FEA uses, and the SHA-256 of the
-    FEA engine's source files (an editable install changes them, not its version)."""
+    FEA engine's source files and CORE_SOURCES' (an editable install changes them, not its version)."""
     from linkstress import __version__
 
     versions = {}
@@ -225,8 +229,10 @@ def code_fingerprint() -> dict:
             versions[name] = importlib.metadata.version(name)
         except importlib.metadata.PackageNotFoundError:
             versions[name] = None
+    paths = sorted(Path(__file__).resolve().parent.glob("*.py"))
+    paths += [Path(importlib.util.find_spec(name).origin) for name in CORE_SOURCES]
     sources = hashlib.sha256()
-    for path in sorted(Path(__file__).resolve().parent.glob("*.py")):
+    for path in paths:
         sources.update(path.name.encode() + b"\0" + path.read_bytes())
     return {"linkstress": __version__, "libraries": versions, "sources": sources.hexdigest()}
 
