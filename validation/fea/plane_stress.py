@@ -278,8 +278,8 @@ def spd_solver() -> str:
 def factorise_spd(matrix: sp.spmatrix, solver: str | None = None) -> SPDFactors:
     """Factors of a symmetric positive definite matrix by ``solver`` (default ``spd_solver()``).
 
-    CHOLMOD: simplicial LDL^T with AMD ordering (on the links' meshes about half SuperLU's time to
-    factorise and to solve; supernodal is slower with Debian's reference BLAS). It reads the lower
+    CHOLMOD: simplicial LDL^T with AMD ordering (on the links' peak meshes 0.6 to 0.8 of SuperLU's
+    time to factorise and to solve; supernodal is slower with Debian's reference BLAS). It reads the lower
     triangle, SuperLU the whole matrix: the stiffness is symmetric to rounding. SuperLU: minimum
     degree ordering on A^T + A, symmetric mode and no pivoting (the diagonal of an SPD matrix is a
     safe pivot): about four times less fill and time than SuperLU's defaults. NotPositiveDefinite
