@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -315,3 +316,20 @@ def test_the_variables_choose_the_folder_and_bound_the_size(tmp_path, monkeypatc
         with pytest.raises(FEAError, match=f"LINKSTRESS_CACHE_SIZE: '{bad}' is not a size in bytes"):
             cache_settings(None)
     assert math.isfinite(cache_module.DEFAULT_MAX_BYTES)
+
+
+def test_validate_and_regress_keep_their_meshes_in_the_cache_and_refuse_a_bad_solver(tmp_path, monkeypatch, capsys):
+    case = tmp_path / "slider_crank_curved_rod"
+    shutil.copytree(SEED.parent / "slider_crank_curved_rod", case)
+    for run in ("cold", "warm"):
+        assert main(["regress", str(case), "--cache", str(tmp_path / "regress")]) == 0, run
+    meshes = list((tmp_path / "regress" / "mesh").glob("*.npz"))
+    assert meshes and not (tmp_path / "regress" / UNIT_LOADS).exists()  # validate's solves are not kept
+    scene = SEED / "scene.toml"
+    assert main(["validate", str(scene), "--mesh-levels", "1", "--cache", str(tmp_path / "validate")]) == 0
+    assert len(list((tmp_path / "validate" / "mesh").glob("*.npz"))) == 3  # a mesh per link
+    monkeypatch.setenv("LINKSTRESS_SOLVER", "bogus")
+    capsys.readouterr()
+    assert main(["validate", str(scene), "--mesh-levels", "1"]) == 2
+    assert main(["regress", str(case)]) == 2
+    assert capsys.readouterr().err.count("LINKSTRESS_SOLVER: 'bogus' is not a solver") == 2

@@ -16,7 +16,7 @@ import numpy as np
 
 from linkstress.analysis import PEAK_MESH_LEVELS, AnalysisResult, Plan, plan_for, run_analysis
 from linkstress.commands import HelpFormatter, examples
-from linkstress.commands.cache_option import add_cache_options, cache_choice
+from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.errors import InputError
 from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_choice
 from linkstress.output import check_outputs, json_stream, write_all
@@ -107,7 +107,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     # The variable alone is ignored without peaks: set for a shell, it must not stop a plain analyze.
     scheduler, source = scheduler_choice(args.scheduler) if plan.peaks else (None, "")
-    cache = cache_choice(args) if plan.peaks else None
+    cache = fea_choices(args) if plan.peaks else None
     retried: list[Retry] = []
     # Overflow is reported by refuse_non_finite, naming the keys, rather than as numpy warnings.
     with np.errstate(all="ignore"):

@@ -12,7 +12,7 @@ from functools import partial
 from pathlib import Path
 
 from linkstress.commands import HelpFormatter, examples
-from linkstress.commands.cache_option import add_cache_options, cache_choice
+from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.commands.validate import check_jobs
 from linkstress.errors import InputError
 from linkstress.executors import LOCAL, SCHEDULER_VARIABLE, Retry, executor, scheduler_choice
@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
     cases = find_cases(args.cases or default_cases())
     for case in cases:
         read_reference(case)  # a broken reference.json stops the run before any case runs
-    cache = cache_choice(args)
+    cache = fea_choices(args)
     with executor(scheduler, source, args.jobs) as where:
         if scheduler is None:
             results = list(progress(where.map(partial(run_case, update=args.update, cache=cache), cases), len(cases)))

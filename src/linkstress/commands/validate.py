@@ -20,7 +20,7 @@ import numpy as np
 
 from linkstress.analysis import plan_for
 from linkstress.commands import HelpFormatter, examples
-from linkstress.commands.cache_option import add_cache_options, cache_choice
+from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.commands.analyze import check_work, refuse_non_finite, scene_sketches
 from linkstress.errors import InputError
 from linkstress.executors import SCHEDULER_VARIABLE, executor, scheduler_choice
@@ -108,7 +108,7 @@ def run(args: argparse.Namespace) -> int:
     check_meshes(scene, plan.validate, args.mesh_size, args.mesh_levels)
     check_work(scene, plan)
     scheduler, source = scheduler_choice(args.scheduler)
-    cache = cache_choice(args)
+    cache = fea_choices(args)
     with executor(scheduler, source, args.jobs) as where, np.errstate(all="ignore"):
         result = validate_scene(
             scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, executor=where,
