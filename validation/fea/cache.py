@@ -29,7 +29,6 @@ results as they are.
 from __future__ import annotations
 
 import hashlib
-import importlib.metadata
 import importlib.util
 import json
 import math
@@ -221,6 +220,8 @@ def _canonical(value):
 def code_fingerprint() -> dict:
     """This package's version, the versions of the libraries the FEA uses, and the SHA-256 of the
     FEA engine's source files and CORE_SOURCES' (an editable install changes them, not its version)."""
+    import importlib.metadata  # tens of ms to import: once, where a key is made
+
     from linkstress import __version__
 
     versions = {}

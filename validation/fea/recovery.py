@@ -19,7 +19,6 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.spatial import cKDTree
 from skfem import BilinearForm, asm
 
 from linkstress.validation.fea.errors import FEAError
@@ -86,6 +85,8 @@ def _locate(element, nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDA
     element's centroid can be nearer than the large element holding the point) are searched again
     among ever more candidates, up to every element.
     """
+    from scipy.spatial import cKDTree  # scipy.spatial takes 0.1 s to import: only where points are located
+
     n_el = element_dofs.shape[1]
     tree = cKDTree(nodes[:, element_dofs[:3]].mean(axis=1).T)
     cells = np.zeros(len(points), dtype=np.intp)
