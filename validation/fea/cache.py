@@ -160,8 +160,14 @@ class DiskCache:
             total -= size
 
     def size(self) -> int:
-        """Bytes the cache's entries take."""
-        return sum(p.stat().st_size for p in self.folder.glob("*/*.npz") if p.is_file())
+        """Bytes the cache's entries take (an entry another process deletes meanwhile counts as none)."""
+        total = 0
+        for path in self.folder.glob("*/*.npz"):
+            try:
+                total += path.stat().st_size
+            except OSError:
+                pass
+        return total
 
 
 def _remove(path: Path) -> None:
@@ -186,7 +192,7 @@ def cache_key(kind: str, parts: dict) -> str:
     dicts with sorted string keys, lists, strings, booleans, integers, None, floats exactly (in
     hexadecimal) and arrays by dtype, shape and the SHA-256 of their bytes. Anything else is a
     programming error (TypeError): no object is pickled into a key."""
-    from linkstress.validation.fea.plane_stress import spd_solver
+    from linkstress.validation.fea.plane_stress import spd_solver  # it imports the mesh, which imports this
 
     document = {"kind": kind, "format": FORMAT, "code": code_fingerprint(), "solver": spd_solver(), "parts": parts}
     text = json.dumps(_canonical(document), sort_keys=True, separators=(",", ":"))
