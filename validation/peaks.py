@@ -73,8 +73,9 @@ class SweepPeaks:
 
 def superposed_stress(cases: UnitLoadCases, weights: NDArray[np.float64]) -> NDArray[np.float64]:
     """Recovered nodal stress (P, nodes, 3) [Pa] of the unit cases combined with ``weights`` (U, P)."""
-    combined = cases.stress @ np.asarray(weights, float).reshape(cases.count, -1)  # (nodes x 3, P)
-    return combined.reshape(-1, 3, combined.shape[1]).transpose(2, 0, 1)
+    weights = np.asarray(weights, float).reshape(cases.count, -1)
+    # Made position-major, so that the von Mises and principal stresses that follow read it in order.
+    return (weights.T @ cases.stress.T).reshape(weights.shape[1], -1, 3)
 
 
 def sweep_peaks(cases: UnitLoadCases, loads: LinkLoadCase, positions: NDArray[np.intp] | None = None) -> SweepPeaks:
