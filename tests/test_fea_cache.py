@@ -225,12 +225,13 @@ def test_the_key_changes_with_every_input_that_determines_the_unit_solutions_and
     assert len(set(changed.values())) == len(changed)
 
 
-def test_cached_unit_solutions_are_the_computed_ones_to_the_bit(tmp_path):
-    link, load_case = bar(), loads(6)
+@pytest.mark.parametrize("order", [1, 2])
+def test_cached_unit_solutions_are_the_computed_ones_to_the_bit(tmp_path, order):
+    link, load_case, mesh = bar(), loads(6), replace(MESH, order=order)
     cache = DiskCache(CacheSettings(str(tmp_path)))
-    computed = unit_load_cases(link, load_case, MESH)
-    first = unit_load_cases(link, load_case, MESH, cache=cache)  # a miss: solved and stored
-    second = unit_load_cases(link, load_case, MESH, cache=cache)  # a hit
+    computed = unit_load_cases(link, load_case, mesh)
+    first = unit_load_cases(link, load_case, mesh, cache=cache)  # a miss: solved and stored
+    second = unit_load_cases(link, load_case, mesh, cache=cache)  # a hit
     assert not first.cached and second.cached and second.seconds["solve"] == 0.0
     for cases in (first, second):
         assert np.array_equal(cases.stress, computed.stress) and np.array_equal(cases.reactions, computed.reactions)
