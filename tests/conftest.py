@@ -19,3 +19,11 @@ def close():
         assert rel_err(actual, expected) <= rel, (actual, expected, rel_err(actual, expected))
 
     return check
+
+
+@pytest.fixture(autouse=True, scope="session")
+def fea_cache_of_this_session(tmp_path_factory):
+    """The commands' FEA disk cache (LINKSTRESS_CACHE) in a folder of this test session, never the user's."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("LINKSTRESS_CACHE", str(tmp_path_factory.mktemp("fea-cache")))
+        yield

@@ -160,6 +160,21 @@ def test_analyze_peaks_on_a_cluster_writes_the_serial_json(client, tmp_path):
     assert len(remote["links"]) == 3
 
 
+def test_the_workers_fill_and_read_the_cache_the_task_carries(client, tmp_path):
+    # With a scheduler the peaks are computed only on the workers: the entries are theirs.
+    scene = CASES / "seed_ansys_fourbar" / "scene.toml"
+    cache = tmp_path / "cache"
+    for run in ("cold", "warm"):
+        run_cli(["analyze", str(scene), "--peaks", "--cache", str(cache), "--scheduler", client.scheduler.address,
+                 "--json", str(tmp_path / f"{run}.json")], 0)
+        assert len(list((cache / "unit-loads").glob("*.npz"))) == 3  # a link each, read back on the warm run
+    cold, warm = (json.loads((tmp_path / f"{n}.json").read_text()) for n in ("cold", "warm"))
+    assert without_timing(warm) == without_timing(cold)
+    solves = [(cold["links"][n]["peak_seconds"]["unit_solves"], warm["links"][n]["peak_seconds"]["unit_solves"])
+              for n in ("crank", "coupler", "output")]
+    assert all(first > 0 and second == 0 for first, second in solves), solves
+
+
 def test_a_case_whose_worker_is_killed_runs_again_elsewhere_and_the_report_says_so(client, cases, serial, tmp_path):
     killed = []
 

@@ -40,6 +40,7 @@ from linkstress.loads import LinkLoadCase
 from linkstress.geometry.members import Member, MemberCuts
 from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
+from linkstress.validation.fea.cache import DiskCache
 from linkstress.validation.fea.convergence import (
     CONVERGED_CHANGE,
     PEAK_CONVERGED_CHANGE,
@@ -436,18 +437,20 @@ def solve_compared(
     beams: Sequence[MemberBeam],
     points: NDArray[np.float64],
     levels: int = 3,
+    cache: DiskCache | None = None,
 ) -> LinkFEA:
     """The FEA of ``link`` under ``loads`` on ``mesh`` (``comparison_mesh``), a refinement study of
     ``levels`` >= 3 following the nominal ``points`` (Q, 2) [m], or one mesh with 1, sampled along
-    the compared ``beams`` (``LinkBeams.compared``, at the same positions as ``loads``)."""
+    the compared ``beams`` (``LinkBeams.compared``, at the same positions as ``loads``); the meshes
+    from and into ``cache`` when given."""
     start = time.perf_counter()
     study = None
     if levels >= 3:
         axes = [np.concatenate(parts) for parts in zip(*(b.axes for b in beams))]
-        study = convergence_study(link, loads, mesh, points, levels=levels, cut_axes=axes)
+        study = convergence_study(link, loads, mesh, points, levels=levels, cut_axes=axes, cache=cache)
         fea = study.finest
     else:
-        fea = solve_link(link, loads, mesh)
+        fea = solve_link(link, loads, mesh, cache)
     compared = [compare_member(fea, b) for b in beams]
     return LinkFEA(
         fea, study, tuple(c.fea_resultants for c in compared), tuple(c.fea_von_mises for c in compared),

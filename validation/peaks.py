@@ -31,8 +31,9 @@ from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import larger_principal_sign, von_mises
 from linkstress.validation.stations import choose_stations, default_mesh, member_stations
 from linkstress.validation.fea.convergence import PEAK_CONVERGED_CHANGE, REFINEMENT_RATIO
-from linkstress.validation.fea.link import reaction_ratio, region_length, solve_link
-from linkstress.validation.fea.mesh import MeshSettings
+from linkstress.validation.fea.cache import DiskCache, cache_key
+from linkstress.validation.fea.link import link_region, reaction_ratio, region_length, solve_link
+from linkstress.validation.fea.mesh import MeshSettings, mesh_key_parts
 from linkstress.validation.fea.unit_loads import UnitLoadCases
 
 BLOCK_VALUES = 2_000_000
@@ -72,8 +73,9 @@ class SweepPeaks:
 
 def superposed_stress(cases: UnitLoadCases, weights: NDArray[np.float64]) -> NDArray[np.float64]:
     """Recovered nodal stress (P, nodes, 3) [Pa] of the unit cases combined with ``weights`` (U, P)."""
-    combined = cases.stress @ np.asarray(weights, float).reshape(cases.count, -1)  # (nodes x 3, P)
-    return combined.reshape(-1, 3, combined.shape[1]).transpose(2, 0, 1)
+    weights = np.asarray(weights, float).reshape(cases.count, -1)
+    # Made position-major, so that the von Mises and principal stresses that follow read it in order.
+    return (weights.T @ cases.stress.T).reshape(weights.shape[1], -1, 3)
 
 
 def sweep_peaks(cases: UnitLoadCases, loads: LinkLoadCase, positions: NDArray[np.intp] | None = None) -> SweepPeaks:
@@ -156,15 +158,42 @@ class PeakCheck:
         return self.change <= self.limit and self.previous_change <= self.limit
 
 
-def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings) -> PeakCheck:
+def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings, cache: DiskCache | None = None) -> PeakCheck:
     """The peak's changes over the last two refinements at the sweep's worst position: the direct
-    FEA on ``mesh`` (the peak mesh) made REFINEMENT_RATIO and REFINEMENT_RATIO^2 coarser."""
+    FEA on ``mesh`` (the peak mesh) made REFINEMENT_RATIO and REFINEMENT_RATIO^2 coarser (each
+    from and into ``cache`` when given: ``direct_peak``)."""
     worst = loads.at(peaks.positions[peaks.worst : peaks.worst + 1])
     link = peaks.cases.link
-    coarser, coarsest = (
-        float(solve_link(link, worst, mesh.refined(REFINEMENT_RATIO ** -k)).von_mises_peak[0]) for k in (1, 2)
-    )
+    coarser, coarsest = (direct_peak(link, worst, mesh.refined(REFINEMENT_RATIO ** -k), cache) for k in (1, 2))
     return PeakCheck(float(peaks.peak[peaks.worst]), coarser, coarsest)
+
+
+DIRECT_PEAK = "direct-peak"
+"""The cache's kind for the peak von Mises of a direct FEA at one position."""
+
+
+def direct_peak(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings, cache: DiskCache | None = None) -> float:
+    """[Pa]: the largest recovered von Mises of the direct FEA of ``link`` under ``loads`` (one
+    position) on ``mesh``. With ``cache``: its mesh is cached, and the peak itself under a key of
+    the mesh's, the material's and these exact loads' (it is reused only for the same loads: the
+    same scene run again, or one whose changes leave this link's worst position alone)."""
+    if cache is None:
+        return float(solve_link(link, loads, mesh).von_mises_peak[0])
+    material = link.material
+    key = cache_key(DIRECT_PEAK, {
+        "mesh": mesh_key_parts(*link_region(link, loads, mesh)),
+        "youngs_modulus": material.youngs_modulus, "poisson_ratio": material.poisson_ratio,
+        "density": link.density, "thickness": link.thickness, "frame_joints": list(loads.frame_joints),
+        "pin_forces": loads.pin_forces, "joint_couples": loads.joint_couples, "omega": loads.omega,
+        "alpha": loads.alpha, "origin_acceleration": loads.origin_acceleration, "gravity": loads.gravity,
+        "point_forces": [{"at": np.asarray(p.at, float), "force": np.asarray(p.force, float)} for p in loads.point_forces],
+    })
+    stored = cache.load(DIRECT_PEAK, key)
+    if stored is not None:
+        return float(stored["peak"][0])
+    peak = float(solve_link(link, loads, mesh, cache).von_mises_peak[0])
+    cache.store(DIRECT_PEAK, key, {"peak": np.array([peak])})
+    return peak
 
 
 def field_error(superposed: NDArray[np.float64], direct: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -28,6 +28,7 @@ from linkstress.geometry.members import link_members
 from linkstress.loads import LinkLoadCase
 from linkstress.scene import Scene, SceneLink
 from linkstress.threads import blas_alone
+from linkstress.validation.fea.cache import CacheSettings, open_cache
 from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.peaks import PeakCheck, SweepPeaks, coarser_peak, peak_mesh, sweep_peaks
 from linkstress.validation.fea.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
@@ -100,11 +101,17 @@ class LinkPeaks:
 
 
 def scene_peaks(
-    scene: Scene, plan: Plan, forces: MachineForces, executor: LocalExecutor | DaskExecutor | None = None
+    scene: Scene,
+    plan: Plan,
+    forces: MachineForces,
+    executor: LocalExecutor | DaskExecutor | None = None,
+    cache: CacheSettings | None = None,
 ) -> dict[str, LinkPeaks]:
     """The peaks (and fatigue) of every link of ``plan.peaks`` over the sweep's feasible positions;
     none where no position is feasible. Each link is a task of ``executor`` (default: here, one
-    after another). Raises FEAError (an InputError) naming a link that cannot be meshed or solved."""
+    after another), its unit-load solutions, meshes and peak check from and into the disk cache of
+    ``cache`` when given (the settings travel with the task). Raises FEAError (an InputError) naming
+    a link that cannot be meshed or solved."""
     feasible = np.flatnonzero(forces.feasible)
     if not len(feasible):
         return {}
@@ -113,7 +120,7 @@ def scene_peaks(
     note = cycle_note(scene.motion.angle_deg, forces.feasible)
     tasks = [
         PeaksTask(name, scene.links[name], forces.link_loads[name], feasible, len(forces.feasible), size, order, note,
-                  plan.fatigue_criterion, used_joints(scene, name))
+                  plan.fatigue_criterion, used_joints(scene, name), cache)
         for name in plan.peaks
     ]
     where = executor or LocalExecutor()
@@ -124,8 +131,9 @@ def scene_peaks(
 class PeaksTask:
     """What one link's peaks need, all of it data: the ``link``, its ``loads`` over the sweep of
     ``n_positions``, the ``feasible`` positions (indices), the mesh ``size`` [m] (None: default)
-    and element ``order``, the sweep's ``cycle_note``, the fatigue ``criterion`` and the joints the
-    scene uses (``linkstress.analysis.used_joints``: the link's members join those alone)."""
+    and element ``order``, the sweep's ``cycle_note``, the fatigue ``criterion``, the joints the
+    scene uses (``linkstress.analysis.used_joints``: the link's members join those alone) and the
+    disk ``cache`` (None: none)."""
 
     name: str
     link: SceneLink
@@ -137,6 +145,7 @@ class PeaksTask:
     cycle_note: str
     criterion: str
     used_joints: tuple[int, ...] | None = None
+    cache: CacheSettings | None = None
 
 
 def link_peaks(task: PeaksTask) -> LinkPeaks:
@@ -147,10 +156,11 @@ def link_peaks(task: PeaksTask) -> LinkPeaks:
         profile = link.profile
         members = link_members(profile, loads.frame_joints, link.members, task.used_joints)
         mesh = peak_mesh(profile, loads.frame_joints, members, task.size, task.order)
-        cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG)
+        cache = open_cache(task.cache)
+        cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG, cache)
         sweep = sweep_peaks(cases, loads, feasible)
         start = time.perf_counter()
-        check = coarser_peak(sweep, loads, mesh)
+        check = coarser_peak(sweep, loads, mesh, cache)
         check_seconds = time.perf_counter() - start
     fatigue, fatigue_note = None, task.cycle_note
     strength = link.material.fatigue_strength

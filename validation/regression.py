@@ -33,6 +33,7 @@ from linkstress.analysis import plan_for, run_analysis
 from linkstress.errors import InputError
 from linkstress.report.records import position_records
 from linkstress.scene import load_scene
+from linkstress.validation.fea.cache import CacheSettings
 
 SCENE_FILE = "scene.toml"
 REFERENCE_FILE = "reference.json"
@@ -116,8 +117,9 @@ def read_reference(case: Path) -> dict:
     return stored
 
 
-def current_values(case: Path, settings: dict) -> dict:
-    """Analysis records and, where the scene has profiled links, the beam-against-FEA errors."""
+def current_values(case: Path, settings: dict, cache: CacheSettings | None = None) -> dict:
+    """Analysis records and, where the scene has profiled links, the beam-against-FEA errors (the
+    FEA's meshes from and into the disk cache of ``cache`` when given)."""
     scene = load_scene(case / SCENE_FILE)
     plan = plan_for(scene)
     values = {"analysis": position_records(run_analysis(scene, plan))}
@@ -125,21 +127,22 @@ def current_values(case: Path, settings: dict) -> dict:
         from linkstress.validation.report import validation_json
         from linkstress.validation.validate_scene import validate_scene
 
-        result = validate_scene(scene, plan, settings["positions"], settings["mesh_levels"])
+        result = validate_scene(scene, plan, settings["positions"], settings["mesh_levels"], cache=cache)
         links = validation_json(result)["links"]
         keep = ERRORS + tuple(FEA_VALUES) + ("error",)
         values["validation"] = {"links": {n: {k: v for k, v in r.items() if k in keep} for n, r in links.items()}}
     return values
 
 
-def run_case(case: Path, update: bool = False) -> CaseResult:
-    """Re-run ``case`` and compare it with its reference (or, with ``update``, rewrite the reference)."""
+def run_case(case: Path, update: bool = False, cache: CacheSettings | None = None) -> CaseResult:
+    """Re-run ``case`` and compare it with its reference (or, with ``update``, rewrite the reference),
+    with the disk ``cache`` of the FEA's meshes when given."""
     result = CaseResult(case.name)
     reference_path = case / REFERENCE_FILE
     stored = read_reference(case)
     settings = {**DEFAULT_VALIDATION, **stored.get("validation_settings", {})}
     try:
-        values = current_values(case, settings)
+        values = current_values(case, settings, cache)
     except InputError as error:
         result.error = str(error)
         return result
@@ -200,7 +203,7 @@ def packed_case(case: Path) -> PackedCase:
     )
 
 
-def run_packed_case(packed: PackedCase, update: bool = False) -> tuple[CaseResult, bytes | None]:
+def run_packed_case(packed: PackedCase, update: bool = False, cache: CacheSettings | None = None) -> tuple[CaseResult, bytes | None]:
     """``run_case`` on a case carried by content, unpacked in a temporary folder that is removed
     after; with ``update`` the rewritten reference's bytes too (None when the case could not run),
     for the caller to write where the case lives."""
@@ -210,7 +213,7 @@ def run_packed_case(packed: PackedCase, update: bool = False) -> tuple[CaseResul
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_bytes(data)
         case = Path(folder, packed.folder)
-        result = run_case(case, update)
+        result = run_case(case, update, cache)
         reference = (case / REFERENCE_FILE).read_bytes() if update and not result.error else None
     return result, reference
 

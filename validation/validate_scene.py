@@ -35,6 +35,7 @@ from linkstress.validation.compare import (
     link_comparison,
     solve_compared,
 )
+from linkstress.validation.fea.cache import CacheSettings, open_cache
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.fea.plane_stress import SOLVE_COLUMNS
@@ -159,14 +160,16 @@ def validate_scene(
     jobs: int = 1,
     executor: LocalExecutor | DaskExecutor | None = None,
     block: int | None = None,
+    cache: CacheSettings | None = None,
 ) -> ValidationResult:
     """Analyse ``scene`` and compare every link of ``plan.validate`` with its FEA at up to
     ``positions`` feasible positions, with the elements of the scene's ``[analysis] element_order``
     (default 2); ``levels`` >= 3 makes each a mesh refinement study. The beams are sectioned here;
     each link's FEA runs as tasks of ``executor`` (default: ``jobs`` local processes when > 1, else
     here), one per block of its positions (``position_blocks``: ``block`` positions each, or as the
-    executor's workers call for), and the blocks are joined into what one solve gives. A progress
-    bar shows on a terminal."""
+    executor's workers call for), and the blocks are joined into what one solve gives; each task
+    takes its meshes from and into the disk cache of ``cache`` when given. A progress bar shows on
+    a terminal."""
     analysis = run_analysis(scene, plan)
     chosen = compared_positions(analysis, positions)
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
@@ -184,7 +187,7 @@ def validate_scene(
     for name, w in work.items():
         loads, points = analysis.forces.link_loads[name].at(chosen), w.beams.nominal_points()
         for rows in blocks:
-            tasks.append((scene.links[name].profile, loads.at(rows), w.mesh, w.beams.at(rows), points, levels))
+            tasks.append((scene.links[name].profile, loads.at(rows), w.mesh, w.beams.at(rows), points, levels, cache))
             labels.append(f"link {name}" if len(blocks) == 1 else f"link {name}, positions {chosen[rows[0]]}-{chosen[rows[-1]]}")
             owners.append(name)
     outcomes: dict[str, list] = {name: [] for name in work}
@@ -229,10 +232,10 @@ def _link_work(scene: Scene, plan: Plan, analysis: AnalysisResult, name: str, ch
 
 def _solve_block(task) -> tuple[LinkFEA | None, str, float]:
     """One block of a link's FEA, or why it could not run, and its time (top level: runs in a worker)."""
-    link, loads, mesh, beams, points, levels = task
+    link, loads, mesh, beams, points, levels, cache = task
     start = time.perf_counter()
     try:
-        return solve_compared(link, loads, mesh, beams, points, levels), "", time.perf_counter() - start
+        return solve_compared(link, loads, mesh, beams, points, levels, open_cache(cache)), "", time.perf_counter() - start
     except (FEAError, GeometryError) as error:
         return None, str(error), time.perf_counter() - start
 

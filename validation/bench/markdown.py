@@ -40,6 +40,7 @@ python -m linkstress.validation.bench.startup        # start-up of analyze again
 python -m linkstress.validation.fea.verification     # the FEA's analytic verification suite
 python -m linkstress.validation.bench.cluster        # regression cases on a Dask cluster of 1 and 2 local workers
 python -m linkstress.validation.bench.blocks         # validate of one link's long sweep, whole and in blocks on 2 workers
+python -m linkstress.validation.bench.first_solve    # one link's unit-load set phase by phase; analyze --peaks cold and with its cache warm
 ```"""
 
 

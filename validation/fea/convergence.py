@@ -28,6 +28,7 @@ from linkstress.loads import LinkLoadCase
 from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
 from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.cache import DiskCache
 from linkstress.validation.fea.link import LinkFEAResult, join_results, solve_link
 from linkstress.validation.fea.mesh import MeshSettings
 
@@ -188,12 +189,14 @@ def convergence_study(
     ratio: float = REFINEMENT_RATIO,
     tolerance: float = CONVERGED_CHANGE,
     cut_axes: tuple[ArrayLike, ArrayLike] | None = None,
+    cache: DiskCache | None = None,
 ) -> ConvergenceStudy:
     """Solve ``link`` on ``levels`` meshes from ``settings``, each ``ratio`` finer, and follow the
     von Mises stresses at the nominal ``points`` (Q, 2) [m, member frame of the load case; Q may be
     0], the peak von Mises and the resultants at the cuts ``settings.stations`` and
     ``settings.cuts``, those taken across ``cut_axes`` = (tangents (C, 2), reference points (C, 2)
-    [m]) (``LinkFEAResult.cut_resultants``; needed when there are cut segments)."""
+    [m]) (``LinkFEAResult.cut_resultants``; needed when there are cut segments). Each level's mesh
+    from and into ``cache`` when given."""
     if settings.cuts and cut_axes is None:
         raise FEAError("a convergence study over cut segments needs their tangents and reference points")
     if levels < 3:
@@ -206,7 +209,7 @@ def convergence_study(
     result = None
     for level in range(levels):
         level_settings = settings.refined(ratio**level)
-        result = solve_link(link, loads, level_settings)
+        result = solve_link(link, loads, level_settings, cache)
         meshes.append(level_settings)
         spacing.append(math.sqrt(area / result.n_elements))
         dofs.append(result.dofs)

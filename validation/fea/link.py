@@ -19,13 +19,15 @@ from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from shapely.geometry import Polygon
 
 from linkstress.loads import LinkLoadCase
 from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
+from linkstress.validation.fea.cache import DiskCache
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.loads import check_load_case, link_loads, point_force_hole
-from linkstress.validation.fea.mesh import MeshSettings, PlaneMesh, mesh_region
+from linkstress.validation.fea.mesh import MeshSettings, PlaneMesh, cached_mesh_region
 from linkstress.validation.fea.plane_stress import (
     PlaneStressModel,
     factorise,
@@ -259,12 +261,12 @@ def join_cut_resultants(parts: Sequence[CutResultants]) -> CutResultants:
     )
 
 
-def link_model(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> PlaneStressModel:
-    """Mesh ``link`` in the member frame of ``loads.frame_joints`` (refined at its point forces in
-    material) and assemble its plane-stress stiffness.
+def link_region(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> tuple[Polygon, MeshSettings, NDArray[np.float64]]:
+    """What ``link`` is meshed from in the member frame of ``loads.frame_joints``: its outline, the
+    mesh settings and the points (Q, 2) [m] refined to ``station_size`` (its point forces in material).
 
-    Raises FEAError (an InputError) naming the link for: a link without E and nu, a load case that
-    does not fit it, a part too thin for the sizes, a gmsh failure.
+    Raises FEAError (an InputError) naming the link for a link without E and nu, or a load case that
+    does not fit it.
     """
     material = link.material
     if material is None or material.youngs_modulus is None or material.poisson_ratio is None:
@@ -277,18 +279,31 @@ def link_model(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> Pl
         np.asarray(p.at, float) for p in loads.point_forces
         if point_force_hole(link, loads.frame_joints, p.at) is None
     ]
-    plane = mesh_region(link.local_outline(*loads.frame_joints), mesh, refine, name=f"link {link.name!r}")
+    return link.local_outline(*loads.frame_joints), mesh, np.asarray(refine, float).reshape(-1, 2)
+
+
+def link_model(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings, cache: DiskCache | None = None) -> PlaneStressModel:
+    """Mesh ``link`` in the member frame of ``loads.frame_joints`` (refined at its point forces in
+    material; the mesh from and into ``cache`` when given) and make its plane-stress model.
+
+    Raises FEAError (an InputError) naming the link for: a link without E and nu, a load case that
+    does not fit it, a part too thin for the sizes, a gmsh failure.
+    """
+    region, settings, refine = link_region(link, loads, mesh)
+    plane = cached_mesh_region(region, settings, refine, f"link {link.name!r}", cache)
+    material = link.material
     return plane_stress_model(plane, material.youngs_modulus, material.poisson_ratio, link.thickness)
 
 
-def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings) -> LinkFEAResult:
-    """Mesh ``link`` in the member frame of ``loads.frame_joints`` and solve every position of ``loads``.
+def solve_link(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings, cache: DiskCache | None = None) -> LinkFEAResult:
+    """Mesh ``link`` in the member frame of ``loads.frame_joints`` (the mesh from and into ``cache``
+    when given) and solve every position of ``loads``.
 
     Raises FEAError (an InputError) naming the link for: a link without E and nu, a loaded joint
     without a hole, a part too thin for the sizes, a gmsh or solver failure.
     """
     start = time.perf_counter()
-    model = link_model(link, loads, mesh)
+    model = link_model(link, loads, mesh, cache)
     meshed = time.perf_counter()
     forces = link_loads(model, link, loads, patch_radius=mesh.station_size)
     fixed, _ = minimal_support(model)

@@ -30,6 +30,7 @@ from numpy.typing import NDArray
 from shapely.geometry import LinearRing, LineString, Point, Polygon
 from skfem import MeshTri1, MeshTri2
 
+from linkstress.validation.fea.cache import DiskCache, cache_key
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.mesh_checks import check_meshable
 from linkstress.validation.fea.ring_curves import Arc, Circle, Line, Spline, ring_curves
@@ -137,6 +138,78 @@ class PlaneMesh:
     @property
     def order(self) -> int:
         return self.settings.order
+
+    def arrays(self) -> dict[str, NDArray]:
+        """The mesh as plain arrays (``from_arrays`` makes it again, the same to the bit)."""
+        return {
+            "mesh_doflocs": self.mesh.doflocs,
+            "mesh_t": self.mesh.t,
+            "mesh_outline": self.outline,
+            "mesh_holes": np.concatenate([np.zeros(0, dtype=np.intp), *self.holes]),
+            "mesh_hole_sizes": np.array([len(h) for h in self.holes], dtype=np.intp),
+            "mesh_cuts": np.concatenate([np.zeros(0, dtype=np.intp), *self.cuts]),
+            "mesh_cut_sizes": np.array([len(c) for c in self.cuts], dtype=np.intp),
+            "mesh_stations": self.stations,
+        }
+
+    @classmethod
+    def from_arrays(cls, arrays: dict[str, NDArray], settings: MeshSettings, seconds: float = 0.0) -> PlaneMesh:
+        """The mesh that ``arrays`` (from ``arrays()``) hold, made with ``settings``."""
+        kind = MeshTri2 if settings.order == 2 else MeshTri1
+        return cls(
+            mesh=kind(arrays["mesh_doflocs"], arrays["mesh_t"]),
+            outline=arrays["mesh_outline"],
+            holes=_split(arrays["mesh_holes"], arrays["mesh_hole_sizes"]),
+            cuts=_split(arrays["mesh_cuts"], arrays["mesh_cut_sizes"]),
+            stations=arrays["mesh_stations"],
+            settings=settings,
+            seconds=seconds,
+        )
+
+
+def _split(values: NDArray[np.intp], sizes: NDArray[np.intp]) -> tuple[NDArray[np.intp], ...]:
+    """``values`` cut into consecutive pieces of ``sizes`` (none for no sizes)."""
+    return tuple(np.split(values, np.cumsum(sizes)[:-1])) if len(sizes) else ()
+
+
+MESH = "mesh"
+"""The cache's kind for a meshed region (``cached_mesh_region``)."""
+
+
+def mesh_key_parts(region: Polygon, settings: MeshSettings, points: NDArray[np.float64]) -> dict:
+    """Everything a mesh depends on, for a cache key: the region's rings exactly, the settings and
+    the refinement points."""
+    return {
+        "exterior": np.asarray(region.exterior.coords, float),
+        "interiors": [np.asarray(ring.coords, float) for ring in region.interiors],
+        "settings": {
+            "size": settings.size, "hole_size": settings.hole_size, "stations": list(settings.stations),
+            "station_size": settings.station_size, "grading": settings.grading, "order": settings.order,
+            "cuts": [list(map(list, cut)) for cut in settings.cuts],
+        },
+        "points": np.asarray(points, float).reshape(-1, 2),
+    }
+
+
+def cached_mesh_region(
+    region: Polygon,
+    settings: MeshSettings,
+    points: Sequence[Sequence[float]] = (),
+    name: str = "region",
+    cache: DiskCache | None = None,
+) -> PlaneMesh:
+    """``mesh_region``, from and into ``cache`` when given (gmsh gives the same mesh for the same
+    input, so a stored one is what meshing again would give)."""
+    if cache is None:
+        return mesh_region(region, settings, points, name)
+    start = time.perf_counter()
+    key = cache_key(MESH, mesh_key_parts(region, settings, np.asarray(points, float)))
+    stored = cache.load(MESH, key)
+    if stored is not None:
+        return PlaneMesh.from_arrays(stored, settings, time.perf_counter() - start)
+    plane = mesh_region(region, settings, points, name)
+    cache.store(MESH, key, plane.arrays())
+    return plane
 
 
 def mesh_region(

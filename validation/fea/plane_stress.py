@@ -11,23 +11,34 @@ scikit-fem 12's ``plane_stress(E, nu)`` returns exactly (lambda*, mu), to be fed
 (3D) lambda of the wrong moduli. The stiffness is scaled by the plate thickness t, so loads are
 forces [N] and stresses are in-plane [Pa].
 
-One stiffness factorisation (SuperLU) serves any number of load cases: solve takes all the
-right-hand sides (dofs, P) at once, and hands them to SuperLU SOLVE_COLUMNS at a time.
+The stiffness is assembled as its 2 x 2 blocks (x and y displacements), each a scalar form in the
+derivatives of the basis functions with D's entries: the same matrix as scikit-fem's vector
+``linear_elasticity`` form to rounding (``tests/test_fea_fast_solve.py``), in less than half its time
+(three scalar forms over the 6 x 6 pairs of an element's P2 functions, instead of one vector form
+over 12 x 12 pairs, each a tensor product). The stress projections of the recovery are made the
+same way from two scalar matrices.
+
+One stiffness factorisation serves any number of load cases: solve takes all the right-hand sides
+(dofs, P) at once, and hands them to the factors SOLVE_COLUMNS at a time. The factors are a sparse
+Cholesky (CHOLMOD, from scikit-sparse: ``pip install "linkstress[fast]"``) when it is installed, else
+SuperLU, which always is; ``LINKSTRESS_SOLVER`` (``cholmod`` or ``superlu``) chooses one.
 """
 
 from __future__ import annotations
 
+import os
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property, lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.sparse.linalg import splu
 from skfem import Basis, BilinearForm, Element, ElementTriP1, ElementTriP2, ElementVector, asm
-from skfem.helpers import sym_grad
-from skfem.models.elasticity import linear_elasticity, linear_stress, plane_stress
 
 from linkstress.validation.fea.errors import FEAError
+from linkstress.validation.fea.mesh import PlaneMesh
 
 SOLVE_COLUMNS = 8
 """Right-hand sides per call of a factorisation's solve (``solve_columns``). SuperLU solves several
@@ -37,8 +48,12 @@ bits with the positions solved beside it (2.5e-16 to 1.6e-15 relative, six_bar's
 of this many, a position's result is the same bit for bit whether a sweep is solved whole or in
 blocks of a multiple of it (``validate`` splits a link's positions so), on any number of threads.
 Measured no slower than one call: 0.29 s against 0.31 s for 108 positions of 23,000 dofs (one
-column at a time: 0.76 s)."""
-from linkstress.validation.fea.mesh import PlaneMesh
+column at a time: 0.76 s). CHOLMOD's simplicial solve is column by column, so chunks change none of
+its bits either (tested for both)."""
+SOLVER_VARIABLE = "LINKSTRESS_SOLVER"
+"""Environment variable naming the sparse solver of the SPD systems: ``cholmod`` or ``superlu``;
+unset or empty: CHOLMOD when scikit-sparse is installed, else SuperLU."""
+SOLVERS = ("cholmod", "superlu")
 
 INTORDER = 4
 """Quadrature degree on cells: exact for the P2 stiffness and for P2 x linear loads on straight cells."""
@@ -66,7 +81,8 @@ class PlaneStressModel:
 
     ``components[c, i]`` is the displacement dof of component c (0 = x, 1 = y) at scalar dof i, so a
     nodal field computed on ``scalar`` scatters into the displacement vector. ``stiffness`` [N/m]
-    includes the thickness [m].
+    includes the thickness [m]; it is assembled when first asked for (a model rebuilt from cached
+    unit-load solutions never needs it).
     """
 
     plane: PlaneMesh
@@ -76,7 +92,28 @@ class PlaneStressModel:
     basis: Basis
     scalar: Basis
     components: NDArray[np.intp]
-    stiffness: sp.csr_matrix
+
+    @cached_property
+    def stiffness(self) -> sp.csr_matrix:
+        """K (dofs, dofs) [N/m]: thickness x the plane-stress stiffness, from its scalar blocks."""
+        d = plane_stress_matrix(self.youngs_modulus, self.poisson_ratio)
+        # K_cd[i, j] = int B_i^c . D B_j^d, with B of phi e_x = (d_x phi, 0, d_y phi) and of phi e_y =
+        # (0, d_y phi, d_x phi); i is the test function v (row), j the trial function u (column).
+        xx = BilinearForm(lambda u, v, w: d[0, 0] * u.grad[0] * v.grad[0] + d[2, 2] * u.grad[1] * v.grad[1])
+        yy = BilinearForm(lambda u, v, w: d[1, 1] * u.grad[1] * v.grad[1] + d[2, 2] * u.grad[0] * v.grad[0])
+        xy = BilinearForm(lambda u, v, w: d[0, 1] * u.grad[1] * v.grad[0] + d[2, 2] * u.grad[0] * v.grad[1])
+        blocks = {(0, 0): asm(xx, self.scalar), (1, 1): asm(yy, self.scalar), (0, 1): asm(xy, self.scalar)}
+        blocks[(1, 0)] = blocks[(0, 1)].T
+        return self.thickness * self.vector_matrix(blocks, self.components, self.components)
+
+    def vector_matrix(self, blocks: dict, rows: NDArray[np.intp] | None, cols: NDArray[np.intp] | None) -> sp.csr_matrix:
+        """The matrix whose block (c, d) is ``blocks[(c, d)]`` (scalar dofs), rows (cols) scattered
+        to the vector dofs ``rows[c]`` (``cols[d]``), or kept scalar where None."""
+        shape = (self.n_dofs if rows is not None else self.scalar.N, self.n_dofs if cols is not None else self.scalar.N)
+        parts = [sp.coo_matrix(b) for b in blocks.values()]
+        row = np.concatenate([p.row if rows is None else rows[c][p.row] for (c, _), p in zip(blocks, parts)])
+        col = np.concatenate([p.col if cols is None else cols[d][p.col] for (_, d), p in zip(blocks, parts)])
+        return sp.csr_matrix((np.concatenate([p.data for p in parts]), (row, col)), shape=shape)
 
     @property
     def n_dofs(self) -> int:
@@ -86,37 +123,39 @@ class PlaneStressModel:
     def order(self) -> int:
         return self.plane.order
 
-    def stress_forms(self) -> tuple[BilinearForm, BilinearForm, BilinearForm]:
-        """Forms (u, v) -> int sigma_c(u) v dA for c = xx, yy, xy: u displacement, v scalar."""
-        stress = linear_stress(*plane_stress(self.youngs_modulus, self.poisson_ratio))
+    def stress_projections(self) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """B_c (scalar dofs, dofs) [N/m] with (B_c u)_i = int sigma_c(u) psi_i dA for c = xx, yy, xy
+        (psi_i the scalar basis), from two scalar matrices C_a[i, j] = int psi_i d_a phi_j dA."""
+        d = plane_stress_matrix(self.youngs_modulus, self.poisson_ratio)
+        cx, cy = (asm(form, self.scalar) for form in _VALUE_GRADIENT_PRODUCTS)
+        # sigma(phi e_x) = (D11 d_x phi, D12 d_x phi, D33 d_y phi); sigma(phi e_y) = (D12 d_y phi, D22 d_y phi, D33 d_x phi).
+        per_component = (
+            {(0, 0): d[0, 0] * cx, (0, 1): d[0, 1] * cy},
+            {(0, 0): d[1, 0] * cx, (0, 1): d[1, 1] * cy},
+            {(0, 0): d[2, 2] * cy, (0, 1): d[2, 2] * cx},
+        )
+        return tuple(self.vector_matrix(blocks, None, self.components) for blocks in per_component)
 
-        def component(i: int, j: int) -> BilinearForm:
-            return BilinearForm(lambda u, v, w: stress(sym_grad(u))[i, j] * v)
 
-        return component(0, 0), component(1, 1), component(0, 1)
+_VALUE_GRADIENT_PRODUCTS = (
+    BilinearForm(lambda u, v, w: u.grad[0] * v),
+    BilinearForm(lambda u, v, w: u.grad[1] * v),
+)
+"""int psi_i d_a phi_j dA for a = x, y: entry [i, j] of C_x and C_y."""
 
 
 def plane_stress_model(
     plane: PlaneMesh, youngs_modulus: float, poisson_ratio: float, thickness: float
 ) -> PlaneStressModel:
-    """Assemble the plane-stress stiffness of ``plane`` for E [Pa], nu [-] and thickness t [m]."""
+    """The plane-stress model of ``plane`` for E [Pa], nu [-] and thickness t [m]: its bases (the
+    stiffness is assembled when first used)."""
     basis = Basis(plane.mesh, ElementVector(scalar_element(plane.order)), intorder=INTORDER)
     scalar = basis.with_element(scalar_element(plane.order))
     components = np.empty((2, scalar.N), dtype=np.intp)
     components[:, scalar.nodal_dofs[0]] = basis.nodal_dofs
     if scalar.facet_dofs.size:  # the mid-edge nodes of P2
         components[:, scalar.facet_dofs[0]] = basis.facet_dofs
-    stiffness = thickness * asm(linear_elasticity(*plane_stress(youngs_modulus, poisson_ratio)), basis)
-    return PlaneStressModel(
-        plane,
-        float(youngs_modulus),
-        float(poisson_ratio),
-        float(thickness),
-        basis,
-        scalar,
-        components,
-        stiffness.tocsr(),
-    )
+    return PlaneStressModel(plane, float(youngs_modulus), float(poisson_ratio), float(thickness), basis, scalar, components)
 
 
 def quadrature_weights(basis: Basis) -> tuple[sp.csr_matrix, NDArray[np.float64]]:
@@ -155,7 +194,7 @@ class FactorisedStiffness:
     stiffness: sp.csr_matrix
     fixed: NDArray[np.intp]
     free: NDArray[np.intp]
-    lu: object
+    lu: SPDFactors
 
     def solve(
         self, loads: NDArray[np.float64], prescribed: NDArray[np.float64] | None = None
@@ -185,37 +224,93 @@ class FactorisedStiffness:
 
 
 def factorise(model: PlaneStressModel, fixed: NDArray[np.intp]) -> FactorisedStiffness:
-    """Factorise the stiffness with the dofs ``fixed`` removed (prescribed at solve time)."""
+    """Factorise the stiffness with the dofs ``fixed`` removed (prescribed at solve time): SPD once
+    they remove the rigid modes (``minimal_support``), so a Cholesky factorisation applies."""
     fixed = np.asarray(fixed, dtype=np.intp)
     if len(np.unique(fixed)) != len(fixed):
         raise FEAError(f"a dof is fixed twice in {fixed.tolist()}")
     free = np.setdiff1d(np.arange(model.n_dofs), fixed)
     try:
         lu = factorise_spd(model.stiffness[free][:, free])
-    except RuntimeError as error:
+    except NotPositiveDefinite as error:
         raise FEAError(
             f"the stiffness could not be factorised ({error}): the supports leave a rigid mode free"
         ) from error
     return FactorisedStiffness(model.stiffness, fixed, free, lu)
 
 
-def solve_columns(factors, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
-    """``factors.solve`` (a SuperLU factorisation) of the right-hand sides ``rhs`` (n, P), SOLVE_COLUMNS at a time."""
+def solve_columns(factors: SPDFactors, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``factors.solve`` of the right-hand sides ``rhs`` (n, P), SOLVE_COLUMNS at a time."""
     rhs = np.asarray(rhs, float)
     if rhs.ndim == 1 or rhs.shape[1] <= SOLVE_COLUMNS:
         return factors.solve(rhs)
     return np.concatenate([factors.solve(rhs[:, k:k + SOLVE_COLUMNS]) for k in range(0, rhs.shape[1], SOLVE_COLUMNS)], axis=1)
 
 
-def factorise_spd(matrix: sp.spmatrix):
-    """SuperLU factors of a symmetric positive definite matrix.
+class NotPositiveDefinite(FEAError):
+    """The matrix given as SPD could not be factorised as one (singular, or a rigid mode left free)."""
 
-    Minimum degree ordering on A^T + A, symmetric mode and no pivoting (the diagonal of an SPD
-    matrix is a safe pivot): about four times less fill and time than SuperLU's defaults.
+
+@dataclass(frozen=True)
+class SPDFactors:
+    """The factors of a symmetric positive definite matrix by ``solver`` (``SOLVERS``); ``solve``
+    maps right-hand sides (n,) or (n, P) to solutions of the same shape."""
+
+    solver: str
+    solve: Callable[[NDArray[np.float64]], NDArray[np.float64]]
+
+
+def spd_solver() -> str:
+    """The solver ``factorise_spd`` uses: ``LINKSTRESS_SOLVER`` if set, else CHOLMOD when
+    scikit-sparse is installed, else SuperLU. FEAError for an unknown name, or CHOLMOD asked for and
+    not installed."""
+    asked = os.environ.get(SOLVER_VARIABLE, "").strip().lower()
+    if asked and asked not in SOLVERS:
+        raise FEAError(f"{SOLVER_VARIABLE}: {asked!r} is not a solver; use one of {', '.join(SOLVERS)}, or unset it")
+    available = _cholmod() is not None
+    if asked == "cholmod" and not available:
+        raise FEAError(
+            f"{SOLVER_VARIABLE}=cholmod: scikit-sparse is not installed; pip install \"linkstress[fast]\" (it needs "
+            "SuiteSparse: apt-get install libsuitesparse-dev), or unset it for SuperLU"
+        )
+    return asked or ("cholmod" if available else "superlu")
+
+
+def factorise_spd(matrix: sp.spmatrix, solver: str | None = None) -> SPDFactors:
+    """Factors of a symmetric positive definite matrix by ``solver`` (default ``spd_solver()``).
+
+    CHOLMOD: simplicial LDL^T with AMD ordering (on the links' peak meshes 0.6 to 0.8 of SuperLU's
+    time to factorise and to solve; supernodal is slower with Debian's reference BLAS). It reads the lower
+    triangle, SuperLU the whole matrix: the stiffness is symmetric to rounding. SuperLU: minimum
+    degree ordering on A^T + A, symmetric mode and no pivoting (the diagonal of an SPD matrix is a
+    safe pivot): about four times less fill and time than SuperLU's defaults. NotPositiveDefinite
+    when the matrix is not (numerically) SPD.
     """
-    return splu(
-        matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
-    )
+    solver = solver or spd_solver()
+    if solver == "cholmod":
+        cholmod = _cholmod()
+        try:
+            factor = cholmod.cholesky(sp.csc_matrix(matrix), ordering_method="amd", mode="simplicial")
+        except cholmod.CholmodNotPositiveDefiniteError as error:
+            raise NotPositiveDefinite(f"CHOLMOD: {error}") from None
+        return SPDFactors("cholmod", factor.solve_A)
+    try:
+        lu = splu(
+            matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
+        )
+    except RuntimeError as error:
+        raise NotPositiveDefinite(f"SuperLU: {error}") from None
+    return SPDFactors("superlu", lu.solve)
+
+
+@lru_cache(maxsize=1)
+def _cholmod():
+    """scikit-sparse's CHOLMOD module, or None when it is not installed."""
+    try:
+        from sksparse import cholmod
+    except ImportError:
+        return None
+    return cholmod
 
 
 def minimal_support(model: PlaneStressModel) -> tuple[NDArray[np.intp], NDArray[np.float64]]:

@@ -19,11 +19,16 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.spatial import cKDTree
 from skfem import BilinearForm, asm
 
 from linkstress.validation.fea.errors import FEAError
-from linkstress.validation.fea.plane_stress import PlaneStressModel, factorise_spd, plane_stress_matrix, solve_columns
+from linkstress.validation.fea.plane_stress import (
+    PlaneStressModel,
+    SPDFactors,
+    factorise_spd,
+    plane_stress_matrix,
+    solve_columns,
+)
 
 OUTSIDE_TOLERANCE = 0.05
 """How far outside an element (in its reference coordinates) a point may be and still be evaluated
@@ -41,7 +46,7 @@ class StressRecovery:
 
     model: PlaneStressModel
     projections: tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]
-    mass: object
+    mass: SPDFactors
 
     def nodal_stress(self, displacement: NDArray[np.float64]) -> NDArray[np.float64]:
         """Recovered stress (P, scalar dofs, 3) [Pa] at the nodes for displacements (dofs, P) [m]."""
@@ -52,8 +57,7 @@ class StressRecovery:
 def stress_recovery(model: PlaneStressModel) -> StressRecovery:
     """Assemble and factorise the projection of ``model``'s stresses onto its continuous scalar space."""
     mass = asm(BilinearForm(lambda u, v, w: u * v), model.scalar).tocsc()
-    projections = tuple(asm(form, model.basis, model.scalar).tocsr() for form in model.stress_forms())
-    return StressRecovery(model, projections, factorise_spd(mass))
+    return StressRecovery(model, model.stress_projections(), factorise_spd(mass))
 
 
 def interpolation_matrix(model: PlaneStressModel, points: NDArray[np.float64]) -> sp.csr_matrix:
@@ -81,6 +85,8 @@ def _locate(element, nodes, element_dofs, points) -> tuple[NDArray[np.intp], NDA
     element's centroid can be nearer than the large element holding the point) are searched again
     among ever more candidates, up to every element.
     """
+    from scipy.spatial import cKDTree  # scipy.spatial takes 0.1 s to import: only where points are located
+
     n_el = element_dofs.shape[1]
     tree = cKDTree(nodes[:, element_dofs[:3]].mean(axis=1).T)
     cells = np.zeros(len(points), dtype=np.intp)

@@ -33,8 +33,9 @@ from numpy.typing import NDArray
 
 from linkstress.loads import LinkLoadCase
 from linkstress.geometry.profile import LinkProfile
+from linkstress.validation.fea.cache import DiskCache, cache_key
 from linkstress.validation.fea.errors import FEAError
-from linkstress.validation.fea.link import applied_load, link_model, support_reactions
+from linkstress.validation.fea.link import applied_load, link_model, link_region, support_reactions
 from linkstress.validation.fea.loads import (
     bearing_loads,
     body_loads,
@@ -42,8 +43,8 @@ from linkstress.validation.fea.loads import (
     point_force_hole,
     shaft_couple_loads,
 )
-from linkstress.validation.fea.mesh import MeshSettings
-from linkstress.validation.fea.plane_stress import PlaneStressModel, factorise, minimal_support
+from linkstress.validation.fea.mesh import MeshSettings, PlaneMesh, mesh_key_parts
+from linkstress.validation.fea.plane_stress import PlaneStressModel, factorise, minimal_support, plane_stress_model
 from linkstress.validation.fea.recovery import stress_recovery
 
 DIRECTION_STEP_DEG = 10.0
@@ -51,6 +52,8 @@ DIRECTION_STEP_DEG = 10.0
 carried by two cosine pressures 5 deg either side, whose shape differs from the direct one near the
 edges of the loaded half; measured by ``linkstress bench`` (superposed against direct peaks)."""
 BODY_TERMS = ("(g - a_O)_x", "(g - a_O)_y", "alpha", "omega^2")
+UNIT_LOADS = "unit-loads"
+"""The cache's kind for a link's unit-load solutions: its mesh and the recovered stress of every unit case."""
 
 
 @dataclass(frozen=True)
@@ -72,7 +75,8 @@ class UnitLoadCases:
     ``reactions`` (U, 3): each unit case's support force x, y [N] and moment about the origin [N m];
     ``applied`` (U,) [N]: its gross nodal load (sum of |nodal force|); ``labels`` (U,) name each
     case; ``directions`` (K,) [rad] the bearing directions. ``seconds``: mesh, solve (factorise,
-    the unit solves and the stress recovery).
+    the unit solves and the stress recovery), and cache (reading them) when ``cached``: read from
+    the disk cache, not solved.
     """
 
     link: LinkProfile
@@ -88,6 +92,7 @@ class UnitLoadCases:
     point_forces: tuple[tuple[int, Bearing | None, int], ...]
     body: int
     seconds: dict[str, float]
+    cached: bool = False
 
     @property
     def count(self) -> int:
@@ -146,34 +151,57 @@ def bearing_weights(forces: NDArray[np.float64], directions: NDArray[np.float64]
     return w
 
 
-def unit_load_cases(
-    link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings, step_deg: float = DIRECTION_STEP_DEG
-) -> UnitLoadCases:
-    """Mesh ``link`` (member frame of ``loads.frame_joints``), factorise once and solve the unit
-    cases of the load terms ``loads`` has over its sweep (see the module's docstring).
+@dataclass(frozen=True)
+class UnitCaseGroup:
+    """Consecutive unit cases of one kind: ``bearing`` (one per direction, on ``hole`` about
+    ``centre``), ``couple`` (a unit couple on ``hole`` about ``centre``), ``patch`` (unit x and y
+    point forces at ``centre``, in material) or ``body`` (the four body-load terms); their ``labels``."""
 
-    Raises FEAError naming the link for a loaded joint without a hole, a mesh or solver failure.
+    kind: str
+    hole: int | None
+    centre: tuple[float, float] | None
+    labels: tuple[str, ...]
+
+    def key(self) -> dict:
+        return {"kind": self.kind, "hole": self.hole, "centre": self.centre, "cases": len(self.labels)}
+
+
+@dataclass(frozen=True)
+class UnitCaseLayout:
+    """Which unit cases a link's load case needs, in column order, found from the link and the loads
+    alone (no mesh): ``groups``, and where the weights go (``UnitLoadCases``' pins, couples,
+    point_forces and body)."""
+
+    directions: NDArray[np.float64]
+    groups: tuple[UnitCaseGroup, ...]
+    pins: tuple[tuple[int, Bearing], ...]
+    couples: tuple[tuple[int, int], ...]
+    point_forces: tuple[tuple[int, Bearing | None, int], ...]
+    body: int
+
+    @property
+    def labels(self) -> tuple[str, ...]:
+        return tuple(label for group in self.groups for label in group.labels)
+
+
+def unit_case_layout(link: LinkProfile, loads: LinkLoadCase, step_deg: float = DIRECTION_STEP_DEG) -> UnitCaseLayout:
+    """The unit cases of the load terms ``loads`` has over its sweep (see the module's docstring).
+
+    Raises FEAError naming the link for a loaded joint without a hole.
     """
-    start = time.perf_counter()
-    model = link_model(link, loads, mesh)
-    meshed = time.perf_counter()
-    frame = link.frame(*loads.frame_joints)
-    joints = frame.to_local(link.joints)
+    joints = link.frame(*loads.frame_joints).to_local(link.joints)
     directions = np.deg2rad(np.arange(0.0, 360.0, step_deg))
-    unit = np.column_stack([np.cos(directions), np.sin(directions)])
-    holes = model.plane.holes
-    columns: list[NDArray[np.float64]] = []
-    labels: list[str] = []
+    groups: list[UnitCaseGroup] = []
 
-    def add(forces: NDArray[np.float64], names: list[str]) -> int:
-        first = sum(c.shape[1] for c in columns)
-        columns.append(forces)
-        labels.extend(names)
+    def add(kind: str, hole: int | None, centre, labels: list[str]) -> int:
+        first = sum(len(g.labels) for g in groups)
+        point = None if centre is None else (float(centre[0]), float(centre[1]))
+        groups.append(UnitCaseGroup(kind, hole, point, tuple(labels)))
         return first
 
     def bearing(label: str, hole: int, centre: NDArray[np.float64]) -> Bearing:
         names = [f"{label}: unit bearing force at {np.rad2deg(d):g} deg" for d in directions]
-        return Bearing(add(bearing_loads(model, holes[hole], centre, unit), names), hole, centre)
+        return Bearing(add("bearing", hole, centre, names), hole, np.asarray(centre, float))
 
     pins, couples = [], []
     for j, hole in enumerate(link.joint_holes):
@@ -187,44 +215,129 @@ def unit_load_cases(
         if loaded:
             pins.append((j, bearing(f"pin {j}", hole, joints[j])))
         if turned:
-            label = [f"pin {j}: unit couple"]
-            couples.append((j, add(shaft_couple_loads(model, holes[hole], joints[j], np.ones(1)), label)))
+            couples.append((j, add("couple", hole, joints[j], [f"pin {j}: unit couple"])))
     points = []
     for index, point in enumerate(loads.point_forces):
         pin = point_force_hole(link, loads.frame_joints, point.at)
         label = f"point force {index} at {np.round(np.asarray(point.at, float), 6).tolist()} m"
         if pin is None:
-            patch = patch_loads(model, point.at, np.eye(2), mesh.station_size)
-            points.append((index, None, add(patch, [f"{label}: unit x", f"{label}: unit y"])))
+            points.append((index, None, add("patch", None, point.at, [f"{label}: unit x", f"{label}: unit y"])))
             continue
         hole, centre = pin
         cases = bearing(label, hole, centre)
-        couple = add(shaft_couple_loads(model, holes[hole], centre, np.ones(1)), [f"{label}: unit couple"])
-        points.append((index, cases, couple))
-    body = add(_unit_body_loads(model, loads.frame_joints, link.density), [f"body: unit {t}" for t in BODY_TERMS])
-    forces = np.hstack(columns)
+        points.append((index, cases, add("couple", hole, centre, [f"{label}: unit couple"])))
+    body = add("body", None, None, [f"body: unit {t}" for t in BODY_TERMS])
+    return UnitCaseLayout(directions, tuple(groups), tuple(pins), tuple(couples), tuple(points), body)
+
+
+def unit_load_cases(
+    link: LinkProfile,
+    loads: LinkLoadCase,
+    mesh: MeshSettings,
+    step_deg: float = DIRECTION_STEP_DEG,
+    cache: DiskCache | None = None,
+) -> UnitLoadCases:
+    """Mesh ``link`` (member frame of ``loads.frame_joints``), factorise once and solve the unit
+    cases of the load terms ``loads`` has over its sweep (see the module's docstring); from and
+    into ``cache`` when given (its key: ``unit_cases_key``).
+
+    Raises FEAError naming the link for a loaded joint without a hole, a mesh or solver failure.
+    """
+    start = time.perf_counter()
+    region = link_region(link, loads, mesh)
+    layout = unit_case_layout(link, loads, step_deg)
+    key = None
+    if cache is not None:
+        key = unit_cases_key(link, loads.frame_joints, region, layout)
+        stored = cache.load(UNIT_LOADS, key)
+        if stored is not None:
+            return _from_entry(link, loads, mesh, layout, stored, time.perf_counter() - start)
+    model = link_model(link, loads, mesh, cache)
+    meshed = time.perf_counter()
+    forces = np.hstack([group_loads(model, group, layout.directions, link.density, loads.frame_joints, mesh)
+                        for group in layout.groups])
     fixed, _ = minimal_support(model)
     try:
         displacement, support = factorise(model, fixed).solve(forces)
     except FEAError as error:
         raise FEAError(f"link {link.name!r}: {error}") from None
     nodal = stress_recovery(model).nodal_stress(displacement)  # (U, nodes, 3)
-    stress = np.ascontiguousarray(nodal.reshape(len(labels), -1).T)
-    return UnitLoadCases(
+    stress = np.ascontiguousarray(nodal.reshape(len(layout.labels), -1).T)
+    cases = UnitLoadCases(
         link=link,
         frame_joints=tuple(loads.frame_joints),
         model=model,
         stress=stress,
         reactions=support_reactions(model, fixed, support),
         applied=applied_load(model, forces),
-        labels=tuple(labels),
-        directions=directions,
-        pins=tuple(pins),
-        couples=tuple(couples),
-        point_forces=tuple(points),
-        body=body,
+        labels=layout.labels,
+        directions=layout.directions,
+        pins=layout.pins,
+        couples=layout.couples,
+        point_forces=layout.point_forces,
+        body=layout.body,
         seconds={"mesh": meshed - start, "solve": time.perf_counter() - meshed},
     )
+    if cache is not None:
+        cache.store(UNIT_LOADS, key, {**model.plane.arrays(), "stress": cases.stress, "reactions": cases.reactions,
+                                       "applied": cases.applied})
+    return cases
+
+
+def unit_cases_key(link: LinkProfile, frame_joints: tuple[int, int], region: tuple, layout: UnitCaseLayout) -> str:
+    """The cache key of a link's unit-load solutions: everything that determines them (its
+    ``region`` from ``link_region``: the outline and holes exactly, the mesh settings, the
+    refinement points; the elastic constants, density and thickness; each unit case's kind, hole and
+    centre; the frame)."""
+    material = link.material
+    return cache_key(UNIT_LOADS, {
+        "mesh": mesh_key_parts(*region),
+        "youngs_modulus": material.youngs_modulus,
+        "poisson_ratio": material.poisson_ratio,
+        "density": link.density,
+        "thickness": link.thickness,
+        "frame_joints": list(frame_joints),
+        "directions": layout.directions,
+        "groups": [group.key() for group in layout.groups],
+    })
+
+
+def _from_entry(link, loads, mesh, layout, stored, seconds) -> UnitLoadCases:
+    """The unit load cases from a cache entry: the model rebuilt on the stored mesh (no stiffness)."""
+    material = link.material
+    model = plane_stress_model(
+        PlaneMesh.from_arrays(stored, mesh), material.youngs_modulus, material.poisson_ratio, link.thickness
+    )
+    return UnitLoadCases(
+        link=link,
+        frame_joints=tuple(loads.frame_joints),
+        model=model,
+        stress=stored["stress"],
+        reactions=stored["reactions"],
+        applied=stored["applied"],
+        labels=layout.labels,
+        directions=layout.directions,
+        pins=layout.pins,
+        couples=layout.couples,
+        point_forces=layout.point_forces,
+        body=layout.body,
+        seconds={"mesh": 0.0, "solve": 0.0, "cache": seconds},
+        cached=True,
+    )
+
+
+def group_loads(model: PlaneStressModel, group: UnitCaseGroup, directions: NDArray[np.float64], density: float,
+                 frame_joints: tuple[int, int], mesh: MeshSettings) -> NDArray[np.float64]:
+    """The nodal forces (dofs, cases) of one group of unit cases."""
+    holes = model.plane.holes
+    if group.kind == "bearing":
+        unit = np.column_stack([np.cos(directions), np.sin(directions)])
+        return bearing_loads(model, holes[group.hole], np.asarray(group.centre), unit)
+    if group.kind == "couple":
+        return shaft_couple_loads(model, holes[group.hole], np.asarray(group.centre), np.ones(1))
+    if group.kind == "patch":
+        return patch_loads(model, np.asarray(group.centre), np.eye(2), mesh.station_size)
+    return _unit_body_loads(model, frame_joints, density)
 
 
 def _unit_body_loads(model: PlaneStressModel, frame_joints: tuple[int, int], density: float) -> NDArray[np.float64]:

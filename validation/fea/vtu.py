@@ -15,7 +15,6 @@ import tempfile
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
-import meshio
 import numpy as np
 from numpy.typing import NDArray
 
@@ -31,6 +30,8 @@ def write_sweep(
     nodal_stress: NDArray[np.float64],
 ) -> list[Path]:
     """Write ``name``_NNNN.vtu for each position and ``name``.pvd into ``folder``; return their paths."""
+    import meshio  # a tenth of a second to import: only where fields are written, not for every FEA
+
     folder.mkdir(parents=True, exist_ok=True)
     scalar = model.scalar
     points = np.column_stack([scalar.doflocs.T, np.zeros(scalar.N)])

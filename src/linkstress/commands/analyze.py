@@ -16,6 +16,7 @@ import numpy as np
 
 from linkstress.analysis import PEAK_MESH_LEVELS, AnalysisResult, Plan, plan_for, run_analysis
 from linkstress.commands import HelpFormatter, examples
+from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.errors import InputError
 from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_choice
 from linkstress.output import check_outputs, json_stream, write_all
@@ -80,6 +81,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "(ignored when no peaks are computed). Needs --peaks or [analysis] peaks = true, and "
         'pip install "linkstress[cluster]" (docs/cluster.md)',
     )
+    add_cache_options(parser)
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -105,13 +107,14 @@ def run(args: argparse.Namespace) -> int:
         return 0
     # The variable alone is ignored without peaks: set for a shell, it must not stop a plain analyze.
     scheduler, source = scheduler_choice(args.scheduler) if plan.peaks else (None, "")
+    cache = fea_choices(args) if plan.peaks else None
     retried: list[Retry] = []
     # Overflow is reported by refuse_non_finite, naming the keys, rather than as numpy warnings.
     with np.errstate(all="ignore"):
-        if scheduler is None:
+        if not plan.peaks:
             result = run_analysis(scene, plan)
         else:
-            result, retried = analysis_on_cluster(scene, plan, scheduler, source)
+            result, retried = analysis_with_peaks(scene, plan, scheduler, source, cache)
     refuse_non_finite(result)
     # Every output is staged before any is renamed into place, so a failure leaves none half-done; the
     # JSON is encoded into its staged file as its records are made, a block of positions at a time.
@@ -130,9 +133,12 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def analysis_on_cluster(scene: Scene, plan: Plan, scheduler: str, source: str) -> tuple[AnalysisResult, list[Retry]]:
-    """``run_analysis`` with the FEA peaks' links as tasks on the Dask cluster at ``scheduler`` (named
-    by ``source`` in messages), connected to before anything is computed; the tasks it ran again."""
+def analysis_with_peaks(
+    scene: Scene, plan: Plan, scheduler: str | None, source: str, cache=None
+) -> tuple[AnalysisResult, list[Retry]]:
+    """``run_analysis`` with the FEA peaks' links as tasks here (``scheduler`` None) or on the Dask
+    cluster at ``scheduler`` (named by ``source`` in messages), connected to before anything is
+    computed, each using the disk ``cache`` (``CacheSettings``; None: none); the tasks it ran again."""
     import time
     from dataclasses import replace
 
@@ -144,7 +150,7 @@ def analysis_on_cluster(scene: Scene, plan: Plan, scheduler: str, source: str) -
         if result.forces is None:
             return replace(result, plan=plan), []
         start = time.perf_counter()
-        peaks = scene_peaks(scene, plan, result.forces, where)
+        peaks = scene_peaks(scene, plan, result.forces, where, cache)
         seconds = {**result.seconds, "peaks": time.perf_counter() - start}
     return replace(result, plan=plan, peaks=peaks, seconds=seconds), where.retried
 

@@ -12,6 +12,7 @@ from functools import partial
 from pathlib import Path
 
 from linkstress.commands import HelpFormatter, examples
+from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.commands.validate import check_jobs
 from linkstress.errors import InputError
 from linkstress.executors import LOCAL, SCHEDULER_VARIABLE, Retry, executor, scheduler_choice
@@ -62,6 +63,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--json", type=Path, metavar="OUT",
                         help="also write every case's checks (and any case a cluster ran again) as JSON to OUT; not with --update")
+    add_cache_options(parser)
     parser.set_defaults(run=run)
 
 
@@ -74,14 +76,16 @@ def run(args: argparse.Namespace) -> int:
     cases = find_cases(args.cases or default_cases())
     for case in cases:
         read_reference(case)  # a broken reference.json stops the run before any case runs
+    cache = fea_choices(args)
     with executor(scheduler, source, args.jobs) as where:
         if scheduler is None:
-            results = list(progress(where.map(partial(run_case, update=args.update), cases), len(cases)))
+            results = list(progress(where.map(partial(run_case, update=args.update, cache=cache), cases), len(cases)))
         else:
             # A worker sees none of this machine's files: each case travels by content, and with
             # --update its new reference comes back to be written here.
             packed = [packed_case(case) for case in cases]
-            outcomes = list(progress(where.map(partial(run_packed_case, update=args.update), packed, [c.name for c in cases]), len(cases)))
+            work = partial(run_packed_case, update=args.update, cache=cache)
+            outcomes = list(progress(where.map(work, packed, [c.name for c in cases]), len(cases)))
             results = [result for result, _ in outcomes]
             write_all([(case / REFERENCE_FILE, reference) for case, (_, reference) in zip(cases, outcomes) if reference is not None])
     if args.update:

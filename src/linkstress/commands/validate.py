@@ -20,6 +20,7 @@ import numpy as np
 
 from linkstress.analysis import plan_for
 from linkstress.commands import HelpFormatter, examples
+from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.commands.analyze import check_work, refuse_non_finite, scene_sketches
 from linkstress.errors import InputError
 from linkstress.executors import SCHEDULER_VARIABLE, executor, scheduler_choice
@@ -77,6 +78,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         f"local: a cluster of this machine's cores for this run; default: the {SCHEDULER_VARIABLE} variable, else "
         'this machine (--jobs). Needs pip install "linkstress[cluster]" (docs/cluster.md)',
     )
+    add_cache_options(parser)
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -106,10 +108,11 @@ def run(args: argparse.Namespace) -> int:
     check_meshes(scene, plan.validate, args.mesh_size, args.mesh_levels)
     check_work(scene, plan)
     scheduler, source = scheduler_choice(args.scheduler)
+    cache = fea_choices(args)
     with executor(scheduler, source, args.jobs) as where, np.errstate(all="ignore"):
         result = validate_scene(
             scene, plan, args.positions or MAX_POSITIONS, args.mesh_levels, args.mesh_size, executor=where,
-            block=args.positions_per_task,
+            block=args.positions_per_task, cache=cache,
         )
     refuse_non_finite(result.analysis)
     cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in where.retried]}
