@@ -32,7 +32,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=HelpFormatter,
     )
     parser.add_argument("sketch", metavar="SKETCH", help="a .dxf or .csv sketch")
-    parser.add_argument("--units", help="units of the sketch (mm, cm, m, in, ft): needed when it does not say, and overriding it when it does; the old iLogic CSV defaults to cm")
+    parser.add_argument("--units", help="units of the sketch (mm, cm, m, in, ft; pt and px for 1/72 and 1/96 inch, pica for 1/6 inch): needed when it does not say, and overriding it when it does; the old iLogic CSV defaults to cm")
     parser.add_argument("--tolerance", type=float, metavar="FRACTION",
                         help="endpoint gap tolerance as a fraction of the drawing size (default 1e-4; 1e-2 for the old iLogic CSV)")
     parser.add_argument("--sagitta", type=float, metavar="FRACTION",
