@@ -93,6 +93,11 @@ def unit_named(name: str, where: str) -> DrawingUnit:
     return _UNITS[symbol]
 
 
+def unit_of(symbol: str) -> DrawingUnit:
+    """The unit whose short symbol is ``symbol`` (``DrawingUnit.name``, as a sketch reports its units)."""
+    return _UNITS[symbol]
+
+
 def unit_from_insunits(code: int) -> DrawingUnit | None:
     """The unit of a DXF ``$INSUNITS`` code; None for 0 (unitless) or a code ezdxf cannot convert."""
     if code in _CODES:

@@ -1,0 +1,160 @@
+"""Which outlines of a sheet are parts: what a designer would call a link, and what is a mark (drawing units).
+
+A sheet holds more closed outlines than parts. Outlines without joints (no POINT, no round hole),
+which no mechanism can use, are sorted out here; outlines with joints are always parts:
+
+- an outline without joints and without holes lying in the material of an outline on another layer
+  (a round one may carry a POINT at its centre) is a likely hole or slot drawn on its own layer: a
+  problem that leaves out both, since the part would import solid where the drawing cuts it; the fix
+  names ``--hole-layers`` (:mod:`.hole_layers`);
+- an outline without joints inside a hole of another outline is a pin or a mark drawn in that hole:
+  skipped;
+- an outline without joints smaller than ``MARK_FRACTION`` of the sheet (its bounding box's diagonal
+  against the drawing's) is a text glyph or a drill mark: skipped.
+
+Layers whose name says they hold annotation (``ANNOTATION_WORDS``: text, dimensions, title block,
+border) are not read at all unless named in ``--layers``; the layer named ``frame`` is not among
+them, being a mechanism's ground by name (:mod:`.assembly`).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Collection
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+from shapely.geometry import Polygon
+
+from linkstress.importers.chaining import Report
+from linkstress.importers.contours import Outline
+from linkstress.importers.problems import (
+    HOLE_ON_OWN_LAYER, IN_A_HOLE, MAX_LISTED, SMALL_OUTLINE, Skipped, SketchProblem, first_of,
+)
+from linkstress.geometry.profile import HOLE_CENTRE_TOLERANCE
+
+MARK_FRACTION = 0.02
+"""An outline without joints smaller than this fraction of the sheet is a glyph or a mark: 2.5 mm
+lettering on an A4 sheet is 0.9-1.2 % of its diagonal, a 6 mm drill mark 1.6 %."""
+ANNOTATION_WORDS = frozenset({
+    "text", "texts", "txt", "annotation", "annotations", "anno", "annot", "dimension", "dimensions", "dim",
+    "dims", "title", "titleblock", "titles", "border", "borders", "label", "labels", "notes",
+})
+"""Words (a layer name's parts between non-letters, any case) that name a layer of annotation."""
+
+
+def annotation_layers(layers: Collection[str | None], asked: Collection[str] = ()) -> list[str]:
+    """The layers among ``layers`` whose name says they hold annotation (``TEXT``, ``Dimensions``,
+    ``title-block``, ``AM_BORDER``), less those ``asked`` for by name."""
+    found = []
+    for layer in layers:
+        if layer is None or layer in asked:
+            continue
+        words = {word.lower() for word in re.split(r"[^A-Za-z]+|(?<=[a-z])(?=[A-Z])", layer) if word}
+        if words & ANNOTATION_WORDS:
+            found.append(layer)
+    return found
+
+
+@dataclass(frozen=True)
+class Sorted:
+    """Which outlines are parts (``keep``), what was skipped, and the problems of holes on their own layer."""
+
+    keep: NDArray[np.bool_]
+    skipped: tuple[Skipped, ...]
+    problems: tuple[SketchProblem, ...]
+
+
+def sort_outlines(outlines: list[Outline], joints: list[NDArray[np.float64]], size: float,
+                  report: Report) -> Sorted:
+    """Sort ``outlines`` (drawing units) whose joints, as they would import, are ``joints`` (each (n, 2),
+    POINTs or round holes' centres), on a sheet ``size`` across (see the module)."""
+    n = len(outlines)
+    keep = np.ones(n, bool)
+    if n == 0:
+        return Sorted(keep, (), ())
+    polygons = np.array([outline.polygon for outline in outlines], dtype=object)
+    layers = np.array([outline.layer for outline in outlines], dtype=object)
+    jointless = np.array([len(j) == 0 for j in joints])
+    candidate = np.array([not outline.holes and (len(j) == 0 or _centre_only(outline, j))
+                          for outline, j in zip(outlines, joints)])
+    problems: list[SketchProblem] = []
+    at, container = shapely.STRtree(polygons).query(polygons[candidate], predicate="within")
+    at = np.flatnonzero(candidate)[at]
+    other_layer = layers[at] != layers[container]
+    at, container = at[other_layer], container[other_layer]
+    for c in np.unique(container).tolist():
+        inside = at[container == c]
+        keep[inside] = False
+        keep[c] = False
+        problems.append(_hole_on_own_layer(outlines[c], [outlines[i] for i in inside.tolist()], report))
+    skipped = []
+    holes = [(k, Polygon(ring)) for k, outline in enumerate(polygons) for ring in outline.interiors]
+    if holes:
+        hole_owner = np.array([k for k, _ in holes])
+        at, hole = shapely.STRtree([h for _, h in holes]).query(polygons, predicate="within")
+        in_hole = np.zeros(n, bool)
+        in_hole[at[hole_owner[hole] != at]] = True
+        in_hole &= keep & jointless
+        if in_hole.any():
+            keep &= ~in_hole
+            skipped += _grouped(outlines, np.flatnonzero(in_hole), IN_A_HOLE, report,
+                                "outline(s) without joints inside a hole of another link: taken for pins or marks drawn "
+                                "in the hole and skipped")
+    box = shapely.bounds(polygons)
+    small = keep & jointless & (np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1]) < MARK_FRACTION * size)
+    if small.any():
+        keep &= ~small
+        skipped += _grouped(outlines, np.flatnonzero(small), SMALL_OUTLINE, report,
+                            f"outline(s) without joints smaller than {100 * MARK_FRACTION:g} % of the sheet: taken for "
+                            "text glyphs or drill marks and skipped; a part needs its joints (POINTs or round pin holes)")
+    return Sorted(keep, tuple(skipped), tuple(problems))
+
+
+def _centre_only(outline: Outline, joints: NDArray[np.float64]) -> bool:
+    """A round outline whose joints all sit at its centre: a pin hole drawn with its centre mark."""
+    circle = outline.shell.circle
+    return circle is not None and bool(
+        (np.hypot(*(joints - np.array(circle[:2])).T) <= HOLE_CENTRE_TOLERANCE * circle[2]).all())
+
+
+def _hole_on_own_layer(link: Outline, inside: list[Outline], report: Report) -> SketchProblem:
+    """The problem of outlines ``inside`` the material of ``link``, on other layers."""
+    layers = list(dict.fromkeys(outline.layer for outline in inside))
+    names = [report.curve(outline.shell.pieces[0]) for outline in inside]
+    given = ",".join(str(layer) for layer in layers)
+    scene = ", ".join(f'"{layer}"' for layer in layers)
+    first = inside[0].shell.xy[0]
+    return SketchProblem(
+        link.layer, (float(first[0]), float(first[1])), report.unit,
+        tuple(report.curve(k) for outline in inside for k in outline.shell.pieces)
+        + tuple(report.curve(k) for k in link.shell.pieces),
+        f"{len(inside)} outline(s) on layer(s) {first_of([repr(layer) for layer in layers])} lie wholly inside the "
+        f"link through {report.curve(link.shell.pieces[0])} (layer {link.layer!r}), through "
+        f"{first_of(names)}: likely holes or slots drawn on their own layer, which would leave the link solid "
+        "there; both are left out",
+        f"give --hole-layers {given} (a scene link: hole_layers = [{scene}]) to take them as the link's holes, "
+        f"or --exclude-layers {given} if they are marks",
+        HOLE_ON_OWN_LAYER,
+    )
+
+
+def _grouped(outlines: list[Outline], which: NDArray[np.intp], kind: str, report: Report, note: str) -> list[Skipped]:
+    """A :class:`Skipped` per layer for the outlines ``which``: how many, and the first few by their curves."""
+    by_layer: dict[str | None, list[int]] = {}
+    for k in which.tolist():
+        by_layer.setdefault(outlines[k].layer, []).append(k)
+    found = []
+    for layer, ks in by_layer.items():
+        first = outlines[ks[0]].shell.xy[0]
+        names = [report.curve(outlines[k].shell.pieces[0]) for k in ks]
+        found.append(Skipped(
+            kind, layer, (float(first[0]), float(first[1])), report.unit,
+            tuple(report.curve(p) for k in ks for loop in (outlines[k].shell, *outlines[k].holes) for p in loop.pieces),
+            f"{len(ks)} {note}; through {first_of(names, MAX_LISTED)}",
+            len(ks),
+        ))
+    return found
+
