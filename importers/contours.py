@@ -137,7 +137,8 @@ def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size
         loops = [loop for loop, keep_it in zip(layer_loops.loops, kept) if keep_it]
         left_out = [chain for chain, mark in zip(layer_loops.chains, frames.chains[k]) if not mark]
         mine = [p for p in found[k] if not (p.kind in (OPEN_CHAIN, BRANCH) and set(p.entities) <= framing)]
-        bad = layer_loops.bad[kept] | _crossing(loops, tolerance, report, layer_loops.layer, mine)
+        bad = layer_loops.bad[kept] | _within_open(loops, pieces, left_out, report, layer_loops.layer, mine)
+        bad |= _crossing(loops, tolerance, report, layer_loops.layer, mine)
         nested = _nest(loops, bad, report, layer_loops.layer, mine)
         outlines += [replace(outline, layer=layer_loops.layer)
                      for outline in _not_cut(nested, pieces, left_out, tolerance, report, layer_loops.layer, mine)]
@@ -152,8 +153,8 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
                  layer: str | None, fixes: list[str], problems: list[SketchProblem],
                  ) -> tuple[list[Loop], NDArray[np.bool_], list[NDArray[np.intp]]]:
     """The closed loops of the pieces ``keep`` (one layer's), curves drawn twice dropped, open or
-    branched chains left out as problems; which loops lie inside such a chain (left out too); and
-    the pieces of every chain left out.
+    branched chains left out as problems; no loop found bad yet; and the pieces of every chain left
+    out.
 
     Curves that dangle (a tick mark or leader ending on an outline's corner, a stray line) are taken
     off first, so that the outline they touch still closes; they are listed like any open chain."""
@@ -175,7 +176,7 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
     rings = Rings.concatenate(closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance), chained)
     loops = [with_circle(loop, pieces) for loop in _loops(rings, rounding, report, fixes)] if len(rings) else []
     loops = _drop_repeated_loops(loops, tolerance, report, fixes)
-    return loops, _within_open(loops, pieces, left_out, report, layer, problems), left_out
+    return loops, np.zeros(len(loops), bool), left_out
 
 
 def dangling_pieces(ends: Ends, tolerance: float) -> tuple[NDArray[np.intp], NDArray[np.intp]]:

@@ -110,14 +110,13 @@ def find_frames(layers: list[LayerLoops], pieces: Pieces, points: NDArray[np.flo
             frame_loops[owner[m][0]][owner[m][1]] = True
         curves |= set(loops[c].pieces) | set(mark_curves)
         count = len(loop_marks) + len(chain_list)
-        marks = f", with {count} mark(s) touching it (tick marks, title block lines and cells)" if count else ""
+        marks = f", with the {count} mark(s) that touch it (tick marks, title block lines and cells)" if count else ""
         skipped.append(Skipped(
             PAGE_FRAME, layer_of[c], (float(loops[c].xy[0, 0]), float(loops[c].xy[0, 1])), report.unit,
             tuple(report.curve(k) for k in [*loops[c].pieces, *mark_curves]),
             f"the outline through {report.curve(loops[c].pieces[0])} holds every other outline and has no joints of its "
             f"own (no POINT in its material, no round hole): taken for the sheet's frame and skipped{marks}; if it is "
             "a part, give it its joints (POINTs or round pin holes)",
-            1 + count,
         ))
     return Frames(frame_loops, chain_marks, frozenset(curves), tuple(skipped))
 

@@ -103,7 +103,7 @@ def _crossing(hole: Outline, link: Outline, report: Report) -> SketchProblem:
         link.layer, (float(where.x), float(where.y)), report.unit,
         tuple(report.curve(k) for k in (*hole.shell.pieces, *link.shell.pieces)),
         f"the outline through {first} on hole layer {hole.layer!r} crosses or touches the edge or a hole of the "
-        f"link through {edge} (layer {link.layer!r}) at {report.at((where.x, where.y))}: that link is left out",
+        f"link through {edge} at {report.at((where.x, where.y))}: that link is left out",
         "a hole lies wholly in its link's material, clear of its edge and its other holes: redraw the hole, or "
         "leave its layer out of --hole-layers if it is no hole of this link",
         HOLE_CROSSING_EDGE,

@@ -132,9 +132,8 @@ def _hole_on_own_layer(link: Outline, inside: list[Outline], report: Report) -> 
         tuple(report.curve(k) for outline in inside for k in outline.shell.pieces)
         + tuple(report.curve(k) for k in link.shell.pieces),
         f"{len(inside)} outline(s) on layer(s) {first_of([repr(layer) for layer in layers])} lie wholly inside the "
-        f"link through {report.curve(link.shell.pieces[0])} (layer {link.layer!r}), through "
-        f"{first_of(names)}: likely holes or slots drawn on their own layer, which would leave the link solid "
-        "there; both are left out",
+        f"link through {report.curve(link.shell.pieces[0])}, through {first_of(names)}: likely holes or slots drawn "
+        "on their own layer, which would leave the link solid there; the link and they are left out",
         f"give --hole-layers {given} (a scene link: hole_layers = [{scene}]) to take them as the link's holes, "
         f"or --exclude-layers {given} if they are marks",
         HOLE_ON_OWN_LAYER,

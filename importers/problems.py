@@ -132,8 +132,9 @@ class Skipped:
     """What a sheet draws that is not a part: read, then skipped rather than imported as a link.
 
     ``kind``: one of ``SKIPPED_KINDS``; ``layer``: its layer; ``at``: (x, y) in drawing units ``unit``;
-    ``entities``: the curves it is made of (a frame's with the marks that touch it); ``count``: how many
-    outlines or curves it stands for; ``note``: what it was taken for, and what to do if it is a part.
+    ``entities``: the curves it is made of (a frame's with the marks that touch it; a layer's first
+    few); ``count``: how many outlines (a frame, a layer: one) it stands for; ``note``: what it was
+    taken for, and what to do if it is a part.
     """
 
     kind: str

@@ -293,7 +293,6 @@ def _annotation(origins: list[Origin], use: NDArray[np.bool_], asked: list[str],
             ANNOTATION_LAYER, layer, (0.0, 0.0), unit, tuple(describe(origins[k]) for k in np.flatnonzero(mine)[:MAX_LISTED]),
             f"layer {layer!r} is named for annotation (text, dimensions, title block, border): its {count} curve(s) "
             f"and POINT(s) were not read; name it in --layers to read it",
-            count,
         ))
     return skipped
 

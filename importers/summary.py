@@ -95,6 +95,9 @@ def sketch_text(sketch: Sketch) -> str:
     skipped = sum(item.count for item in sketch.skipped if item.kind != ANNOTATION_LAYER)
     if skipped:
         head += f", {skipped} outline(s) skipped as no part"
+    layers = sum(item.count for item in sketch.skipped if item.kind == ANNOTATION_LAYER)
+    if layers:
+        head += f", {layers} annotation layer(s) not read"
     if sketch.problems:
         head += f", {len(sketch.problems)} problem(s)"
     parts = [head]
