@@ -232,6 +232,9 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
     boxes, origins = boxes[use], [o for o, u in zip(origins, use) if u]
     bounds = box_of(boxes[:int(use[:curves].sum())])
     if bounds is None:
+        if skipped:
+            raise SketchError(f"no outline: every curve read is on a layer named for annotation "
+                              f"({first_of([repr(item.layer) for item in skipped])}); name it in --layers to read it")
         kept = " on the layers read" if layers is not None or exclude_layers else ""
         raise SketchError(no_curves(raw.ignored, kept))
     _check_reach(raw, boxes, origins)
