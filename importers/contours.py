@@ -99,14 +99,15 @@ class Contours:
 
 def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size: float, unit: str,
                    use: NDArray[np.bool_] | None = None, points: NDArray[np.float64] | None = None,
-                   point_layers: list[str | None] = ()) -> Contours:
+                   point_layers: list[str | None] = (), hole_layers: tuple[str, ...] = ()) -> Contours:
     """Outlines with holes from ``pieces`` (one per origin; only those ``use`` marks, default all),
     closing gaps up to ``tolerance``.
 
     Each layer is its own drawing: its curves chain only with each other, and its outlines must not
     cross or touch each other, while outlines on different layers may (links drawn assembled
     overlap at their joints). A page frame around the sheet (:mod:`.frames`; ``points``, the POINTs
-    read, and their ``point_layers`` tell a frame from a part) is skipped with its marks before
+    read, and their ``point_layers`` tell a frame from a part; loops on ``hole_layers`` are no parts) is
+    skipped with its marks before
     outlines nest. What cannot make a clean outline is left out as a problem; raises SketchError
     only when nothing encloses an area and there is no problem to tell why. ``tolerance`` and
     ``size`` (the drawing's bounding-box diagonal) are in drawing units, named ``unit``.
@@ -128,7 +129,7 @@ def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size
         read.append(LayerLoops(layer, loops, bad, left_out))
         found.append(problems)
     points = np.zeros((0, 2)) if points is None else points
-    frames = find_frames(read, pieces, points, list(point_layers), tolerance, report)
+    frames = find_frames(read, pieces, points, list(point_layers), tolerance, report, hole_layers)
     framing = {report.curve(k) for k in frames.curves}
     outlines: list[Outline] = []
     problems = []

@@ -5,13 +5,14 @@ nest, that frame would be a link whose holes are the parts (and the parts' pin h
 own), and the tick marks and title-block lines that end on it would cut into its "material", leaving
 it out with the parts inside it. So before outlines nest, a frame is found and skipped:
 
-- it is the largest closed loop of the sheet (any layer), not a circle, not crossing itself, and
-  covers every other loop;
+- it is the largest closed loop of the sheet (any layer), a rectangle (its area that of its smallest
+  enclosing rectangle, within ``RECTANGLE``), not crossing itself, and covers every other loop;
 - it is no part: it has no joints of its own: no round hole directly inside it on its layer, no
   POINT in its material (inside it and inside no other loop: on its own layer, inside no loop of
   that layer);
-- it holds a part: some loop inside it holds a POINT or a round hole (so a plate with a window is not
-  a frame of its window).
+- it holds a part: some loop inside it, neither round (a pin hole) nor on a hole layer, holds a
+  POINT or a round loop (so a plate with a window is not a frame of its window, nor one whose holes
+  are drawn on a layer of their own with their centres marked).
 
 A double border (the trimmed sheet and the frame inside it) is two frames: each is looked for again
 once the one around it is skipped. The open chains and the joint-free loops that touch a frame
@@ -21,6 +22,7 @@ entering any other outline, are its marks and are skipped with it.
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -34,6 +36,9 @@ from linkstress.importers.problems import PAGE_FRAME, Skipped
 
 if TYPE_CHECKING:
     from linkstress.importers.contours import Loop
+
+RECTANGLE = 1e-6
+"""A frame's area and its smallest enclosing rectangle's agree within this fraction."""
 
 
 @dataclass(frozen=True)
@@ -59,9 +64,10 @@ class Frames:
 
 
 def find_frames(layers: list[LayerLoops], pieces: Pieces, points: NDArray[np.float64], point_layers: list,
-                tolerance: float, report: Report) -> Frames:
+                tolerance: float, report: Report, hole_layers: Collection[str] = ()) -> Frames:
     """The page frames of a sheet and their marks (see the module); ``points`` (n, 2) the POINTs read,
-    with their layers; ``tolerance``: the gap tolerance (drawing units)."""
+    with their layers; ``tolerance``: the gap tolerance (drawing units); ``hole_layers``: layers that hold
+    holes, not parts."""
     owner = [(k, i) for k, layer in enumerate(layers) for i in range(len(layer.loops))]
     frame_loops = [np.zeros(len(layer.loops), bool) for layer in layers]
     chain_marks = [np.zeros(len(layer.chains), bool) for layer in layers]
@@ -73,6 +79,8 @@ def find_frames(layers: list[LayerLoops], pieces: Pieces, points: NDArray[np.flo
     layer_of = np.array([layers[k].layer for k, _ in owner], dtype=object)
     bad = np.array([bool(layers[k].bad[i]) for k, i in owner])
     circle = np.array([loop.circle is not None for loop in loops])
+    # What may hold a part's joints: no round loop (a pin hole), nothing on a hole layer.
+    holder = ~circle & np.array([layers[k].layer not in hole_layers for k, _ in owner])
     tree = shapely.STRtree(polys)
     # Which loops each POINT and each round loop's centre lie in (the round loop in itself too).
     point_at, point_in = tree.query(shapely.points(points), predicate="within") if len(points) else (np.zeros(0, int),) * 2
@@ -87,9 +95,9 @@ def find_frames(layers: list[LayerLoops], pieces: Pieces, points: NDArray[np.flo
         c = int(np.argmax(np.where(remaining, area, -np.inf)))
         others = remaining.copy()
         others[c] = False
-        if bad[c] or circle[c] or not shapely.covered_by(polys[others], polys[c]).all():
+        if bad[c] or not _rectangle(polys[c]) or not shapely.covered_by(polys[others], polys[c]).all():
             break
-        if not _holds_part(c, others, point_in, centre_at, centre_in) or _has_joints(
+        if not _holds_part(others & holder, point_in, centre_at, centre_in) or _has_joints(
                 c, others, layer_of, point_at, point_in, point_layer, centre_at, centre_in):
             break
         found.append(c)
@@ -121,9 +129,15 @@ def find_frames(layers: list[LayerLoops], pieces: Pieces, points: NDArray[np.flo
     return Frames(frame_loops, chain_marks, frozenset(curves), tuple(skipped))
 
 
-def _holds_part(c: int, others: NDArray[np.bool_], point_in, centre_at, centre_in) -> bool:
-    """Some loop inside frame ``c`` (one of ``others``) holds a POINT or a round loop's centre (not its own)."""
-    return bool(others[point_in].any() or (others[centre_in] & (centre_in != centre_at)).any())
+def _rectangle(polygon) -> bool:
+    """The polygon fills its smallest enclosing rectangle (within ``RECTANGLE`` of its area)."""
+    return bool(abs(shapely.area(shapely.oriented_envelope(polygon)) - polygon.area) <= RECTANGLE * polygon.area)
+
+
+def _holds_part(holders: NDArray[np.bool_], point_in, centre_at, centre_in) -> bool:
+    """Some loop of ``holders`` (those inside a frame that may be parts) holds a joint: a POINT or a
+    round loop's centre."""
+    return bool(holders[point_in].any() or (holders[centre_in] & (centre_in != centre_at)).any())
 
 
 def _has_joints(c: int, others, layer_of, point_at, point_in, point_layer, centre_at, centre_in) -> bool:

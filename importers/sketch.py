@@ -254,14 +254,14 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
     points = raw.curves.point_array()[use_points]
     point_layers = [o[2] for o, u in zip(raw.curves.origins["points"], use_points) if u]
     contours = build_contours(pieces, raw.curves.curve_origins(), gap * size, size, unit, use[:curves], points,
-                              point_layers)
+                              point_layers, hole_layers)
     fixes = list(raw.fixes) + list(contours.fixes)
     problems = list(contours.problems)
     skipped += contours.skipped
     report = Report(raw.curves.curve_origins(), unit, size)
     outlines = list(contours.outlines)
     if hole_layers:
-        outlines, hole_problems = take_holes(outlines, hole_layers, report, fixes)
+        outlines, hole_problems = take_holes(outlines, hole_layers, report, fixes, problems)
         problems += hole_problems
     links = _links(path, raw, outlines, use_points, gap * size, ignored, fixes, problems, skipped, report)
     sketch = Sketch(path, raw.format, unit, raw.units_source, tuple(links), MappingProxyType(dict(ignored)),
