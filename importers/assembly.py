@@ -38,6 +38,7 @@ from linkstress.importers.pins import (
     shared_joints,
     users,
 )
+from linkstress.importers.problems import first_of
 from linkstress.importers.sketch import ImportedLink, Sketch
 from linkstress.importers.slider_assembly import (
     SliderChain,
@@ -140,7 +141,7 @@ def find_assembly(sketch: Sketch) -> Assembly:
     left = [name for name in links if name not in covered and name != ground_name]
     if left:
         raise SketchError(
-            f"link(s) {', '.join(repr(n) for n in left)} are in no four-bar loop or slider-crank driven from "
+            f"link(s) {first_of([repr(n) for n in left])} are in no four-bar loop or slider-crank driven from "
             f"the main one ({_what_joins(sketch, joints)}); linkstress chains loops through a shared crank "
             "or output pivoted on the ground: leave their layers out with --exclude-layers, or write the scene by hand"
         )
@@ -164,7 +165,7 @@ def _ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
     named = [link.name for link in sketch.links if _named(link, GROUND_NAMES)]
     if len(named) > 1:
         raise SketchError(
-            f"layers {', '.join(repr(n) for n in named)} are all named as a ground; keep one "
+            f"layers {first_of([repr(n) for n in named])} are all named as a ground; keep one "
             f"layer named {' or '.join(GROUND_NAMES)}"
         )
     if named:
@@ -350,7 +351,7 @@ def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: lis
     left = [name for name in links if name not in (chain.p, chain.k, chain.s, ground_name)]
     if left:
         raise SketchError(
-            f"link(s) {', '.join(repr(n) for n in left)} are not in the slider-crank {chain.p!r}, {chain.k!r}, {chain.s!r} "
+            f"link(s) {first_of([repr(n) for n in left])} are not in the slider-crank {chain.p!r}, {chain.k!r}, {chain.s!r} "
             f"({_what_joins(sketch, joints)}): leave their layers out with --exclude-layers, or write the scene by hand"
         )
     o2, a = joints[chain.jp], joints[chain.kp]
@@ -376,19 +377,19 @@ def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
     shared = [j for j in joints if len({n for n, _ in j.ends if n != BARE_GROUND}) > 1]
     few = [f"{link.name!r} ({len(link.joints)})" for link in sketch.links if len(link.joints) < 2]
     hint = (
-        f"; links with fewer than two joints: {', '.join(few)} (joints are POINTs, else the centres of round holes: "
+        f"; links with fewer than two joints: {first_of(few)} (joints are POINTs, else the centres of round holes: "
         "a bore with a keyway or a flat gives none; a slider block has one)" if few else ""
     )
-    names = ", ".join(repr(link.name) for link in sketch.links)
+    names = first_of([repr(link.name) for link in sketch.links])
     if not shared:
         return (
             f"no two of the links ({names}) share a joint: pin centres (POINTs or circular holes) of links "
             f"drawn in place must coincide within the gap tolerance {sketch.gap_tolerance_m:.3g} m{hint}"
         )
-    pairs = "; ".join(
+    pairs = first_of([
         f"links {', '.join(repr(n) for n in dict.fromkeys(users(j)) if n != BARE_GROUND)} share the joint at "
         f"({j.at[0]:.6g}, {j.at[1]:.6g}) m" for j in shared
-    )
+    ], separator="; ")
     return (
         f"{pairs}; no closed loop of four links and four joints through a ground (a layer named "
         f"{', '.join(GROUND_NAMES)}, or fixed pivots that one link alone uses), nor a slider-crank (a crank "

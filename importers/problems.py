@@ -103,12 +103,12 @@ def listed(problems: Sequence[SketchProblem]) -> str:
     return f"{len(problems)} problems ({kinds}): {shown}{more}"
 
 
-def first_of(items: Sequence[str], n: int = MAX_LISTED) -> str:
+def first_of(items: Sequence[str], n: int = MAX_LISTED, separator: str = ", ") -> str:
     """``a, b, c``, or with more than ``n`` items ``first 5 of 146: a, b, c, d, e``: a list in a message,
     capped."""
     if len(items) <= n:
-        return ", ".join(items)
-    return f"first {n} of {len(items)}: {', '.join(items[:n])}"
+        return separator.join(items)
+    return f"first {n} of {len(items)}: {separator.join(items[:n])}"
 
 
 PAGE_FRAME = "page_frame"

@@ -122,7 +122,7 @@ class Sketch:
         no name is given, is refused with the problems: what was left out there may be the link
         meant, or part of it.
         """
-        names = ", ".join(repr(link.name) for link in self.links)
+        names = first_of([repr(link.name) for link in self.links])
         if name_or_layer is not None:
             name_or_layer = decode_dxf_unicode(name_or_layer)  # as the drawing's layer names are
         if name_or_layer is None:
@@ -148,7 +148,7 @@ class Sketch:
         if on_layer:
             raise SketchError(
                 f"{self.path.name}: layer {name_or_layer!r} holds {len(on_layer)} links "
-                f"({', '.join(repr(k.name) for k in on_layer)}): name one of them"
+                f"({first_of([repr(k.name) for k in on_layer])}): name one of them"
             )
         raise SketchError(f"{self.path.name} has no link or layer {name_or_layer!r}; its links are {names}")
 
