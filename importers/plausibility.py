@@ -29,10 +29,11 @@ CANDIDATES = ("mm", "cm", "m", "in", "ft")
 """The units a drawing may have been drawn in."""
 
 
-def unit_warnings(sketch: Sketch, links: Iterable[ImportedLink] | None = None, option: str = "--units") -> tuple[str, ...]:
+def unit_warnings(sketch: Sketch, links: Iterable[ImportedLink] | None = None,
+                  fix: str = "give --units {unit}") -> tuple[str, ...]:
     """One line when the pin holes (round holes) of ``links`` (default: all the sketch's) are under
     ``MIN_PIN_HOLE_M`` or a link is longer than ``MAX_LINK_M``, naming the unit that would make them
-    ordinary as ``option`` (e.g. ``--units mm``); else nothing."""
+    ordinary in ``fix`` (its ``{unit}``: e.g. ``give --units mm``); else nothing."""
     links = list(sketch.links if links is None else links)
     holes = [d for link in links for d in link.hole_diameters_m if d is not None]
     lengths = [_length(link) for link in links]
@@ -43,7 +44,7 @@ def unit_warnings(sketch: Sketch, links: Iterable[ImportedLink] | None = None, o
     if not fitting:
         return (f"{seen}: no mechanism is that size, while {read}; check the drawing's units",)
     unit, scale = fitting[0]
-    return (f"{seen}: the drawing looks drawn in {_word(unit)} while {read}; give {option} {unit} (then "
+    return (f"{seen}: the drawing looks drawn in {_word(unit)} while {read}; {fix.format(unit=unit)} (then "
             f"{_sizes(lengths, holes, scale)})",)
 
 

@@ -265,3 +265,48 @@ def test_import_scene_with_hole_layers_writes_them_into_each_sketch_link(tmp_pat
     text = scene.read_text()
     assert text.count('hole_layers = ["holes"]') == 3
     assert main(["analyze", str(scene)]) == 0
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_random_plates_with_random_holes_import_exactly_or_are_refused_naming_the_crossing_hole(tmp_path, seed):
+    """Plates of random size with 1-6 random round holes and slots on the hole layer: a plate all of whose
+    holes lie clear inside it imports with its area less theirs (each kept to rounding, docs/importing.md);
+    one with a hole crossing its edge is left out with that hole named."""
+    rng = np.random.default_rng(seed)
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    expected: dict[str, float | None] = {}
+    for k in range(3):
+        width, height = rng.uniform(60, 400), rng.uniform(30, 120)
+        x0, y0, layer = 0.0, 200.0 * k, f"plate{k}"
+        msp.add_lwpolyline([(x0, y0), (x0 + width, y0), (x0 + width, y0 + height), (x0, y0 + height)], close=True,
+                           dxfattribs={"layer": layer})
+        area, clear = width * height, True
+        # Holes in columns, so that they never meet each other (a slot reaches 1.5 r sideways, r up and down).
+        columns = int(rng.integers(1, 7))
+        for c in range(columns):
+            cx = x0 + (c + 0.5) * width / columns
+            r = rng.uniform(0.05, 0.3) * min(height, width / columns)
+            cy = y0 + rng.uniform(-0.4, 0.4) * height + height / 2
+            if rng.random() < 0.5:
+                msp.add_circle((cx, cy), r, dxfattribs={"layer": "holes"})
+                hole_area, reach = math.pi * r * r, r
+            else:  # a slot: a rectangle r wide, 2r tall, with half discs of r on its left and right
+                h = r / 2
+                msp.add_lwpolyline([(cx - h, cy - r, 0), (cx + h, cy - r, 1), (cx + h, cy + r, 0), (cx - h, cy + r, 1)],
+                                   format="xyb", close=True, dxfattribs={"layer": "holes"})
+                hole_area, reach = 2 * h * 2 * r + math.pi * r * r, r
+            clear &= y0 < cy - reach and cy + reach < y0 + height
+            area -= hole_area
+        expected[layer] = area * 1e-6 if clear else None
+    path = save(doc, tmp_path)
+    try:
+        sketch = read_sketch(path, hole_layers=["holes"])
+    except SketchRefused as refused:  # every plate has a hole across its edge
+        sketch = refused.sketch
+    assert sorted(link.name for link in sketch.links) == sorted(k for k, v in expected.items() if v is not None)
+    for link in sketch.links:
+        assert link.outline.area == pytest.approx(expected[link.name], rel=1e-9)
+    refused = sorted(p.layer for p in sketch.problems)
+    assert refused == sorted(k for k, v in expected.items() if v is None)
+    assert all(p.kind == "hole_crossing_link_edge" for p in sketch.problems)

@@ -89,3 +89,9 @@ def test_the_links_checked_can_be_a_scenes_subset(tmp_path):
     sketch = read_sketch(save(doc, tmp_path))
     assert unit_warnings(sketch, [sketch.link("crank")]) == ()
     assert len(unit_warnings(sketch, [sketch.link("beam")])) == 1
+
+
+def test_a_scene_reader_words_the_fix_its_own_way(tmp_path):
+    path = linkage(tmp_path, 1, [480.0], 20.0, 3.2)
+    (warning,) = unit_warnings(read_sketch(path), fix='save the sketch in {unit} (its $INSUNITS)')
+    assert "says inches; save the sketch in mm (its $INSUNITS) (then links up to 500 mm" in warning

@@ -3,6 +3,8 @@ symbols refused as slips (pc is a parsec, not a pica), and the copy of ezdxf's $
 
 from __future__ import annotations
 
+import math
+
 import ezdxf
 import ezdxf.units
 import pytest
@@ -78,3 +80,60 @@ def test_an_unknown_unit_lists_pt_and_px_but_not_the_refused_symbols():
     known = str(error.value).split("use one of ")[1].split(", ")
     assert {"mm", "in", "pt", "px", "pica"} <= set(known)
     assert not {"pc", "ly", "au", "gm"} & set(known)
+
+
+SCENE = """
+units = "{units}"
+
+[materials.steel]
+density = 7850.0
+
+[links.plate]
+sketch = "plate.dxf"
+thickness = 0.01
+material = "steel"
+
+[links.ground]
+joints = [[0.0, 0.0], [1.0, 0.0]]
+
+[links.coupler]
+joints = [[0.0, 0.0], [1.0, 0.0]]
+
+[links.output]
+joints = [[0.0, 0.0], [1.0, 0.0]]
+
+[mechanisms.main]
+type = "four-bar"
+crank = "plate"
+coupler = "coupler"
+output = "output"
+ground = "ground"
+
+[motion]
+input_angle_deg = 60.0
+"""
+
+
+@pytest.mark.parametrize("units, metres_per_unit", [("px", 0.0254 / 96), ("pt", 0.0254 / 72)])
+def test_a_scenes_units_read_a_unitless_sketch_in_px_and_pt(tmp_path, units, metres_per_unit):
+    from linkstress.scene.reader import load_scene
+
+    doc = ezdxf.new("R2013", units=0)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(-20, -10), (120, -10), (120, 10), (-20, 10)], close=True)
+    for x in (0.0, 100.0):
+        msp.add_circle((x, 0.0), 4.0)
+    save(doc, tmp_path, "plate.dxf")
+    (tmp_path / "scene.toml").write_text(SCENE.format(units=units))
+    plate = load_scene(tmp_path / "scene.toml").links["plate"].profile
+    assert plate.area == pytest.approx((140 * 20 - 2 * math.pi * 16) * metres_per_unit**2, rel=1e-6)
+
+
+def test_a_scenes_units_pc_is_refused_by_its_key(tmp_path, capsys):
+    doc = ezdxf.new("R2013", units=0)
+    doc.modelspace().add_lwpolyline([(0, 0), (10, 0), (10, 1), (0, 1)], close=True)
+    save(doc, tmp_path, "plate.dxf")
+    (tmp_path / "scene.toml").write_text(SCENE.format(units="pc"))
+    assert main(["analyze", str(tmp_path / "scene.toml")]) == 2
+    err = capsys.readouterr().err
+    assert "links.plate.sketch:" in err and "'pc' is a parsec (3.1e+16 m); for picas give --units pica" in err
