@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 import shapely
@@ -75,7 +76,7 @@ class Outline:
     holes: tuple[Loop, ...]
     layer: str | None = None
 
-    @property
+    @cached_property
     def polygon(self) -> Polygon:
         """Shell counter-clockwise, holes clockwise."""
         return orient(Polygon(self.shell.xy, [h.xy for h in self.holes]), 1.0)

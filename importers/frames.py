@@ -144,20 +144,19 @@ def _has_joints(c: int, others, layer_of, point_at, point_in, point_layer, centr
     """Loop ``c`` would have joints as a link: a round loop of its layer directly inside it, or a POINT
     in its material (inside ``c`` and no other loop; one of its own layer, inside no other loop of it)."""
     same = others & (layer_of == layer_of[c])
-    round_inside = np.unique(centre_at[centre_in == c])
-    for r in round_inside.tolist():
-        if not same[r]:
-            continue
-        holders = centre_in[(centre_at == r) & (centre_in != r) & (centre_in != c)]
-        if not same[holders].any():
-            return True
-    for p in np.unique(point_at[point_in == c]).tolist():
-        holders = point_in[point_at == p]
-        holders = holders[holders != c]
-        own_layer = point_layer[p] == layer_of[c]
-        if not (same[holders].any() if own_layer else others[holders].any()):
-            return True
-    return False
+    inside = np.zeros(len(others), bool)
+    inside[centre_at[centre_in == c]] = True
+    held = np.zeros(len(others), bool)  # round loops inside another loop of c's layer than c and themselves
+    held[centre_at[(centre_in != centre_at) & (centre_in != c) & same[centre_in]]] = True
+    if (inside & same & ~held).any():
+        return True
+    n = len(point_layer)
+    in_c, held_same, held_any = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool)
+    in_c[point_at[point_in == c]] = True
+    held_same[point_at[same[point_in]]] = True
+    held_any[point_at[others[point_in]]] = True
+    own_layer = point_layer == layer_of[c]
+    return bool((in_c & np.where(own_layer, ~held_same, ~held_any)).any())
 
 
 def _marks(found: list[int], layers: list[LayerLoops], loops: list["Loop"], polys, remaining, circle, point_in,

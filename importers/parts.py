@@ -26,7 +26,6 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from shapely.geometry import Polygon
 
 from linkstress.importers.chaining import Report
 from linkstress.importers.contours import Outline
@@ -91,10 +90,11 @@ def sort_outlines(outlines: list[Outline], joints: list[NDArray[np.float64]], si
         keep[c] = False
         problems.append(_hole_on_own_layer(outlines[c], [outlines[i] for i in inside.tolist()], report))
     skipped = []
-    holes = [(k, Polygon(ring)) for k, outline in enumerate(polygons) for ring in outline.interiors]
-    if holes:
-        hole_owner = np.array([k for k, _ in holes])
-        at, hole = shapely.STRtree([h for _, h in holes]).query(polygons, predicate="within")
+    counts = shapely.get_num_interior_rings(polygons)
+    if counts.sum():
+        hole_owner = np.repeat(np.arange(n), counts)
+        rings = shapely.get_interior_ring(polygons[hole_owner], np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts))
+        at, hole = shapely.STRtree(shapely.polygons(rings)).query(polygons, predicate="within")
         in_hole = np.zeros(n, bool)
         in_hole[at[hole_owner[hole] != at]] = True
         in_hole &= keep & jointless

@@ -378,7 +378,10 @@ def _links(path: Path, raw: RawSketch, outlines: list[Outline], use_points: NDAr
     if (owner < 0).any():
         ignored["POINT (outside every outline)"] += int((owner < 0).sum())
     # The joints each outline would have, before any is judged a part: its POINTs, else its round holes' centres.
-    would_be = [points[owner == k] if (owner == k).any() else _hole_centres(outline) for k, outline in enumerate(outlines)]
+    order = np.argsort(owner, kind="stable")
+    bounds = np.searchsorted(owner[order], np.arange(len(outlines) + 1))
+    would_be = [points[order[bounds[k]:bounds[k + 1]]] if bounds[k + 1] > bounds[k] else _hole_centres(outline)
+                for k, outline in enumerate(outlines)]
     parts = sort_outlines(outlines, would_be, report.size, report)
     problems += parts.problems
     skipped += parts.skipped
@@ -398,7 +401,7 @@ def _made(path: Path, raw: RawSketch, outlines: list[Outline], points: NDArray[n
     """The links of ``outlines`` (parts), each with the POINTs it ``owner``s as its joints, else its round
     holes' centres; one with a POINT in a hole off its centre is left out as a problem."""
     curve_origins = raw.curves.curve_origins()
-    names, layers = _names(path, outlines, curve_origins)
+    names, layers = _names(path, outlines)
     per_metre = raw.unit.per_metre
     links = []
     for k, outline in enumerate(outlines):
@@ -433,7 +436,7 @@ def _made(path: Path, raw: RawSketch, outlines: list[Outline], points: NDArray[n
     return links
 
 
-def _names(path: Path, outlines, origins) -> tuple[list[str], list[str | None]]:
+def _names(path: Path, outlines: list[Outline]) -> tuple[list[str], list[str | None]]:
     """A link is named by its shell's layer when all its curves share one (other than "0"), else
     ``<file stem>-<n>``; links sharing a layer are numbered ``<layer>-<n>``."""
     layers = [outline.layer if outline.layer != "0" else None for outline in outlines]
