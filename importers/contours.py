@@ -88,14 +88,25 @@ class Outline:
 
 
 @dataclass(frozen=True)
+class OpenChain:
+    """A chain of curves left open (a problem), on ``layer``: its ``lines`` (drawing units) and the names
+    of its ``curves`` (as problems name them)."""
+
+    layer: str | None
+    lines: object
+    curves: frozenset[str]
+
+
+@dataclass(frozen=True)
 class Contours:
-    """The clean outlines, the repairs made, the problems left out and the page frames skipped (drawing
-    units)."""
+    """The clean outlines, the repairs made, the problems left out, the page frames skipped and the open
+    chains left out (drawing units)."""
 
     outlines: tuple[Outline, ...]
     fixes: tuple[str, ...]
     problems: tuple[SketchProblem, ...]
     skipped: tuple[Skipped, ...] = ()
+    chains: tuple[OpenChain, ...] = ()
 
 
 def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size: float, unit: str,
@@ -134,6 +145,7 @@ def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size
     framing = {report.curve(k) for k in frames.curves}
     outlines: list[Outline] = []
     problems = []
+    chains: list[OpenChain] = []
     for k, layer_loops in enumerate(read):
         kept = ~frames.loops[k]
         loops = [loop for loop, keep_it in zip(layer_loops.loops, kept) if keep_it]
@@ -145,10 +157,13 @@ def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size
         outlines += [replace(outline, layer=layer_loops.layer)
                      for outline in _not_cut(nested, pieces, left_out, tolerance, report, layer_loops.layer, mine)]
         problems += mine
+        chains += [OpenChain(layer_loops.layer,
+                             shapely.multilinestrings([shapely.linestrings(pieces.vertices(int(p))) for p in chain]),
+                             frozenset(report.curve(int(p)) for p in chain)) for chain in left_out]
     if not outlines and not problems and not frames.skipped:
         raise SketchError("no closed outline: the drawing has no curves that enclose an area")
     return Contours(tuple(sorted(outlines, key=lambda o: _lower_left(o.shell))), tuple(fixes), tuple(problems),
-                    frames.skipped)
+                    frames.skipped, tuple(chains))
 
 
 def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size: float, report: Report,

@@ -12,6 +12,9 @@ which no mechanism can use, are sorted out here; outlines with joints are always
 - an outline without joints smaller than ``MARK_FRACTION`` of the sheet (its bounding box's diagonal
   against the drawing's) is a text glyph or a drill mark: skipped.
 
+The open chains of a layer (problems) that cross or touch an outline of that layer skipped as a mark,
+no more than ``MARK_CHAIN`` times its size (a drill mark's cross), are skipped with it.
+
 Layers whose name says they hold annotation (``ANNOTATION_WORDS``: text, dimensions, title block,
 border) are not read at all unless named in ``--layers``; the layer named ``frame`` is not among
 them, being a mechanism's ground by name (:mod:`.assembly`).
@@ -20,7 +23,7 @@ them, being a mechanism's ground by name (:mod:`.assembly`).
 from __future__ import annotations
 
 import re
-from collections.abc import Collection
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,7 +31,7 @@ import shapely
 from numpy.typing import NDArray
 
 from linkstress.importers.chaining import Report
-from linkstress.importers.contours import Outline
+from linkstress.importers.contours import OpenChain, Outline
 from linkstress.importers.problems import (
     HOLE_ON_OWN_LAYER, IN_A_HOLE, MAX_LISTED, SMALL_OUTLINE, Skipped, SketchProblem, first_of,
 )
@@ -37,6 +40,9 @@ from linkstress.geometry.profile import HOLE_CENTRE_TOLERANCE
 MARK_FRACTION = 0.02
 """An outline without joints smaller than this fraction of the sheet is a glyph or a mark: 2.5 mm
 lettering on an A4 sheet is 0.9-1.2 % of its diagonal, a 6 mm drill mark 1.6 %."""
+MARK_CHAIN = 3.0
+"""An open chain crossing a mark is part of it (a cross through a drill mark's circle) up to this many
+times the mark's size (bounding-box diagonals)."""
 ANNOTATION_WORDS = frozenset({
     "text", "texts", "txt", "annotation", "annotations", "anno", "annot", "dimension", "dimensions", "dim",
     "dims", "title", "titleblock", "titles", "border", "borders", "label", "labels", "notes",
@@ -59,21 +65,25 @@ def annotation_layers(layers: Collection[str | None], asked: Collection[str] = (
 
 @dataclass(frozen=True)
 class Sorted:
-    """Which outlines are parts (``keep``), what was skipped, and the problems of holes on their own layer."""
+    """Which outlines are parts (``keep``), what was skipped, the problems of holes on their own layer,
+    and the curves of the open chains skipped with a mark (``marked``: their problems go)."""
 
     keep: NDArray[np.bool_]
     skipped: tuple[Skipped, ...]
     problems: tuple[SketchProblem, ...]
+    marked: frozenset[str] = frozenset()
 
 
 def sort_outlines(outlines: list[Outline], joints: list[NDArray[np.float64]], size: float,
-                  report: Report) -> Sorted:
+                  report: Report, chains: Sequence[OpenChain] = ()) -> Sorted:
     """Sort ``outlines`` (drawing units) whose joints, as they would import, are ``joints`` (each (n, 2),
-    POINTs or round holes' centres), on a sheet ``size`` across (see the module)."""
+    POINTs or round holes' centres), on a sheet ``size`` across, with the open ``chains`` that cross the
+    marks (see the module)."""
     n = len(outlines)
     keep = np.ones(n, bool)
     if n == 0:
         return Sorted(keep, (), ())
+    marks = _Marks(outlines, list(chains), report)
     polygons = np.array([outline.polygon for outline in outlines], dtype=object)
     layers = np.array([outline.layer for outline in outlines], dtype=object)
     jointless = np.array([len(j) == 0 for j in joints])
@@ -100,17 +110,24 @@ def sort_outlines(outlines: list[Outline], joints: list[NDArray[np.float64]], si
         in_hole &= keep & jointless
         if in_hole.any():
             keep &= ~in_hole
-            skipped += _grouped(outlines, np.flatnonzero(in_hole), IN_A_HOLE, report,
-                                "outline(s) without joints inside a hole of another link: taken for pins or marks drawn "
-                                "in the hole and skipped")
+            skipped += marks.grouped(np.flatnonzero(in_hole), IN_A_HOLE,
+                                     "outline(s) without joints inside a hole of another link: taken for pins or marks "
+                                     "drawn in the hole and skipped")
     box = shapely.bounds(polygons)
     small = keep & jointless & (np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1]) < MARK_FRACTION * size)
     if small.any():
         keep &= ~small
-        skipped += _grouped(outlines, np.flatnonzero(small), SMALL_OUTLINE, report,
-                            f"outline(s) without joints smaller than {100 * MARK_FRACTION:g} % of the sheet: taken for "
-                            "text glyphs or drill marks and skipped; a part needs its joints (POINTs or round pin holes)")
-    return Sorted(keep, tuple(skipped), tuple(problems))
+        skipped += marks.grouped(np.flatnonzero(small), SMALL_OUTLINE,
+                                 f"outline(s) without joints smaller than {100 * MARK_FRACTION:g} % of the sheet: taken "
+                                 "for text glyphs or drill marks and skipped; a part needs its joints (POINTs or round "
+                                 "pin holes)")
+    return Sorted(keep, tuple(skipped), tuple(problems), frozenset(marks.marked))
+
+
+def _extent(geometries) -> NDArray[np.float64]:
+    """The diagonal of each geometry's bounding box."""
+    box = shapely.bounds(np.asarray(geometries, dtype=object)).reshape(-1, 4)
+    return np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
 
 
 def _centre_only(outline: Outline, joints: NDArray[np.float64]) -> bool:
@@ -140,20 +157,46 @@ def _hole_on_own_layer(link: Outline, inside: list[Outline], report: Report) -> 
     )
 
 
-def _grouped(outlines: list[Outline], which: NDArray[np.intp], kind: str, report: Report, note: str) -> list[Skipped]:
-    """A :class:`Skipped` per layer for the outlines ``which``: how many, and the first few by their curves."""
-    by_layer: dict[str | None, list[int]] = {}
-    for k in which.tolist():
-        by_layer.setdefault(outlines[k].layer, []).append(k)
-    found = []
-    for layer, ks in by_layer.items():
-        first = outlines[ks[0]].shell.xy[0]
-        names = [report.curve(outlines[k].shell.pieces[0]) for k in ks]
-        found.append(Skipped(
-            kind, layer, (float(first[0]), float(first[1])), report.unit,
-            tuple(report.curve(p) for k in ks for loop in (outlines[k].shell, *outlines[k].holes) for p in loop.pieces),
-            f"{len(ks)} {note}; through {first_of(names, MAX_LISTED)}",
-            len(ks),
-        ))
-    return found
+class _Marks:
+    """Outlines skipped as marks, grouped per layer, with the small open ``chains`` that cross them."""
+
+    def __init__(self, outlines: list[Outline], chains: list[OpenChain], report: Report) -> None:
+        self.outlines, self.chains, self.report = outlines, chains, report
+        self.marked: set[str] = set()
+
+    def grouped(self, which: NDArray[np.intp], kind: str, note: str) -> list[Skipped]:
+        """A :class:`Skipped` per layer for the outlines ``which``: how many, the first few by their curves,
+        and the chains of that layer crossing them."""
+        by_layer: dict[str | None, list[int]] = {}
+        for k in which.tolist():
+            by_layer.setdefault(self.outlines[k].layer, []).append(k)
+        found = []
+        for layer, ks in by_layer.items():
+            outlines = [self.outlines[k] for k in ks]
+            crossing = self._crossing(layer, outlines)
+            curves = [self.report.curve(p) for o in outlines for loop in (o.shell, *o.holes) for p in loop.pieces]
+            lines = f", with {len(crossing)} open chain(s) crossing them (a drill mark's cross)" if crossing else ""
+            first = outlines[0].shell.xy[0]
+            found.append(Skipped(
+                kind, layer, (float(first[0]), float(first[1])), self.report.unit,
+                tuple(curves) + tuple(sorted(name for chain in crossing for name in chain.curves)),
+                f"{len(ks)} {note}{lines}; through "
+                f"{first_of([self.report.curve(o.shell.pieces[0]) for o in outlines], MAX_LISTED)}",
+                len(ks),
+            ))
+        return found
+
+    def _crossing(self, layer: str | None, outlines: list[Outline]) -> list[OpenChain]:
+        """The chains of ``layer`` not yet taken that cross or touch one of ``outlines``, at most
+        ``MARK_CHAIN`` times its size."""
+        mine = [chain for chain in self.chains if chain.layer == layer and not chain.curves <= self.marked]
+        if not mine:
+            return []
+        polygons = [o.polygon for o in outlines]
+        at, mark = shapely.STRtree(polygons).query([c.lines for c in mine], predicate="intersects")
+        small = _extent([mine[k].lines for k in at.tolist()]) <= MARK_CHAIN * _extent([polygons[m] for m in mark.tolist()])
+        crossing = [mine[k] for k in np.unique(at[small]).tolist()]
+        for chain in crossing:
+            self.marked |= chain.curves
+        return crossing
 

@@ -27,7 +27,7 @@ from shapely.geometry import Point, Polygon
 
 from linkstress.errors import SketchError
 from linkstress.importers.chaining import Report, close_pairs
-from linkstress.importers.contours import Outline, build_contours
+from linkstress.importers.contours import OpenChain, Outline, build_contours
 from linkstress.importers.dxf import read_dxf
 from linkstress.importers.dxf_tags import decode_dxf_unicode
 from linkstress.importers.flatten import Tolerance, flatten
@@ -36,8 +36,8 @@ from linkstress.importers.library_notes import library_notes, noted, with_notes
 from linkstress.importers.parts import annotation_layers, sort_outlines
 from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, no_curves, with_damage
 from linkstress.importers.problems import (
-    ANNOTATION_LAYER, MAX_LISTED, POINT_IN_OTHER_HOLE, POINT_OFF_CENTRE, Skipped, SketchProblem, first_of, listed,
-    skipped_counted,
+    ANNOTATION_LAYER, BRANCH, MAX_LISTED, OPEN_CHAIN, POINT_IN_OTHER_HOLE, POINT_OFF_CENTRE, Skipped, SketchProblem,
+    first_of, listed, skipped_counted,
 )
 from linkstress.materials import Material
 from linkstress.geometry.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
@@ -263,7 +263,8 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
     if hole_layers:
         outlines, hole_problems = take_holes(outlines, hole_layers, report, fixes, problems)
         problems += hole_problems
-    links = _links(path, raw, outlines, use_points, gap * size, ignored, fixes, problems, skipped, report)
+    links = _links(path, raw, outlines, use_points, gap * size, ignored, fixes, problems, skipped, report,
+                   contours.chains)
     sketch = Sketch(path, raw.format, unit, raw.units_source, tuple(links), MappingProxyType(dict(ignored)),
                     tuple(fixes), gap * size / raw.unit.per_metre, tuple(problems), tuple(skipped), hole_layers)
     if not links:
@@ -362,7 +363,7 @@ def _check_scale(raw: RawSketch, bounds: tuple[float, float, float, float], size
 
 def _links(path: Path, raw: RawSketch, outlines: list[Outline], use_points: NDArray[np.bool_],
            tolerance: float, ignored: Counter, fixes: list[str], problems: list[SketchProblem],
-           skipped: list[Skipped], report: Report) -> list[ImportedLink]:
+           skipped: list[Skipped], report: Report, chains: tuple[OpenChain, ...] = ()) -> list[ImportedLink]:
     """Links in metres from the outlines that are parts (drawing units), with their joints (the POINTs
     ``use_points``).
 
@@ -382,7 +383,9 @@ def _links(path: Path, raw: RawSketch, outlines: list[Outline], use_points: NDAr
     bounds = np.searchsorted(owner[order], np.arange(len(outlines) + 1))
     would_be = [points[order[bounds[k]:bounds[k + 1]]] if bounds[k + 1] > bounds[k] else _hole_centres(outline)
                 for k, outline in enumerate(outlines)]
-    parts = sort_outlines(outlines, would_be, report.size, report)
+    parts = sort_outlines(outlines, would_be, report.size, report, chains)
+    # The open chains skipped with a mark (a drill mark's cross) are no longer problems.
+    problems[:] = [p for p in problems if not (p.kind in (OPEN_CHAIN, BRANCH) and set(p.entities) <= parts.marked)]
     problems += parts.problems
     skipped += parts.skipped
     # Among the parts: a POINT of an outline that is no part belongs to no link.

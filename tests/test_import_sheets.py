@@ -176,9 +176,23 @@ def test_glyph_sized_outlines_and_drill_marks_are_skipped_and_the_two_real_links
     # Each glyph's outline; its counter is its hole. The sheet is ~320 x 70 mm: a glyph is ~0.9 % of it.
     assert by_kind["small_outline"].count == glyphs and by_kind["small_outline"].layer == "0"
     assert by_kind["in_a_hole"].count == 4 and by_kind["in_a_hole"].layer == "DRILL"
+    # The crosses' lines are skipped with their circles, not left as open-chain problems.
+    assert sketch.problems == () and "with 8 open chain(s) crossing them" in by_kind["in_a_hole"].note
     assert main(["import", str(path)]) == 0
     head = capsys.readouterr().out.splitlines()[0]
-    assert head.endswith(f"2 link(s), {glyphs + 4} outline(s) skipped as no part, 8 problem(s)")  # the crosses' 8 lines
+    assert head.endswith(f"2 link(s), {glyphs + 4} outline(s) skipped as no part")
+
+
+def test_a_line_crossing_a_mark_but_much_longer_than_it_stays_a_problem(tmp_path):
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    bar(msp, 0, 0, 200)
+    msp.add_circle((100.0, 60.0), 1.0, dxfattribs={"layer": "DRILL"})  # a mark: 1.2 % of the sheet
+    msp.add_line((90.0, 60.0), (110.0, 60.0), dxfattribs={"layer": "DRILL"})  # 20 mm across it: 7 times its size
+    msp.add_line((100.0, 57.0), (100.0, 63.0), dxfattribs={"layer": "DRILL"})  # 6 mm: twice its size, its cross
+    sketch = read_sketch(save(doc, tmp_path))
+    (problem,) = sketch.problems
+    assert problem.kind == "open_chain" and problem.at == (90.0, 60.0)
 
 
 def test_a_small_outline_with_two_joints_is_a_part(tmp_path):
