@@ -21,7 +21,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "moment per unit thickness, its joints and the rule that found them, its holes and the "
             "largest gap closed. Coordinates in metres, sketch frame. What cannot make a clean outline "
             "(an open chain, a crossing, a POINT off a hole's centre) is listed as a problem and left "
-            "out; the rest imports (exit 0) unless --strict. With --scene, a mechanism drawn assembled (each "
+            "out; the rest imports (exit 0) unless --strict. The problems print first, grouped by kind. What is no "
+            "part (a page frame, text glyphs, drill marks, layers named for annotation) is skipped and listed. "
+            "With --scene, a mechanism drawn assembled (each "
             "link on its own layer, pin centres meeting) also becomes a scene to edit and analyze; the shipped "
             "cases' sketches draw their links apart, so --scene refuses them."
         ),
@@ -37,7 +39,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="endpoint gap tolerance as a fraction of the drawing size (default 1e-4; 1e-2 for the old iLogic CSV)")
     parser.add_argument("--sagitta", type=float, metavar="FRACTION",
                         help="chord tolerance of arcs as a fraction of each arc's radius (default 1e-4)")
-    parser.add_argument("--layers", type=_names, metavar="A,B", help="read only these layers (comma-separated)")
+    parser.add_argument("--layers", type=_names, metavar="A,B",
+                        help="read only these layers (comma-separated); a layer named for annotation (TEXT, DIM, "
+                             "TITLE, BORDER...) is read only when named here")
     parser.add_argument("--exclude-layers", type=_names, default=(), metavar="C,D",
                         help="leave these layers out (comma-separated), e.g. engraving or dimensions")
     parser.add_argument("--hole-layers", type=_names, default=(), metavar="H,K",
