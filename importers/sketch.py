@@ -228,7 +228,7 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
     hole_layers = tuple(decode_dxf_unicode(name) for name in hole_layers)
     use = _on_layers(origins, layers, exclude_layers, ignored, hole_layers)
     curves = raw.curves.curve_count()
-    skipped = _annotation(origins, use, [*(layers or ()), *hole_layers], raw.unit.name)
+    skipped = _annotation(origins, boxes, use, [*(layers or ()), *hole_layers], raw.unit.name)
     boxes, origins = boxes[use], [o for o, u in zip(origins, use) if u]
     bounds = box_of(boxes[:int(use[:curves].sum())])
     if bounds is None:
@@ -284,17 +284,20 @@ def _no_link(problems: list[SketchProblem], skipped: list[Skipped]) -> str:
             "(POINTs or round pin holes)")
 
 
-def _annotation(origins: list[Origin], use: NDArray[np.bool_], asked: list[str], unit: str) -> list[Skipped]:
-    """Leave out (in ``use``) the curves and POINTs on layers named for annotation that were not ``asked``
-    for by name: a :class:`Skipped` per such layer."""
+def _annotation(origins: list[Origin], boxes: NDArray[np.float64], use: NDArray[np.bool_], asked: list[str],
+                unit: str) -> list[Skipped]:
+    """Leave out (in ``use``) the curves and POINTs (``origins``, their bounding ``boxes``) on layers named
+    for annotation that were not ``asked`` for by name: a :class:`Skipped` per such layer, at its first
+    curve's lower left corner."""
     on = np.array([origin[2] for origin in origins], dtype=object)
     skipped = []
     for layer in annotation_layers(dict.fromkeys(on[use].tolist()), asked):
         mine = use & (on == layer)
         use &= ~mine
-        count = int(mine.sum())
+        count, first = int(mine.sum()), int(np.argmax(mine))
         skipped.append(Skipped(
-            ANNOTATION_LAYER, layer, (0.0, 0.0), unit, tuple(describe(origins[k]) for k in np.flatnonzero(mine)[:MAX_LISTED]),
+            ANNOTATION_LAYER, layer, (float(boxes[first, 0]), float(boxes[first, 1])), unit,
+            tuple(describe(origins[k]) for k in np.flatnonzero(mine)[:MAX_LISTED]),
             f"layer {layer!r} is named for annotation (text, dimensions, title block, border): its {count} curve(s) "
             f"and POINT(s) were not read; name it in --layers to read it",
         ))

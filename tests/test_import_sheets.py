@@ -270,4 +270,5 @@ def test_an_annotation_layer_is_not_read_unless_named_in_layers(tmp_path):
     assert [link.name for link in sketch.links] == ["crank"] and sketch.problems == ()
     (layer,) = sketch.skipped
     assert (layer.kind, layer.layer) == ("annotation_layer", "TEXT") and "its 2 curve(s)" in layer.note
+    assert layer.at in ((0.0, 30.0), (50.0, 30.0))  # where a curve of it starts
     assert [link.name for link in read_sketch(path, layers=["crank", "TEXT"]).links] == ["crank", "TEXT"]
