@@ -191,7 +191,9 @@ def _marks(found: list[int], layers: list[LayerLoops], loops: list["Loop"], poly
         mine: list[int] = []
         while frontier:
             _, near = tree.query(np.array(frontier, dtype=object), predicate="dwithin", distance=tolerance)
-            new = np.unique(near[eligible[near] & ~taken[near]])
+            touched = np.zeros(len(items), bool)
+            touched[near[eligible[near]]] = True
+            new = np.flatnonzero(touched & ~taken)
             taken[new] = True
             mine += new.tolist()
             frontier = [items[n] for n in new.tolist()]

@@ -94,7 +94,7 @@ def sort_outlines(outlines: list[Outline], joints: list[NDArray[np.float64]], si
     at = np.flatnonzero(candidate)[at]
     other_layer = layers[at] != layers[container]
     at, container = at[other_layer], container[other_layer]
-    for c in np.unique(container).tolist():
+    for c in sorted(set(container.tolist())):  # (np.unique would load numpy.ma: docs/design.md, start-up)
         inside = at[container == c]
         keep[inside] = False
         keep[c] = False
@@ -195,7 +195,7 @@ class _Marks:
         polygons = [o.polygon for o in outlines]
         at, mark = shapely.STRtree(polygons).query([c.lines for c in mine], predicate="intersects")
         small = _extent([mine[k].lines for k in at.tolist()]) <= MARK_CHAIN * _extent([polygons[m] for m in mark.tolist()])
-        crossing = [mine[k] for k in np.unique(at[small]).tolist()]
+        crossing = [mine[k] for k in sorted(set(at[small].tolist()))]
         for chain in crossing:
             self.marked |= chain.curves
         return crossing
