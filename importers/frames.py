@@ -10,9 +10,9 @@ it out with the parts inside it. So before outlines nest, a frame is found and s
 - it is no part: it has no joints of its own: no round hole directly inside it on its layer, no
   POINT in its material (inside it and inside no other loop: on its own layer, inside no loop of
   that layer);
-- it holds a part: some loop inside it, neither round (a pin hole) nor on a hole layer, holds a
-  POINT or a round loop (so a plate with a window is not a frame of its window, nor one whose holes
-  are drawn on a layer of their own with their centres marked).
+- it holds a part: some loop inside it, neither round (a pin hole) nor on a hole layer, holds two
+  joints, POINTs or round loops (so a plate with a window is not a frame of its window, nor one whose
+  holes are drawn on a layer of their own with a pin marked in one).
 
 A double border (the trimmed sheet and the frame inside it) is two frames: each is looked for again
 once the one around it is skipped. The open chains and the joint-free loops that touch a frame
@@ -135,9 +135,11 @@ def _rectangle(polygon) -> bool:
 
 
 def _holds_part(holders: NDArray[np.bool_], point_in, centre_at, centre_in) -> bool:
-    """Some loop of ``holders`` (those inside a frame that may be parts) holds a joint: a POINT or a
-    round loop's centre."""
-    return bool(holders[point_in].any() or (holders[centre_in] & (centre_in != centre_at)).any())
+    """Some loop of ``holders`` (those inside a frame that may be parts) holds two joints: POINTs or round
+    loops' centres."""
+    joints = np.bincount(point_in, minlength=len(holders))
+    joints += np.bincount(centre_in[centre_in != centre_at], minlength=len(holders))
+    return bool((holders & (joints >= 2)).any())
 
 
 def _has_joints(c: int, others, layer_of, point_at, point_in, point_layer, centre_at, centre_in) -> bool:

@@ -272,3 +272,19 @@ def test_an_annotation_layer_is_not_read_unless_named_in_layers(tmp_path):
     assert (layer.kind, layer.layer) == ("annotation_layer", "TEXT") and "its 2 curve(s)" in layer.note
     assert layer.at in ((0.0, 30.0), (50.0, 30.0))  # where a curve of it starts
     assert [link.name for link in read_sketch(path, layers=["crank", "TEXT"]).links] == ["crank", "TEXT"]
+
+
+def test_a_rectangular_plate_whose_slot_on_another_layer_holds_a_pin_is_no_frame(tmp_path):
+    # Its holes and slot on layer "holes", a POINT in the slot: no part inside it has two joints.
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (200, 0), (200, 60), (0, 60)], close=True, dxfattribs={"layer": "plate"})
+    for x in (20, 180):
+        msp.add_circle((x, 30), 5, dxfattribs={"layer": "holes"})
+    msp.add_lwpolyline([(80, 25, 0), (120, 25, 1), (120, 35, 0), (80, 35, 1)], format="xyb", close=True,
+                       dxfattribs={"layer": "holes"})
+    msp.add_point((100, 30), dxfattribs={"layer": "holes"})
+    sketch = read_sketch(save(doc, tmp_path))
+    assert sketch.skipped == ()
+    (problem,) = sketch.problems  # the plate and its two round holes; the slot holds a joint, so stays
+    assert (problem.kind, problem.layer) == ("hole_on_own_layer", "plate")
