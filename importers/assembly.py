@@ -165,7 +165,7 @@ def _ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
     named = [link.name for link in sketch.links if _named(link, GROUND_NAMES)]
     if len(named) > 1:
         raise SketchError(
-            f"layers {', '.join(repr(n) for n in named)} are all named as a ground; keep one "
+            f"layers {capped(repr(n) for n in named)} are all named as a ground; keep one "
             f"layer named {' or '.join(GROUND_NAMES)}"
         )
     if named:

@@ -19,7 +19,7 @@ from linkstress.errors import SketchError
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.neighbours import components, count_pairs_within, nearest, pairs_within, within_of
 from linkstress.importers.primitives import Origin, describe
-from linkstress.importers.problems import SketchProblem
+from linkstress.importers.problems import BRANCH, OPEN_CHAIN, SketchProblem
 
 
 class Report:
@@ -258,7 +258,7 @@ def _branch(ends: Ends, near_of: Callable[[NDArray[np.float64]], list[int]], i: 
         layer, _point(ends.xy[i]), report.unit, _names(report, members),
         f"{len(meeting)} curve ends meet at {report.at(ends.xy[i])} ({names})",
         "a closed outline passes each corner once: remove the duplicate or overlapping curve there (or "
-        "lower the gap tolerance if these are separate corners)",
+        "lower the gap tolerance if these are separate corners)", BRANCH,
     ))
 
 
@@ -295,7 +295,7 @@ def _open_end(ends: Ends, i: int, j: int, gap: float, extent: float, tolerance: 
                "or close the outline in CAD")
     else:
         fix = f"close the gap in CAD, or raise the gap tolerance to --tolerance {advised:.2g}"
-    return SketchProblem(layer, _point(ends.xy[i]), report.unit, _names(report, members), problem, fix)
+    return SketchProblem(layer, _point(ends.xy[i]), report.unit, _names(report, members), problem, fix, OPEN_CHAIN)
 
 
 def _names(report: Report, pieces: NDArray[np.intp]) -> tuple[str, ...]:

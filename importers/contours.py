@@ -24,7 +24,8 @@ Everything here is in drawing units; messages say which.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 import shapely
@@ -38,7 +39,10 @@ from linkstress.importers.chaining import Ends, Report, Rings, chain, close_pair
 from linkstress.importers.flatten import Pieces
 from linkstress.importers.neighbours import pairs_within
 from linkstress.importers.primitives import Origin
-from linkstress.importers.problems import SketchProblem
+from linkstress.importers.frames import LayerLoops, find_frames
+from linkstress.importers.problems import (
+    BRANCH, CROSSING, CUT_BY_CHAIN, OPEN_CHAIN, SELF_CROSSING, SHARED_CUT, WITH_ANOTHER, Skipped, SketchProblem,
+)
 
 DUPLICATE_VERTEX = 1e-9
 """Consecutive ring vertices closer than this fraction of the drawing size are merged."""
@@ -66,12 +70,13 @@ class Loop:
 
 @dataclass(frozen=True)
 class Outline:
-    """An outer boundary and its holes (loops, drawing units)."""
+    """An outer boundary and its holes (loops, drawing units), on ``layer`` (its shell's)."""
 
     shell: Loop
     holes: tuple[Loop, ...]
+    layer: str | None = None
 
-    @property
+    @cached_property
     def polygon(self) -> Polygon:
         """Shell counter-clockwise, holes clockwise."""
         return orient(Polygon(self.shell.xy, [h.xy for h in self.holes]), 1.0)
@@ -83,52 +88,90 @@ class Outline:
 
 
 @dataclass(frozen=True)
+class OpenChain:
+    """A chain of curves left open (a problem), on ``layer``: its ``lines`` (drawing units) and the names
+    of its ``curves`` (as problems name them)."""
+
+    layer: str | None
+    lines: object
+    curves: frozenset[str]
+
+
+@dataclass(frozen=True)
 class Contours:
-    """The clean outlines, the repairs made and the problems left out (drawing units)."""
+    """The clean outlines, the repairs made, the problems left out, the page frames skipped and the open
+    chains left out (drawing units)."""
 
     outlines: tuple[Outline, ...]
     fixes: tuple[str, ...]
     problems: tuple[SketchProblem, ...]
+    skipped: tuple[Skipped, ...] = ()
+    chains: tuple[OpenChain, ...] = ()
 
 
 def build_contours(pieces: Pieces, origins: list[Origin], tolerance: float, size: float, unit: str,
-                   use: NDArray[np.bool_] | None = None) -> Contours:
+                   use: NDArray[np.bool_] | None = None, points: NDArray[np.float64] | None = None,
+                   point_layers: list[str | None] = (), hole_layers: tuple[str, ...] = ()) -> Contours:
     """Outlines with holes from ``pieces`` (one per origin; only those ``use`` marks, default all),
     closing gaps up to ``tolerance``.
 
     Each layer is its own drawing: its curves chain only with each other, and its outlines must not
     cross or touch each other, while outlines on different layers may (links drawn assembled
-    overlap at their joints). What cannot make a clean outline is left out as a problem; raises
-    SketchError only when nothing encloses an area and there is no problem to tell why.
-    ``tolerance`` and ``size`` (the drawing's bounding-box diagonal) are in drawing units, named ``unit``.
+    overlap at their joints). A page frame around the sheet (:mod:`.frames`; ``points``, the POINTs
+    read, and their ``point_layers`` tell a frame from a part; loops on ``hole_layers`` are no parts) is
+    skipped with its marks before
+    outlines nest. What cannot make a clean outline is left out as a problem; raises SketchError
+    only when nothing encloses an area and there is no problem to tell why. ``tolerance`` and
+    ``size`` (the drawing's bounding-box diagonal) are in drawing units, named ``unit``.
     """
     report = Report(origins, unit, size)
     fixes: list[str] = []
-    problems: list[SketchProblem] = []
     keep = np.ones(len(pieces), bool) if use is None else use.copy()
     keep &= ~_small(pieces, keep, tolerance, report, fixes)
     layers = np.array([origin[2] for origin in origins], dtype=object)
-    outlines: list[Outline] = []
+    read: list[LayerLoops] = []
+    found: list[list[SketchProblem]] = []
     for layer in dict.fromkeys(layers[keep].tolist()):
+        problems: list[SketchProblem] = []
         on_layer = keep & (layers == layer)
         # Only within a layer: links drawn assembled have the same pin hole on two layers.
         on_layer &= ~_duplicates(pieces, np.flatnonzero(on_layer & pieces.closed), tolerance, report, fixes)
         loops, bad, left_out = _layer_loops(pieces, on_layer, tolerance, size, report, layer, fixes, problems)
         bad |= _self_crossing(loops, report, layer, problems)
-        bad |= _crossing(loops, tolerance, report, layer, problems)
-        nested = _nest(loops, bad, report, layer, problems)
-        outlines += _not_cut(nested, pieces, left_out, tolerance, report, layer, problems)
-    if not outlines and not problems:
+        read.append(LayerLoops(layer, loops, bad, left_out))
+        found.append(problems)
+    points = np.zeros((0, 2)) if points is None else points
+    frames = find_frames(read, pieces, points, list(point_layers), tolerance, report, hole_layers)
+    framing = {report.curve(k) for k in frames.curves}
+    outlines: list[Outline] = []
+    problems = []
+    chains: list[OpenChain] = []
+    for k, layer_loops in enumerate(read):
+        kept = ~frames.loops[k]
+        loops = [loop for loop, keep_it in zip(layer_loops.loops, kept) if keep_it]
+        left_out = [chain for chain, mark in zip(layer_loops.chains, frames.chains[k]) if not mark]
+        mine = [p for p in found[k] if not (p.kind in (OPEN_CHAIN, BRANCH) and set(p.entities) <= framing)]
+        bad = layer_loops.bad[kept] | _within_open(loops, pieces, left_out, report, layer_loops.layer, mine)
+        bad |= _crossing(loops, tolerance, report, layer_loops.layer, mine)
+        nested = _nest(loops, bad, report, layer_loops.layer, mine)
+        outlines += [replace(outline, layer=layer_loops.layer)
+                     for outline in _not_cut(nested, pieces, left_out, tolerance, report, layer_loops.layer, mine)]
+        problems += mine
+        chains += [OpenChain(layer_loops.layer,
+                             shapely.multilinestrings([shapely.linestrings(pieces.vertices(int(p))) for p in chain]),
+                             frozenset(report.curve(int(p)) for p in chain)) for chain in left_out]
+    if not outlines and not problems and not frames.skipped:
         raise SketchError("no closed outline: the drawing has no curves that enclose an area")
-    return Contours(tuple(sorted(outlines, key=lambda o: _lower_left(o.shell))), tuple(fixes), tuple(problems))
+    return Contours(tuple(sorted(outlines, key=lambda o: _lower_left(o.shell))), tuple(fixes), tuple(problems),
+                    frames.skipped, tuple(chains))
 
 
 def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size: float, report: Report,
                  layer: str | None, fixes: list[str], problems: list[SketchProblem],
                  ) -> tuple[list[Loop], NDArray[np.bool_], list[NDArray[np.intp]]]:
     """The closed loops of the pieces ``keep`` (one layer's), curves drawn twice dropped, open or
-    branched chains left out as problems; which loops lie inside such a chain (left out too); and
-    the pieces of every chain left out.
+    branched chains left out as problems; no loop found bad yet; and the pieces of every chain left
+    out.
 
     Curves that dangle (a tick mark or leader ending on an outline's corner, a stray line) are taken
     off first, so that the outline they touch still closes; they are listed like any open chain."""
@@ -150,7 +193,7 @@ def _layer_loops(pieces: Pieces, keep: NDArray[np.bool_], tolerance: float, size
     rings = Rings.concatenate(closed_rings(pieces, np.flatnonzero(keep & pieces.closed), tolerance), chained)
     loops = [with_circle(loop, pieces) for loop in _loops(rings, rounding, report, fixes)] if len(rings) else []
     loops = _drop_repeated_loops(loops, tolerance, report, fixes)
-    return loops, _within_open(loops, pieces, left_out, report, layer, problems), left_out
+    return loops, np.zeros(len(loops), bool), left_out
 
 
 def dangling_pieces(ends: Ends, tolerance: float) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
@@ -207,7 +250,7 @@ def _within_open(loops: list[Loop], pieces: Pieces, left_out: list[NDArray[np.in
             tuple(report.curve(k) for i in swallowed.tolist() for k in loops[i].pieces),
             f"{len(swallowed)} closed curve(s) inside the open chain through {report.curve(int(left_out[h][0]))} "
             f"are left out with it, e.g. the one through {report.curve(first.pieces[0])}: they may be its holes",
-            "close that chain (see its problem)",
+            "close that chain (see its problem)", WITH_ANOTHER,
         ))
     return inside
 
@@ -254,6 +297,7 @@ def _not_cut(outlines: list[Outline], pieces: Pieces, left_out: list[NDArray[np.
             f"its material, e.g. the one through {report.curve(int(left_out[chains[0]][0]))}, which would import as "
             "solid what the drawing cuts",
             "draw a slit or slot as a closed outline, or move marks and engraving to a layer of their own",
+            CUT_BY_CHAIN,
         ))
     return [outline for outline, k in zip(outlines, keep) if k]
 
@@ -411,7 +455,7 @@ def _self_crossing(loops: list[Loop], report: Report, layer: str | None,
         problems.append(SketchProblem(
             layer, (float(at[0]), float(at[1])), report.unit, _curves(loops[k], report),
             f"the outline through {report.curve(loops[k].pieces[0])} crosses itself{where} ({reason.split('[')[0]})",
-            "redraw it as a simple closed curve",
+            "redraw it as a simple closed curve", SELF_CROSSING,
         ))
     return ~valid
 
@@ -437,17 +481,17 @@ def _crossing(loops: list[Loop], tolerance: float, report: Report, layer: str | 
             at, problem = a, (
                 f"the outlines of {first} and {second} share the cut from {report.at(a)} to {report.at(b)}"
             )
-            fix = "draw them apart, or on separate layers"
+            fix, kind = "draw them apart, or on separate layers", SHARED_CUT
         else:
             where = meet[0].representative_point()
             at = (where.x, where.y)
             problem = (
                 f"outlines cross or touch at {report.at(at)}: the one through {first} and the one through {second}"
             )
-            fix = "outlines and holes must not meet: draw them apart, or on separate layers"
+            fix, kind = "outlines and holes must not meet: draw them apart, or on separate layers", CROSSING
         problems.append(SketchProblem(
             layer, (float(at[0]), float(at[1])), report.unit, _curves(loops[i], report) + _curves(loops[j], report),
-            problem, fix,
+            problem, fix, kind,
         ))
     return bad
 
@@ -486,7 +530,7 @@ def _nest(loops: list[Loop], bad: NDArray[np.bool_], report: Report, layer: str 
             layer, (float(loops[i].xy[0, 0]), float(loops[i].xy[0, 1])), report.unit, _curves(loops[i], report),
             f"the outline through {report.curve(loops[i].pieces[0])} is left out: it lies inside the outline through "
             f"{report.curve(spoiler.pieces[0])}, which has a problem",
-            "fix that outline",
+            "fix that outline", WITH_ANOTHER,
         ))
     for i in np.flatnonzero((depth % 2 == 0) & ~bad & ~within_bad).tolist():
         mine = holes.get(i, [])
@@ -497,7 +541,7 @@ def _nest(loops: list[Loop], bad: NDArray[np.bool_], report: Report, layer: str 
                 layer, (float(loops[i].xy[0, 0]), float(loops[i].xy[0, 1])), report.unit, _curves(loops[i], report),
                 f"the outline through {report.curve(loops[i].pieces[0])} is left out: its hole through "
                 f"{report.curve(hole.pieces[0])} has a problem, and the link must not import without it",
-                "fix that hole",
+                "fix that hole", WITH_ANOTHER,
             ))
             continue
         outlines.append(Outline(loops[i], tuple(sorted((loops[h] for h in mine), key=_lower_left))))

@@ -204,7 +204,7 @@ def _read_v1(lines: list[str], header: re.Match, separator: str, units: str | No
         if key.lower() != "units" or not value:
             raise SketchError(f"line 1: unknown header option {option!r}; the header is '# linkstress-sketch v1 units=mm'")
         unit = unit_named(value, "line 1: units")
-        if declared is not None and unit.code != declared.code:
+        if declared is not None and unit.name != declared.name:
             raise SketchError(
                 f"line 1: the header gives two units, {declared.name} and {unit.name}; keep the one the "
                 "numbers are in"

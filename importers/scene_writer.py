@@ -24,10 +24,12 @@ _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 _ESCAPES = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
 
 
-def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | None) -> str:
+def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | None,
+               hole_layers: tuple[str, ...] = ()) -> str:
     """The scene of ``assembly``: ``sketch`` is the sketch's path relative to the scene's folder,
     ``sketch_name`` its file name for the header, ``units`` the unit given for a sketch that does not
-    say its own (``--units``; None: not given)."""
+    say its own (``--units``; None: not given), ``hole_layers`` the layers read as holes (each sketch
+    link reads them so too)."""
     lines = [
         f"# Written by `linkstress import {_comment(sketch_name)} --scene`: the mechanism as drawn assembled.",
         "# Edit the material, each link's thickness and the motion; add [loads] (every key: docs/scenes.md).",
@@ -39,7 +41,7 @@ def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | N
     name, values = MATERIAL
     lines += ["", f"[materials.{name}]  # edit: the links' material"]
     lines += [f"{key} = {value}  # {unit}" for key, (value, unit) in values.items()]
-    lines += _links(assembly, sketch)
+    lines += _links(assembly, sketch, hole_layers)
     for loop in assembly.loops:
         lines += _mechanism(loop, assembly)
     lines += _motion(assembly)
@@ -80,7 +82,7 @@ def _number(value: float) -> str:
     return repr(float(value))
 
 
-def _links(assembly: Assembly, sketch: str) -> list[str]:
+def _links(assembly: Assembly, sketch: str, hole_layers: tuple[str, ...]) -> list[str]:
     lines = []
     material = MATERIAL[0]
     for name, link in assembly.links.items():
@@ -89,6 +91,7 @@ def _links(assembly: Assembly, sketch: str) -> list[str]:
             f"[links.{toml_key(name)}]",
             f"sketch = {toml_string(sketch)}",
             f"layer = {toml_string(name)}",
+            *([f"hole_layers = [{', '.join(toml_string(layer) for layer in hole_layers)}]"] if hole_layers else []),
             f"thickness = {_number(THICKNESS_M)}  # m, a default: edit to the plate's",
             f"material = {toml_string(material)}",
         ]

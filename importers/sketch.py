@@ -28,14 +28,19 @@ from shapely.geometry import Point, Polygon
 from linkstress.errors import SketchError
 from linkstress.inputs import SKETCH_BYTES, read_bounded
 from linkstress.messages import capped
-from linkstress.importers.chaining import close_pairs
-from linkstress.importers.contours import Outline, build_contours
+from linkstress.importers.chaining import Report, close_pairs
+from linkstress.importers.contours import OpenChain, Outline, build_contours
 from linkstress.importers.dxf import read_dxf
 from linkstress.importers.dxf_tags import decode_dxf_unicode
 from linkstress.importers.flatten import Tolerance, flatten
+from linkstress.importers.hole_layers import take_holes
 from linkstress.importers.library_notes import library_notes, noted, with_notes
+from linkstress.importers.parts import annotation_layers, sort_outlines
 from linkstress.importers.primitives import Origin, RawSketch, box_of, describe, no_curves, with_damage
-from linkstress.importers.problems import SketchProblem, listed
+from linkstress.importers.problems import (
+    ANNOTATION_LAYER, BRANCH, MAX_LISTED, OPEN_CHAIN, POINT_IN_OTHER_HOLE, POINT_OFF_CENTRE, Skipped, SketchProblem,
+    listed, skipped_counted,
+)
 from linkstress.materials import Material
 from linkstress.geometry.profile import HOLE_CENTRE_TOLERANCE, LinkProfile
 
@@ -90,7 +95,9 @@ class Sketch:
     ``units``: the drawing's unit name (e.g. "mm") and ``units_source`` where it came from;
     ``ignored``: what was left out, by entity type; ``fixes``: repairs made (gaps closed,
     duplicates dropped, damage recovered); ``gap_tolerance_m`` and ``format`` as used;
-    ``problems``: what was left out because no clean outline could be made of it.
+    ``problems``: what was left out because no clean outline could be made of it; ``skipped``: what
+    was read but is not a part (a page frame, glyphs and marks, annotation layers); ``hole_layers``:
+    the layers whose outlines were taken as holes of the links they lie in.
     """
 
     path: Path
@@ -102,6 +109,8 @@ class Sketch:
     fixes: tuple[str, ...]
     gap_tolerance_m: float
     problems: tuple[SketchProblem, ...] = ()
+    skipped: tuple[Skipped, ...] = ()
+    hole_layers: tuple[str, ...] = ()
 
     @property
     def units_assumed(self) -> bool:
@@ -146,9 +155,19 @@ class Sketch:
         raise SketchError(f"{self.path.name} has no link or layer {name_or_layer!r}; its links are {names}")
 
 
+class SketchRefused(SketchError):
+    """No link of a sketch imports: the message, and in ``sketch`` (no links) every problem and what was
+    skipped, for ``import --json`` to write all of them."""
+
+    def __init__(self, message: str, sketch: Sketch) -> None:
+        super().__init__(message)
+        self.sketch = sketch
+
+
 def read_sketch(path: str | Path, units: str | None = None, tolerance: float | None = None,
                 sagitta: float | None = None, layers: Collection[str] | None = None,
-                exclude_layers: Collection[str] = (), override_units: bool = True) -> Sketch:
+                exclude_layers: Collection[str] = (), override_units: bool = True,
+                hole_layers: Collection[str] = ()) -> Sketch:
     """Read the DXF or CSV sketch at ``path`` (by its suffix .dxf or .csv, else by its content).
 
     ``units``: the unit of a file that does not say (DXF ``$INSUNITS`` 0 or no HEADER, CSV without
@@ -157,9 +176,13 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
     ``tolerance``: the endpoint gap tolerance as a fraction of the drawing's size (default 1e-4 for
     DXF and v1 CSV, 1e-2 for the old iLogic CSV); ``sagitta``: the chord tolerance of arcs as a
     fraction of each arc's radius (default 1e-4); ``layers``: read only these layers (None: all),
-    ``exclude_layers``: leave these out; the drawing's size is that of the curves read. Raises
-    SketchError naming the file when no link imports or the file itself is at fault; problems that
-    leave out only part of the drawing are in ``Sketch.problems``.
+    ``exclude_layers``: leave these out; the drawing's size is that of the curves read;
+    ``hole_layers``: layers whose closed outlines are holes of the links they lie in
+    (:mod:`.hole_layers`), read even when ``layers`` does not name them. Layers named for annotation
+    (:func:`.parts.annotation_layers`) are read only when ``layers`` names them. Raises SketchError
+    naming the file when the file itself is at fault, :class:`SketchRefused` when no link imports;
+    problems that leave out only part of the drawing are in ``Sketch.problems``, what is not a part
+    in ``Sketch.skipped``.
     """
     path = Path(path)
     try:
@@ -179,10 +202,13 @@ def read_sketch(path: str | Path, units: str | None = None, tolerance: float | N
                 from linkstress.importers.ilogic_csv import read_csv  # imported for a CSV sketch only
 
                 raw = read_csv(path, data, units, override_units)
-            sketch = _build(path, raw, tolerance, sagitta, layers, exclude_layers)
+            sketch = _build(path, raw, tolerance, sagitta, layers, exclude_layers, tuple(hole_layers))
     except SketchError as error:
         message = str(error) if raw is None else with_damage(str(error), raw.fixes)
-        raise SketchError(f"{path.name}: {message}{noted(notes)}") from None
+        message = f"{path.name}: {message}{noted(notes)}"
+        if isinstance(error, SketchRefused):
+            raise SketchRefused(message, replace(error.sketch, fixes=with_notes(error.sketch.fixes, notes))) from None
+        raise SketchError(message) from None
     return replace(sketch, fixes=with_notes(sketch.fixes, notes))
 
 
@@ -198,14 +224,19 @@ def _is_dxf(path: Path, data: bytes) -> bool:
 
 
 def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float | None,
-           layers: Collection[str] | None, exclude_layers: Collection[str]) -> Sketch:
+           layers: Collection[str] | None, exclude_layers: Collection[str], hole_layers: tuple[str, ...]) -> Sketch:
     boxes, origins = raw.curves.extents()
     ignored = Counter(raw.ignored)
-    use = _on_layers(origins, layers, exclude_layers, ignored)
+    hole_layers = tuple(decode_dxf_unicode(name) for name in hole_layers)
+    use = _on_layers(origins, layers, exclude_layers, ignored, hole_layers)
     curves = raw.curves.curve_count()
+    skipped = _annotation(origins, boxes, use, [*(layers or ()), *hole_layers], raw.unit.name)
     boxes, origins = boxes[use], [o for o, u in zip(origins, use) if u]
     bounds = box_of(boxes[:int(use[:curves].sum())])
     if bounds is None:
+        if skipped:
+            raise SketchError(f"no outline: every curve read is on a layer named for annotation "
+                              f"({capped(repr(item.layer) for item in skipped)}); name it in --layers to read it")
         kept = " on the layers read" if layers is not None or exclude_layers else ""
         raise SketchError(no_curves(raw.ignored, kept))
     _check_reach(raw, boxes, origins)
@@ -221,33 +252,81 @@ def _build(path: Path, raw: RawSketch, tolerance: float | None, sagitta: float |
         )
     unit = raw.unit.name
     pieces = flatten(raw.curves, Tolerance.for_size(size, sagitta))
-    contours = build_contours(pieces, raw.curves.curve_origins(), gap * size, size, unit, use[:curves])
+    use_points = use[curves:]
+    points = raw.curves.point_array()[use_points]
+    point_layers = [o[2] for o, u in zip(raw.curves.origins["points"], use_points) if u]
+    contours = build_contours(pieces, raw.curves.curve_origins(), gap * size, size, unit, use[:curves], points,
+                              point_layers, hole_layers)
     fixes = list(raw.fixes) + list(contours.fixes)
     problems = list(contours.problems)
-    links = _links(path, raw, contours.outlines, use[curves:], gap * size, ignored, fixes, problems)
+    skipped += contours.skipped
+    report = Report(raw.curves.curve_origins(), unit, size)
+    outlines = list(contours.outlines)
+    if hole_layers:
+        outlines, hole_problems = take_holes(outlines, hole_layers, report, fixes, problems)
+        problems += hole_problems
+    links = _links(path, raw, outlines, use_points, gap * size, ignored, fixes, problems, skipped, report,
+                   contours.chains)
+    sketch = Sketch(path, raw.format, unit, raw.units_source, tuple(links), MappingProxyType(dict(ignored)),
+                    tuple(fixes), gap * size / raw.unit.per_metre, tuple(problems), tuple(skipped), hole_layers)
     if not links:
-        raise SketchError(listed(problems) if len(problems) == 1 else f"no link imports, {listed(problems)}")
-    return Sketch(path, raw.format, unit, raw.units_source, tuple(links), MappingProxyType(dict(ignored)),
-                  tuple(fixes), gap * size / raw.unit.per_metre, tuple(problems))
+        raise SketchRefused(_no_link(problems, skipped), sketch)
+    return sketch
+
+
+def _no_link(problems: list[SketchProblem], skipped: list[Skipped]) -> str:
+    """Why no link imports: the problems, else what was skipped."""
+    if problems:
+        return listed(problems) if len(problems) == 1 else f"no link imports, {listed(problems)}"
+    kinds: Counter = Counter()
+    for item in skipped:
+        kinds[item.kind] += item.count
+    what = ", ".join(skipped_counted(n, kind) for kind, n in kinds.items())
+    return (f"no link imports: the sheet holds no part, only {what}; a part is a closed outline with its joints "
+            "(POINTs or round pin holes)")
+
+
+def _annotation(origins: list[Origin], boxes: NDArray[np.float64], use: NDArray[np.bool_], asked: list[str],
+                unit: str) -> list[Skipped]:
+    """Leave out (in ``use``) the curves and POINTs (``origins``, their bounding ``boxes``) on layers named
+    for annotation that were not ``asked`` for by name: a :class:`Skipped` per such layer, at its first
+    curve's lower left corner."""
+    on = np.array([origin[2] for origin in origins], dtype=object)
+    skipped = []
+    for layer in annotation_layers(dict.fromkeys(on[use].tolist()), asked):
+        mine = use & (on == layer)
+        use &= ~mine
+        count, first = int(mine.sum()), int(np.argmax(mine))
+        skipped.append(Skipped(
+            ANNOTATION_LAYER, layer, (float(boxes[first, 0]), float(boxes[first, 1])), unit,
+            tuple(describe(origins[k]) for k in np.flatnonzero(mine)[:MAX_LISTED]),
+            f"layer {layer!r} is named for annotation (text, dimensions, title block, border): its {count} curve(s) "
+            f"and POINT(s) were not read; name it in --layers to read it",
+        ))
+    return skipped
 
 
 def _on_layers(origins: list[Origin], layers: Collection[str] | None, exclude: Collection[str],
-               ignored: Counter) -> NDArray[np.bool_]:
-    """Which curves and POINTs (``origins``) lie on the layers read, counting the rest in ``ignored``;
-    a layer name the drawing lacks is refused, naming the layers it has."""
+               ignored: Counter, hole_layers: tuple[str, ...] = ()) -> NDArray[np.bool_]:
+    """Which curves and POINTs (``origins``) lie on the layers read (``layers`` and the ``hole_layers``),
+    counting the rest in ``ignored``; a layer name the drawing lacks is refused, naming the layers it has."""
     on = np.array([origin[2] for origin in origins], dtype=object)
-    if layers is None and not exclude:
+    if layers is None and not exclude and not hole_layers:
         return np.ones(len(origins), bool)
     # The drawing's names are decoded (``\U+039B`` is a capital lambda); so are those given.
-    layers = None if layers is None else [decode_dxf_unicode(name) for name in layers]
+    layers = None if layers is None else [*(decode_dxf_unicode(name) for name in layers), *hole_layers]
     exclude = [decode_dxf_unicode(name) for name in exclude]
+    if set(exclude) & set(hole_layers):
+        both = sorted(set(exclude) & set(hole_layers))
+        raise SketchError(f"layer(s) {capped(repr(n) for n in both)} given both as hole layers and in "
+                          "--exclude-layers; keep one")
     present = sorted({layer for layer in on.tolist() if layer is not None})
-    unknown = sorted((set(layers or ()) | set(exclude)) - set(present))
+    unknown = sorted((set(layers or ()) | set(exclude) | set(hole_layers)) - set(present))
     if unknown:
-        has = f"its layers are {capped(repr(n) for n in present)}" if present else "it has no layers"
+        has = f"its layers are {capped((repr(n) for n in present), 20)}" if present else "it has no layers"
         raise SketchError(
-            f"no layer {', '.join(repr(n) for n in unknown)} in the drawing ({has}); check --layers and "
-            "--exclude-layers"
+            f"no layer {', '.join(repr(n) for n in unknown[:MAX_LISTED])} in the drawing ({has}); check --layers, "
+            "--exclude-layers and --hole-layers"
         )
     use = np.ones(len(origins), bool) if layers is None else np.isin(on, list(layers))
     use &= ~np.isin(on, list(exclude))
@@ -287,22 +366,50 @@ def _check_scale(raw: RawSketch, bounds: tuple[float, float, float, float], size
         )
 
 
-def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], use_points: NDArray[np.bool_],
-           tolerance: float, ignored: Counter, fixes: list[str], problems: list[SketchProblem]) -> list[ImportedLink]:
-    """Links in metres from the outlines (drawing units), with their joints (the POINTs ``use_points``).
+def _links(path: Path, raw: RawSketch, outlines: list[Outline], use_points: NDArray[np.bool_],
+           tolerance: float, ignored: Counter, fixes: list[str], problems: list[SketchProblem],
+           skipped: list[Skipped], report: Report, chains: tuple[OpenChain, ...] = ()) -> list[ImportedLink]:
+    """Links in metres from the outlines that are parts (drawing units), with their joints (the POINTs
+    ``use_points``).
 
     The contours are simple, disjoint and nested, and each POINT is checked to lie in material or
     at a hole's centre, so every link makes a valid LinkProfile; a link with a POINT in a hole off
-    its centre is left out as a problem.
+    its centre is left out as a problem. Outlines that are no parts (:mod:`.parts`) are skipped or
+    left out as problems first.
     """
-    curve_origins = raw.curves.curve_origins()
-    names, layers = _names(path, outlines, curve_origins)
     points = raw.curves.point_array()[use_points]
     point_origins = [o for o, u in zip(raw.curves.origins["points"], use_points) if u]
     point_layers = [origin[2] for origin in point_origins]
-    owner = _owners([o.shell.polygon for o in outlines], points, _shell_layers(outlines, curve_origins), point_layers)
+    owner = _owners([o.shell.polygon for o in outlines], points, [o.layer for o in outlines], point_layers)
     if (owner < 0).any():
         ignored["POINT (outside every outline)"] += int((owner < 0).sum())
+    # The joints each outline would have, before any is judged a part: its POINTs, else its round holes' centres.
+    order = np.argsort(owner, kind="stable")
+    bounds = np.searchsorted(owner[order], np.arange(len(outlines) + 1))
+    would_be = [points[order[bounds[k]:bounds[k + 1]]] if bounds[k + 1] > bounds[k] else _hole_centres(outline)
+                for k, outline in enumerate(outlines)]
+    parts = sort_outlines(outlines, would_be, report.size, report, chains)
+    # The open chains skipped with a mark (a drill mark's cross) are no longer problems.
+    problems[:] = [p for p in problems if not (p.kind in (OPEN_CHAIN, BRANCH) and set(p.entities) <= parts.marked)]
+    problems += parts.problems
+    skipped += parts.skipped
+    # Among the parts: a POINT of an outline that is no part belongs to no link.
+    index = np.full(len(outlines) + 1, -1)
+    index[np.flatnonzero(parts.keep)] = np.arange(int(parts.keep.sum()))
+    kept = [outline for outline, keep in zip(outlines, parts.keep) if keep]
+    return _made(path, raw, kept, points, point_origins, index[owner], tolerance, fixes, problems)
+
+
+def _hole_centres(outline: Outline) -> NDArray[np.float64]:
+    return np.array([h.circle[:2] for h in outline.holes if h.circle is not None]).reshape(-1, 2)
+
+
+def _made(path: Path, raw: RawSketch, outlines: list[Outline], points: NDArray[np.float64], point_origins: list[Origin],
+          owner: NDArray[np.intp], tolerance: float, fixes: list[str], problems: list[SketchProblem]) -> list[ImportedLink]:
+    """The links of ``outlines`` (parts), each with the POINTs it ``owner``s as its joints, else its round
+    holes' centres; one with a POINT in a hole off its centre is left out as a problem."""
+    curve_origins = raw.curves.curve_origins()
+    names, layers = _names(path, outlines)
     per_metre = raw.unit.per_metre
     links = []
     for k, outline in enumerate(outlines):
@@ -317,8 +424,7 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], use_points
         if len(mine):
             joints, rule = points[mine], POINT_RULE
         else:
-            joints = np.array([h.circle[:2] for h in outline.holes if h.circle is not None]).reshape(-1, 2)
-            rule = HOLE_RULE
+            joints, rule = _hole_centres(outline), HOLE_RULE
         joints_m = joints / per_metre
         joints_m = joints_m[np.lexsort((joints_m[:, 1], joints_m[:, 0]))]
         joints_m.setflags(write=False)
@@ -338,10 +444,10 @@ def _links(path: Path, raw: RawSketch, outlines: tuple[Outline, ...], use_points
     return links
 
 
-def _names(path: Path, outlines, origins) -> tuple[list[str], list[str | None]]:
+def _names(path: Path, outlines: list[Outline]) -> tuple[list[str], list[str | None]]:
     """A link is named by its shell's layer when all its curves share one (other than "0"), else
     ``<file stem>-<n>``; links sharing a layer are numbered ``<layer>-<n>``."""
-    layers = [layer if layer != "0" else None for layer in _shell_layers(outlines, origins)]
+    layers = [outline.layer if outline.layer != "0" else None for outline in outlines]
     per_layer = Counter(layers)
     seen: Counter = Counter()
     names = []
@@ -355,15 +461,6 @@ def _names(path: Path, outlines, origins) -> tuple[list[str], list[str | None]]:
             names.append(layer)
     taken: Counter = Counter(names)
     return [n if taken[n] == 1 else f"{n}#{k + 1}" for k, n in enumerate(names)], layers
-
-
-def _shell_layers(outlines, origins) -> list[str | None]:
-    """Each outline's layer: that of its shell's curves when they share one, else None."""
-    layers = []
-    for outline in outlines:
-        found = {origins[k][2] for k in outline.shell.pieces}
-        layers.append(found.pop() if len(found) == 1 else None)
-    return layers
 
 
 def _owners(shells: list[Polygon], points: NDArray[np.float64], shell_layers: list[str | None],
@@ -429,12 +526,13 @@ def _off_centre(polygon: Polygon, points: NDArray[np.float64], origins, name: st
                     f"round (its largest inscribed circle fills {100 * inscribed**2:.0f} % of it: a keyway, a flat, a slot)",
                     "linkstress puts a pin only in a round hole, at its centre: draw the bore round to analyse the link "
                     "(a keyway's or flat's own stress is then not modelled: check it apart), or delete the POINT",
+                    POINT_IN_OTHER_HOLE,
                 )
             cx, cy = (v if abs(v) > 1e-12 * radius else 0.0 for v in (c.x, c.y))
             return SketchProblem(
                 layer, (float(p[0]), float(p[1])), unit, (describe(origin),),
                 f"{describe(origin)} at ({p[0]:.6g}, {p[1]:.6g}) {unit} lies in a hole of link {name!r} "
                 f"but not at its centre ({cx:.6g}, {cy:.6g}) {unit}",
-                "a joint in a hole is the pin's centre: move the POINT there or delete it",
+                "a joint in a hole is the pin's centre: move the POINT there or delete it", POINT_OFF_CENTRE,
             )
     return None

@@ -11,11 +11,16 @@ import math
 import numpy as np
 from shapely.geometry import Polygon
 
+from linkstress.importers.plausibility import unit_warnings
+from linkstress.importers.problems import (
+    ANNOTATION_LAYER, MAX_LISTED, Skipped, SketchProblem, by_kind, counted, skipped_counted,
+)
 from linkstress.importers.sketch import ImportedLink, Sketch
 from linkstress.tables import format_table
 
-MAX_PRINTED_PROBLEMS = 20
-"""Problems the text lists one per line; the rest are counted (all are in the JSON)."""
+MAX_PRINTED = MAX_LISTED
+"""Problems of each kind, and skipped items of each kind, the text spells out; the rest are counted (all are
+in the JSON)."""
 
 NO_PROFILE = "a profile U(x), L(x) needs a member frame, which needs two joints; this link has {n}"
 
@@ -56,10 +61,12 @@ def link_json(link: ImportedLink) -> dict:
     return out
 
 
-def sketch_json(sketch: Sketch) -> dict:
+def sketch_json(sketch: Sketch, refused: str | None = None) -> dict:
     """``{"links": [...]}`` of docs/design.md, with what was read, assumed, ignored, fixed and left out
-    (``problems``: layer, ``at`` in drawing units, entities, problem, fix)."""
-    return {
+    (``problems``: kind, layer, ``at`` in drawing units, entities, problem, fix), what was skipped as no
+    part (``skipped``), the layers taken as holes, the unit warnings and, for a refused import, why
+    (``refused``)."""
+    data = {
         "sketch": str(sketch.path),
         "format": sketch.format,
         "units": sketch.units,
@@ -69,14 +76,38 @@ def sketch_json(sketch: Sketch) -> dict:
         "ignored": dict(sketch.ignored),
         "fixes": list(sketch.fixes),
         "problems": [problem.json() for problem in sketch.problems],
+        "skipped": [item.json() for item in sketch.skipped],
+        "hole_layers": list(sketch.hole_layers),
+        "warnings": list(unit_warnings(sketch)),
     }
+    if refused is not None:
+        data["refused"] = refused
+    return data
 
 
 def sketch_text(sketch: Sketch) -> str:
-    """A table per link (area, centroid, polar moment, joints and their rule, holes, largest gap), then
-    what was ignored, fixed and left out as a problem."""
+    """The headline (links that are parts, what was skipped, problems), the unit warnings, the problems
+    grouped by kind and what was skipped as no part (a few of each, counted), then a table per link
+    (area, centroid, polar moment, joints and their rule, holes, largest gap) and what was ignored and
+    fixed."""
     units = f"units {sketch.units} ({sketch.units_source})"
-    parts = [f"{sketch.path.name}: {sketch.format}, {units}, {len(sketch.links)} link(s)"]
+    head = f"{sketch.path.name}: {sketch.format}, {units}, {len(sketch.links)} link(s)"
+    skipped = sum(item.count for item in sketch.skipped if item.kind != ANNOTATION_LAYER)
+    if skipped:
+        head += f", {skipped} outline(s) skipped as no part"
+    layers = sum(item.count for item in sketch.skipped if item.kind == ANNOTATION_LAYER)
+    if layers:
+        head += f", {layers} annotation layer(s) not read"
+    if sketch.problems:
+        head += f", {len(sketch.problems)} problem(s)"
+    parts = [head]
+    warnings = unit_warnings(sketch)
+    if warnings:
+        parts.append("\n".join(f"warning: {line}" for line in warnings))
+    if sketch.problems:
+        parts.append(problems_text(sketch.problems))
+    if sketch.skipped:
+        parts.append(skipped_text(sketch.skipped))
     for link in sketch.links:
         props = link.profile(1.0).area_properties
         rows = [
@@ -95,13 +126,31 @@ def sketch_text(sketch: Sketch) -> str:
         parts.append("ignored: " + ", ".join(f"{n} {kind}" for kind, n in sorted(sketch.ignored.items())))
     if sketch.fixes:
         parts.append("fixed:\n" + "\n".join(f"- {fix}" for fix in sketch.fixes))
-    if sketch.problems:
-        shown = sketch.problems[:MAX_PRINTED_PROBLEMS]
-        lines = [f"- {problem.text}" for problem in shown]
-        if len(sketch.problems) > len(shown):
-            lines.append(f"- and {len(sketch.problems) - len(shown)} more (all in --json)")
-        parts.append(f"problems ({len(sketch.problems)}, left out of the links above):\n" + "\n".join(lines))
     return "\n\n".join(parts)
+
+
+def problems_text(problems: tuple[SketchProblem, ...]) -> str:
+    """The problems grouped by kind, largest group first: a line with each group's count, then its first
+    few problems."""
+    lines = [f"problems ({len(problems)}, left out of the links below; every one in --json):"]
+    for kind, group in by_kind(problems).items():
+        first = f": first {MAX_PRINTED} of {len(group)}" if len(group) > MAX_PRINTED else ""
+        lines.append(f"- {counted(len(group), kind)}{first}")
+        lines += [f"  - {problem.text}" for problem in group[:MAX_PRINTED]]
+    return "\n".join(lines)
+
+
+def skipped_text(skipped: tuple[Skipped, ...]) -> str:
+    """What was skipped as no part, grouped by kind: each group's count, then its first few notes."""
+    lines = ["skipped, not parts (every one in --json):"]
+    groups: dict[str, list[Skipped]] = {}
+    for item in skipped:
+        groups.setdefault(item.kind, []).append(item)
+    for kind, group in groups.items():
+        first = f": first {MAX_PRINTED} of {len(group)}" if len(group) > MAX_PRINTED else ""
+        lines.append(f"- {skipped_counted(sum(item.count for item in group), kind)}{first}")
+        lines += [f"  - {item.note}" for item in group[:MAX_PRINTED]]
+    return "\n".join(lines)
 
 
 def _pair(p) -> str:

@@ -3,7 +3,13 @@
 The codes, symbols, names and factors are ezdxf's (``ezdxf.units``), copied here so that reading a
 plain DXF sketch needs no ezdxf (0.2 s to import; a test holds the copy equal to ezdxf's); this
 module adds the names a user types on the command line or in a scene (``mm``, ``inch``,
-``millimetres``...).
+``millimetres``...), and the typographic units of drawings exported from vector and board editors
+(Inkscape, KiCad), which have no ``$INSUNITS`` code: the point (1/72 inch), the pixel (1/96 inch,
+CSS) and the pica (1/6 inch).
+
+The short symbols of astronomical units (``pc``, ``ly``, ``au``, ``gm``) are refused with what they
+mean: ``pc`` typed for picas would read a drawing 1e17 times too large. Spelt out (``parsecs``) they
+are taken as meant.
 """
 
 from __future__ import annotations
@@ -26,6 +32,13 @@ UNCONVERTIBLE = {0: "Unitless", 8: "Microinches", 9: "Mils", 21: "USSurveyFeet",
                  23: "USSurveyYard", 24: "USSurveyMile"}
 """The names of the other codes, which have no conversion to metres; any code not listed is "unitless"."""
 
+INCH_M = 0.0254
+"""An inch in metres (exact, by definition)."""
+TYPOGRAPHIC = {"pt": ("points", INCH_M / 72), "px": ("pixels", INCH_M / 96), "pica": ("picas", INCH_M / 6)}
+"""Units without a ``$INSUNITS`` code: symbol: (name, metres each)."""
+SPELL_OUT = {17: "a gigametre", 18: "an astronomical unit", 19: "a light year", 20: "a parsec"}
+"""$INSUNITS codes whose short symbol is refused: what the symbol means; the spelt-out name is taken."""
+
 _EXTRA_NAMES = {
     "um": 13, "micron": 13, "microns": 13,
     "inch": 1, "foot": 2, "meter": 6, "metre": 6, "metres": 6,
@@ -37,38 +50,58 @@ _EXTRA_NAMES = {
 
 @dataclass(frozen=True)
 class DrawingUnit:
-    """A length unit of a drawing: ``name`` (short symbol, e.g. ``mm``) and its DXF ``$INSUNITS`` ``code``."""
+    """A length unit of a drawing: ``name`` (short symbol, e.g. ``mm``), its DXF ``$INSUNITS`` ``code``
+    (None for a unit DXF has no code for: ``pt``, ``px``, ``pica``) and ``per_metre``, how many of it make
+    a metre (ezdxf's factor): metres = value / per_metre. Two units are the same when their names are."""
 
     name: str
-    code: int
-
-    @property
-    def per_metre(self) -> float:
-        """How many of this unit make a metre (ezdxf's factor): metres = value / per_metre."""
-        return float(INSUNITS[self.code][2])
+    code: int | None
+    per_metre: float
 
 
 _CODES = {code: symbol for code, (symbol, _, _) in INSUNITS.items()}
-_NAMES: dict[str, int] = {
-    **{name.lower(): code for code, name in _CODES.items()},
-    **{name.lower(): code for code, (_, name, _) in INSUNITS.items()},
-    **_EXTRA_NAMES,
+_UNITS: dict[str, DrawingUnit] = {
+    **{symbol: DrawingUnit(symbol, code, float(factor)) for code, (symbol, _, factor) in INSUNITS.items()},
+    **{symbol: DrawingUnit(symbol, None, 1.0 / metres) for symbol, (_, metres) in TYPOGRAPHIC.items()},
 }
+_NAMES: dict[str, str] = {
+    **{symbol.lower(): symbol for symbol in _UNITS},
+    **{name.lower(): _CODES[code] for code, (_, name, _) in INSUNITS.items()},
+    **{name: _CODES[code] for name, code in _EXTRA_NAMES.items()},
+    **{name: symbol for symbol, (name, _) in TYPOGRAPHIC.items()},
+    **{name[:-1]: symbol for symbol, (name, _) in TYPOGRAPHIC.items()},
+}
+_SHORT = {_CODES[code].lower(): (meaning, code) for code, meaning in SPELL_OUT.items()}
 
 
 def unit_named(name: str, where: str) -> DrawingUnit:
-    """The unit a user named (``mm``, ``cm``, ``m``, ``in``, ``ft``, ``inches``...); ``where`` names the source."""
-    code = _NAMES.get(str(name).strip().lower())
-    if code is None:
-        known = ", ".join(sorted({_CODES[c] for c in _CODES if _CODES[c].isascii()}))
+    """The unit a user named (``mm``, ``cm``, ``m``, ``in``, ``ft``, ``pt``, ``px``, ``inches``...); ``where``
+    names the source. The short symbol of an astronomical unit (``pc``: a parsec, not a pica) is refused,
+    asking for the name spelt out."""
+    typed = str(name).strip().lower()
+    if typed in _SHORT:
+        meaning, code = _SHORT[typed]
+        picas = "; for picas give --units pica" if typed == "pc" else ""
+        raise SketchError(
+            f"{where}: {name!r} is {meaning} ({1 / INSUNITS[code][2]:.2g} m){picas}; a drawing in "
+            f"{INSUNITS[code][1].lower()} must say so in full (units {INSUNITS[code][1].lower()!r})"
+        )
+    symbol = _NAMES.get(typed)
+    if symbol is None:
+        known = ", ".join(sorted(s for s in _UNITS if s.isascii() and s.lower() not in _SHORT))
         raise SketchError(f"{where}: unknown length unit {name!r}; use one of {known}")
-    return DrawingUnit(_CODES[code], code)
+    return _UNITS[symbol]
+
+
+def unit_of(symbol: str) -> DrawingUnit:
+    """The unit whose short symbol is ``symbol`` (``DrawingUnit.name``, as a sketch reports its units)."""
+    return _UNITS[symbol]
 
 
 def unit_from_insunits(code: int) -> DrawingUnit | None:
     """The unit of a DXF ``$INSUNITS`` code; None for 0 (unitless) or a code ezdxf cannot convert."""
     if code in _CODES:
-        return DrawingUnit(_CODES[code], code)
+        return _UNITS[_CODES[code]]
     return None
 
 
@@ -92,13 +125,13 @@ def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | Non
     one of them is wrong.
     """
     chosen = unit_named(given, "units") if given is not None else None
-    if chosen is not None and declared is not None and declared.code != chosen.code:
+    if chosen is not None and declared is not None and declared.name != chosen.name:
         if not override:
             raise SketchError(
                 f"the file declares its units as {declared.name} ({declared_by}) but units {given!r} were "
                 "given; drop the units or fix the drawing's units"
             )
-        label = insunits_label(declared.code).lower()
+        label = insunits_label(declared.code).lower() if declared.code is not None else declared.name
         return chosen, f"--units {chosen.name}, overriding the file's {declared_by.removeprefix('the ')} {label}"
     if declared is not None:
         return declared, declared_by
@@ -109,5 +142,5 @@ def choose_unit(declared: DrawingUnit | None, declared_by: str, given: str | Non
     why = unsaid or f"{declared_by} is unitless"
     raise SketchError(
         f"the file does not say its units ({why}): pass --units with the drawing's unit, e.g. --units mm "
-        "(mm, cm, m, in or ft), or set the scene's units"
+        "(mm, cm, m, in, ft, pt or px), or set the scene's units"
     )

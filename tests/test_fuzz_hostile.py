@@ -116,7 +116,9 @@ def run_hostile(argv: list[str], outputs: list[Path]) -> tuple[int, str, str]:
         if path.is_dir():
             continue
         if code != 0:
-            assert not path.exists(), f"exit {code} left {path.name}: {stderr}"
+            # The one output of a failed run: an import refused for its problems writes them (docs/importing.md).
+            refused = code == 2 and path.suffix == ".json" and path.exists() and "refused" in json.loads(path.read_text())
+            assert refused or not path.exists(), f"exit {code} left {path.name}: {stderr}"
         elif path.exists() and path.suffix == ".json":
             text = path.read_text()
             assert not NON_FINITE.search(text), NON_FINITE.search(text)
@@ -565,9 +567,10 @@ def test_a_hostile_case_prints_one_line_at_most_on_stderr(tmp_path, corpus, fami
 
 MESSAGE_LIMIT = 400
 """Characters an error line (after "linkstress: error: ") may have in these families."""
-IMPORT_MESSAGE_LIMIT = 600
-"""The same for ``import`` of a drawn mechanism, whose refusal spells out two capped lists (the links
-and the links with fewer than two joints, five of each)."""
+IMPORT_MESSAGE_LIMIT = 2000
+"""The same for ``import``, whose refusal spells out capped lists: a drawn mechanism's links and the
+links with fewer than two joints (five of each), or the first problem of each kind (five kinds at
+most, each naming its entities and its fix)."""
 
 
 def run_short(argv: list, outputs: list[Path], limit: int = MESSAGE_LIMIT) -> tuple[int, str, str]:

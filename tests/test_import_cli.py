@@ -68,13 +68,14 @@ def run_cli(*args: str, cwd: Path) -> subprocess.CompletedProcess:
 
 
 @pytest.mark.parametrize("case", ["open", "not dxf", "csv junk"])
-def test_bad_input_exits_2_with_one_message_and_writes_nothing(tmp_path, case):
+def test_bad_input_exits_2_with_one_message_and_writes_only_the_json_of_its_problems(tmp_path, case):
     if case == "open":
         doc = ezdxf.new("R2013", units=4)
         draw(doc.modelspace(), [r for r in plate_entities() if r[0] != "line"])
         doc.modelspace().add_line((0, 0), (99.5, 0))
         sketch = save(doc, tmp_path)
-        expected = "linkstress: error: sketch.dxf: no link imports, 2 problems: (1) open outline: the end of LINE"
+        expected = ("linkstress: error: sketch.dxf: no link imports, 2 problems (1 open chain, 1 outline left out with "
+                    "another's problem): (1) open outline: the end of LINE")
     elif case == "not dxf":
         sketch = tmp_path / "sketch.dxf"
         sketch.write_text("hello\nworld\n")
@@ -87,7 +88,13 @@ def test_bad_input_exits_2_with_one_message_and_writes_nothing(tmp_path, case):
     assert result.returncode == 2
     assert result.stderr.startswith(expected) and result.stderr.count("\n") == 1
     assert "Traceback" not in result.stderr and result.stdout == ""
-    assert sorted(p.name for p in tmp_path.iterdir()) == [sketch.name]
+    # A sketch refused for its problems writes them (only them); a file at fault writes nothing.
+    written = ["out.json"] if case == "open" else []
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([sketch.name, *written])
+    if case == "open":
+        data = json.loads((tmp_path / "out.json").read_text())
+        assert data["links"] == [] and result.stderr == f"linkstress: error: {data['refused']} (every problem in out.json)\n"
+        assert [p["kind"] for p in data["problems"]] == ["open_chain", "left_out_with_another"]
 
 
 def test_an_unwritable_output_exits_2_and_leaves_no_file(tmp_path):
@@ -126,4 +133,6 @@ def test_more_bad_sketches_exit_2_in_process_with_one_line(tmp_path, capsys, mon
     captured = capsys.readouterr()
     assert captured.err.startswith("linkstress: error: sketch.dxf: ") and expected in captured.err
     assert captured.err.count("\n") == 1 and captured.out == ""
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["sketch.dxf"]
+    # Refused for its problems (the crossing), the sketch writes their JSON alone; refused as a file, nothing.
+    written = ["out.json"] if make is _crossing else []
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["sketch.dxf", *written])

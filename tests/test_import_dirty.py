@@ -59,11 +59,14 @@ def test_import_prints_the_problems_and_exits_0_while_a_link_imports(tmp_path, c
     out = tmp_path / "links.json"
     assert main(["import", str(path), "--json", str(out)]) == 0
     text = capsys.readouterr().out
-    assert "3 link(s)" in text and "problems (3, left out of the links above):" in text
-    assert text.count("\n- open ") == 3
+    assert text.startswith("sketch.dxf: DXF AC1027, units mm ($INSUNITS), 3 link(s), 3 problem(s)\n")
+    # The problems come first, grouped, before the links.
+    assert "problems (3, left out of the links below; every one in --json):\n- 3 open chains\n" in text
+    assert text.count("\n  - open ") == 3 and text.index("problems (3") < text.index("link crank")
     data = json.loads(out.read_text())
     assert [link["name"] for link in data["links"]] == ["crank", "parts-1", "parts-2"]
-    assert [sorted(p) for p in data["problems"]] == [["at", "entities", "fix", "layer", "problem"]] * 3
+    assert [sorted(p) for p in data["problems"]] == [["at", "entities", "fix", "kind", "layer", "problem"]] * 3
+    assert {p["kind"] for p in data["problems"]} == {"open_chain"} and "refused" not in data
     stray = next(p for p in data["problems"] if p["layer"] == "parts")
     assert stray["at"] == [100.0, 0.0] and stray["entities"][0].startswith("LINE (handle ")
 
@@ -73,8 +76,11 @@ def test_strict_refuses_a_dirty_sheet_listing_its_problems(tmp_path, capsys):
     out = tmp_path / "links.json"
     assert main(["import", str(path), "--strict", "--json", str(out)]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("linkstress: error: sketch.dxf: --strict: 3 problems: (1) open ")
-    assert err.count("\n") == 1 and not out.exists()
+    assert err.startswith("linkstress: error: sketch.dxf: --strict: 3 problems (3 open chains): (1) open ")
+    assert err.count("\n") == 1 and err.rstrip().endswith(f"(every problem in {out})")
+    # Its only output: the JSON, with the links that would import, every problem, and why it was refused.
+    data = json.loads(out.read_text())
+    assert len(data["problems"]) == 3 and data["refused"].startswith("sketch.dxf: --strict: 3 problems")
 
 
 @pytest.mark.parametrize("flags, links, problem_layers", [
@@ -109,7 +115,8 @@ def test_a_sheet_where_nothing_is_clean_exits_2_with_its_problems(tmp_path, caps
     msp.add_line((5, 0), (6, 0))
     assert main(["import", str(save(doc, tmp_path))]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("linkstress: error: sketch.dxf: no link imports, 2 problems: (1) open curve: LINE")
+    assert err.startswith("linkstress: error: sketch.dxf: no link imports, 2 problems (1 open chain, 1 pair of "
+                          "outlines crossing or touching): (1) open curve: LINE")
     assert "(2) outlines cross or touch at (" in err and err.count("\n") == 1
 
 

@@ -379,7 +379,8 @@ def test_numpy_warnings_while_reading_go_into_the_fixes(tmp_path, monkeypatch):
 
 def test_a_non_finite_result_is_not_written(tmp_path, monkeypatch, capsys):
     real = summary.sketch_json
-    monkeypatch.setattr(summary, "sketch_json", lambda sketch: {**real(sketch), "gap_tolerance_m": math.nan})
+    monkeypatch.setattr(summary, "sketch_json",
+                        lambda sketch, refused=None: {**real(sketch, refused), "gap_tolerance_m": math.nan})
     path = drawing(tmp_path, draw=lambda msp: rectangle(msp, 0, 0, 2, 1))
     assert main(["import", str(path), "--json", str(tmp_path / "links.json")]) == 2
     captured = capsys.readouterr()

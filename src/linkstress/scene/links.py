@@ -34,6 +34,7 @@ MATERIAL_KEYS = (
 FATIGUE_KEYS = ("endurance_limit", "ultimate_strength", "surface_factor", "size_factor")
 LINK_KEYS = (
     "sketch", "layer", "units", "joints", "thickness", "material", "mass", "inertia", "center_of_mass", "members",
+    "hole_layers",
 )
 MASS_KEYS = ("mass", "inertia", "center_of_mass")
 
@@ -92,15 +93,33 @@ def read_materials(table: Table | None) -> dict[str, Material]:
     return materials
 
 
-def read_links(table: Table, materials: dict[str, Material], units: str | None, folder: Path) -> dict[str, LinkSource]:
-    """Every [links.NAME], checked; sketches are read once per (file, units)."""
-    sketches: dict[tuple[Path, str | None], object] = {}
+UNIT_FIX = 'save the sketch in {unit}, or for a unitless one set units = "{unit}"'
+"""What a scene's reader does about a drawing in the wrong unit: a scene's ``units`` cannot
+override the unit a sketch's header declares."""
+
+
+def read_links(table: Table, materials: dict[str, Material], units: str | None,
+               folder: Path) -> tuple[dict[str, LinkSource], tuple[str, ...]]:
+    """Every [links.NAME], checked, and the sketches' unit warnings (``importers.unit_warnings``:
+    pin holes or links of a size no mechanism has, over the links the scene takes from each);
+    sketches are read once per (file, units, hole layers)."""
+    sketches: dict[tuple[Path, str | None, tuple[str, ...]], object] = {}
     links: dict[str, LinkSource] = {}
     for name in table.data:
         links[name] = _read_link(table.table(name), name, materials, units, folder, sketches)
     if not links:
         raise table.error(None, "no links; add [links.NAME] tables with joints or a sketch")
-    return links
+    return links, _unit_warnings(links, sketches)
+
+
+def _unit_warnings(links: dict[str, LinkSource], sketches) -> tuple[str, ...]:
+    from linkstress.importers import unit_warnings
+
+    found: list[str] = []
+    for (path, _, _), sketch in sketches.items():
+        layers = [source.layer for source in links.values() if source.sketch is not None and source.sketch.resolve() == path]
+        found += [f"{path.name}: {w}" for w in unit_warnings(sketch, [sketch.link(layer) for layer in layers], UNIT_FIX)]
+    return tuple(found)
 
 
 def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches) -> LinkSource:
@@ -126,7 +145,7 @@ def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches
     if entry.has("sketch") == entry.has("joints"):
         raise entry.error(None, "give either sketch = \"file.dxf\" or joints = [[x, y], ...] (metres), not both or neither")
     if entry.has("joints"):
-        for key in ("layer", "units", "members"):
+        for key in ("layer", "units", "members", "hole_layers"):
             if entry.has(key):
                 raise entry.error(key, "only for a sketch link; bare joints are in metres")
         joints = entry.points("joints", "m")
@@ -137,7 +156,7 @@ def _read_link(entry: Table, name: str, materials, units, folder: Path, sketches
     sketch_units = entry.string("units") or units
     layer = entry.string("layer")
     path = folder / entry.string("sketch")
-    profile = _load_profile(entry, name, path, layer, sketch_units, thickness, material, sketches)
+    profile = _load_profile(entry, name, path, layer, sketch_units, thickness, material, sketches, _hole_layers(entry))
     return LinkSource(
         name, np.asarray(profile.joints, float), thickness, material, profile, mass, inertia, center, path, layer,
         _read_members(entry, profile),
@@ -160,7 +179,18 @@ def _read_members(entry: Table, profile: LinkProfile) -> tuple[tuple[int, int], 
         raise entry.error("members", str(error)) from None
 
 
-def _load_profile(entry: Table, name, path: Path, layer, units, thickness, material, sketches) -> LinkProfile:
+def _hole_layers(entry: Table) -> tuple[str, ...]:
+    """``hole_layers = ["holes"]``: layers of the sketch whose outlines are holes of the links they lie in."""
+    if not entry.has("hole_layers"):
+        return ()
+    value = entry.require("hole_layers", "a list of layer names")
+    if not (isinstance(value, list) and value and all(isinstance(v, str) and v for v in value)):
+        raise entry.error("hole_layers", 'must be a list of layer names, e.g. hole_layers = ["holes"]')
+    return tuple(value)
+
+
+def _load_profile(entry: Table, name, path: Path, layer, units, thickness, material, sketches,
+                  hole_layers: tuple[str, ...] = ()) -> LinkProfile:
     from linkstress.importers import read_sketch  # ezdxf and shapely's importers: only for a scene with sketches
 
     try:
@@ -174,9 +204,9 @@ def _load_profile(entry: Table, name, path: Path, layer, units, thickness, mater
     if not found:
         raise entry.error("sketch", f"file {_short(str(path))!r} not found (paths are relative to the scene file's folder)")
     try:
-        key = (path.resolve(), units)
+        key = (path.resolve(), units, hole_layers)
         if key not in sketches:
-            sketches[key] = read_sketch(path, units=units, override_units=False)
+            sketches[key] = read_sketch(path, units=units, override_units=False, hole_layers=hole_layers)
         return sketches[key].link(layer).profile(thickness, material, name)
     except InputError as error:
         raise entry.error("sketch", str(error)) from None

@@ -96,7 +96,7 @@ def _scene(top: Table, path: Path) -> Scene:
         raise top.error("notes", "must be a string or a list of strings")
     units = top.string("units")
     materials = read_materials(top.table("materials"))
-    sources = read_links(top.table("links", required=True), materials, units, path.parent)
+    sources, drawing_warnings = read_links(top.table("links", required=True), materials, units, path.parent)
     machine = read_machine(top.table("mechanisms", required=True), {name: s.joints for name, s in sources.items()})
     unused = [name for name in sources if name not in machine.link_frames]
     if unused:
@@ -115,5 +115,5 @@ def _scene(top: Table, path: Path) -> Scene:
     analysis = read_analysis(top.table("analysis"), links)
     return Scene(
         path, units, MappingProxyType(materials), MappingProxyType(links), machine, motion, actuator, loads,
-        analysis, title, tuple(notes), plausibility_warnings(materials, links),
+        analysis, title, tuple(notes), drawing_warnings + plausibility_warnings(materials, links),
     )
