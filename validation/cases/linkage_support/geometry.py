@@ -20,19 +20,20 @@ class AssemblyError(ValueError):
     """A step that cannot close: the circles (or the circle and the line) do not meet."""
 
 
-def circle_circle(a: ArrayLike, ra: float, b: ArrayLike, rb: float, side: int) -> FloatArray:
-    """The point at ``ra`` from ``a`` and ``rb`` from ``b`` (each (P, 2) or (2,)) on the ``side``
-    of a -> b: +1 left, -1 right."""
+def circle_circle(a: ArrayLike, ra: ArrayLike, b: ArrayLike, rb: ArrayLike, side: int) -> FloatArray:
+    """The point at ``ra`` from ``a`` and ``rb`` from ``b`` (points (P, 2) or (2,), radii scalars or
+    (P,)) on the ``side`` of a -> b: +1 left, -1 right."""
     a, b = np.asarray(a, float), np.asarray(b, float)
+    ra, rb = np.asarray(ra, float), np.asarray(rb, float)
     d = b - a
-    distance = np.hypot(d[..., 0], d[..., 1])[..., None]
-    x = (ra**2 - rb**2 + distance**2) / (2 * distance)
+    length = np.hypot(d[..., 0], d[..., 1])
+    x = (ra**2 - rb**2 + length**2) / (2 * length)
     h2 = ra**2 - x**2
     if np.any(h2 < 0):
         raise AssemblyError(f"circles of radii {ra} and {rb} do not meet at {int(np.sum(h2 < 0))} positions")
-    e = d / distance
+    e = d / length[..., None]
     e_perp = np.stack([-e[..., 1], e[..., 0]], axis=-1)
-    return a + x * e + side * np.sqrt(h2) * e_perp
+    return a + x[..., None] * e + side * np.sqrt(h2)[..., None] * e_perp
 
 
 def circle_line(a: ArrayLike, r: float, q: ArrayLike, u: ArrayLike, root: int) -> FloatArray:
