@@ -10,6 +10,7 @@ a 10 mm hole at the foot G for its pad. The joints are where ``truth.py`` places
 
 from __future__ import annotations
 
+import runpy
 import sys
 from pathlib import Path
 
@@ -17,11 +18,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-sys.path.insert(0, str(HERE))
 
 from drawing import new_drawing, save  # noqa: E402
 from linkage_support.plates import pin_holes, rounded_plate  # noqa: E402
-from truth import DRAWN_INPUT, points  # noqa: E402
 
 HOLES = {"O": 20.0, "G": 10.0}
 """Hole diameters [mm] other than the 12 mm pins: the crank's axle and the foot pad's bolt."""
@@ -39,7 +38,8 @@ PLATES = {
 
 
 def write(path: Path) -> None:
-    at = {name: 1000.0 * p[0] for name, p in points(np.array([DRAWN_INPUT])).items()}  # mm
+    truth = runpy.run_path(str(HERE / "truth.py"))
+    at = {name: 1000.0 * p[0] for name, p in truth["points"](np.array([truth["DRAWN_INPUT"]])).items()}  # mm
     doc = new_drawing(units=4)  # millimetres
     msp = doc.modelspace()
     for layer, circles in PLATES.items():

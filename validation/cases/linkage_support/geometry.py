@@ -30,7 +30,8 @@ def circle_circle(a: ArrayLike, ra: ArrayLike, b: ArrayLike, rb: ArrayLike, side
     x = (ra**2 - rb**2 + length**2) / (2 * length)
     h2 = ra**2 - x**2
     if np.any(h2 < 0):
-        raise AssemblyError(f"circles of radii {ra} and {rb} do not meet at {int(np.sum(h2 < 0))} positions")
+        raise AssemblyError(f"two circles (radii up to {np.max(ra):g} and {np.max(rb):g} m) do not meet at "
+                            f"{int(np.sum(h2 < 0))} positions")
     e = d / length[..., None]
     e_perp = np.stack([-e[..., 1], e[..., 0]], axis=-1)
     return a + x[..., None] * e + side * np.sqrt(h2)[..., None] * e_perp

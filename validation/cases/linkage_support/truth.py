@@ -238,12 +238,15 @@ def joint_of(kin_values: dict[str, FloatArray], label: str) -> FloatArray:
     return kin_values[link][:, int(index)]
 
 
-def forces(case: Case, kin: Kinematics, speed: FloatArray) -> tuple[ne.Forces, ne.Power, list[ne.PinJoint], list[ne.Slide]]:
-    """The Newton-Euler solution over the sweep and its power balance."""
+def forces(case: Case, kin: Kinematics, speed: FloatArray, massless: bool = False
+           ) -> tuple[ne.Forces, ne.Power, list[ne.PinJoint], list[ne.Slide]]:
+    """The Newton-Euler solution over the sweep and its power balance; ``massless``: every link's
+    mass and inertia taken as zero (a hand check: a binary link without loads is then a two-force
+    member)."""
     scene = case.scene
     bodies = []
     for name in case.moving:
-        mass, inertia, _ = case.mass_data(name)
+        mass, inertia, _ = (0.0, 0.0, None) if massless else case.mass_data(name)
         bodies.append(ne.Body(name, mass, inertia, kin.com[name], kin.com_acceleration[name], kin.alpha[name]))
     pins = [ne.PinJoint(tuple(pin), tuple(label.rsplit(":", 1)[0] for label in pin), joint_of(kin.joints, pin[0]))
             for pin in case.pins()]
@@ -311,14 +314,14 @@ def largest_change(a: Kinematics, b: Kinematics, ground: str) -> dict[str, float
     }
 
 
-def run(folder: Path, place: Place, step: float) -> dict:
-    """The case's truth over its scene's sweep, written to ``truth.json``; returns what it wrote."""
+def record(folder: Path, place: Place, step: float) -> dict:
+    """The case's truth over its scene's sweep, as ``truth.json`` holds it."""
     case = Case.read(folder)
     kind, x, speed, acceleration = motion(case.scene)
     kin = kinematics(case, place, x, speed, acceleration, step)
     check = kinematics(case, place, x, speed, acceleration, step / 2)
     solution, power, pins, slides = forces(case, kin, speed)
-    truth = {
+    return {
         "case": case.name,
         "input": {
             "kind": kind,
@@ -333,10 +336,14 @@ def run(folder: Path, place: Place, step: float) -> dict:
         "ground": {"name": case.ground, "joints_m": case.drawn(case.ground).tolist()},
         "positions": _positions(case, kin, solution, power, pins, slides, kind, x),
     }
-    text = json.dumps(truth, indent=1)
+
+
+def run(folder: Path, place: Place, step: float) -> dict:
+    """``record`` written to ``truth.json`` in ``folder`` (whole or not at all); returns it."""
+    truth = record(folder, place, step)
     path = folder / TRUTH_FILE
     temporary = path.with_suffix(".json.tmp")
-    temporary.write_text(text + "\n", encoding="utf-8")
+    temporary.write_text(json.dumps(truth, indent=1) + "\n", encoding="utf-8")
     temporary.replace(path)
     return truth
 
@@ -353,6 +360,7 @@ def _positions(case: Case, kin: Kinematics, solution: ne.Forces, power: ne.Power
                 "angle_deg": math.degrees(kin.angle[name][p]),
                 "omega_rad_s": float(kin.omega[name][p]),
                 "alpha_rad_s2": float(kin.alpha[name][p]),
+                "G_m": kin.com[name][p].tolist(),
                 "acc_G_m_s2": kin.com_acceleration[name][p].tolist(),
             }
         pin_records = [{"joints": list(pin.joints), "at_m": pin.at[p].tolist(),

@@ -12,6 +12,7 @@ this folder; the output is byte-for-byte reproducible.
 
 from __future__ import annotations
 
+import runpy
 import sys
 from pathlib import Path
 
@@ -19,11 +20,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-sys.path.insert(0, str(HERE))
 
 from drawing import bent_link, new_drawing, save  # noqa: E402
 from linkage_support.plates import capsule, joints, pin_holes, rounded_plate  # noqa: E402
-from truth import DRAWN_INPUT, points  # noqa: E402
 
 PIN = 40.0
 """Every pin's hole [mm]."""
@@ -34,7 +33,8 @@ ROD = (40.0, 25.0, 850.0)
 
 
 def write(path: Path) -> None:
-    at = {name: 1000.0 * p[0] for name, p in points(np.array([DRAWN_INPUT])).items()}  # mm
+    truth = runpy.run_path(str(HERE / "truth.py"))
+    at = {name: 1000.0 * p[0] for name, p in truth["points"](np.array([truth["DRAWN_INPUT"]])).items()}  # mm
     doc = new_drawing(units=4)  # millimetres
     msp = doc.modelspace()
     for layer in ("frame", "arm", "barrel", "rod"):

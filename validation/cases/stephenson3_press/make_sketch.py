@@ -11,6 +11,7 @@ folder; the output is byte-for-byte reproducible.
 
 from __future__ import annotations
 
+import runpy
 import sys
 from pathlib import Path
 
@@ -18,11 +19,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-sys.path.insert(0, str(HERE))
 
 from drawing import new_drawing, save  # noqa: E402
 from linkage_support.plates import pin_holes, rounded_plate  # noqa: E402
-from truth import DRAWN_INPUT, points  # noqa: E402
 
 PIN, SHAFT = 16.0, 25.0
 """Pin hole and crank shaft diameters [mm]."""
@@ -38,7 +37,8 @@ PLATES = {
 
 
 def write(path: Path) -> None:
-    at = {name: 1000.0 * p[0] for name, p in points(np.array([DRAWN_INPUT])).items()}  # mm
+    truth = runpy.run_path(str(HERE / "truth.py"))
+    at = {name: 1000.0 * p[0] for name, p in truth["points"](np.array([truth["DRAWN_INPUT"]])).items()}  # mm
     doc = new_drawing(units=4)  # millimetres
     msp = doc.modelspace()
     for layer, (circles, holes) in PLATES.items():

@@ -10,6 +10,7 @@ reproducible.
 
 from __future__ import annotations
 
+import runpy
 import sys
 from pathlib import Path
 
@@ -17,11 +18,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-sys.path.insert(0, str(HERE))
 
 from drawing import new_drawing, save  # noqa: E402
 from linkage_support.plates import pin_holes, rounded_plate  # noqa: E402
-from truth import DRAWN_INPUT, points  # noqa: E402
 
 PIN, SHAFT = 14.0, 20.0
 """Pin hole and crank shaft diameters [mm]."""
@@ -37,7 +36,8 @@ PLATES = {
 
 
 def write(path: Path) -> None:
-    at = {name: 1000.0 * p[0] for name, p in points(np.array([DRAWN_INPUT])).items()}  # mm
+    truth = runpy.run_path(str(HERE / "truth.py"))
+    at = {name: 1000.0 * p[0] for name, p in truth["points"](np.array([truth["DRAWN_INPUT"]])).items()}  # mm
     doc = new_drawing(units=4)  # millimetres
     msp = doc.modelspace()
     for layer, circles in PLATES.items():

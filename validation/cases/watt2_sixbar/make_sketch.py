@@ -10,6 +10,7 @@ is byte-for-byte reproducible.
 
 from __future__ import annotations
 
+import runpy
 import sys
 from pathlib import Path
 
@@ -17,11 +18,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-sys.path.insert(0, str(HERE))
 
 from drawing import bent_link, new_drawing, save  # noqa: E402
 from linkage_support.plates import pin_holes, rounded_plate  # noqa: E402
-from truth import DRAWN_INPUT, points  # noqa: E402
 
 HOLE = 12.0
 BARS = {"crank": (("O2", "A"), 30.0), "coupler": (("A", "B"), 25.0), "rod": (("C", "D"), 25.0), "output": (("O6", "D"), 30.0)}
@@ -29,7 +28,8 @@ BARS = {"crank": (("O2", "A"), 30.0), "coupler": (("A", "B"), 25.0), "rod": (("C
 
 
 def write(path: Path) -> None:
-    at = {name: 1000.0 * p[0] for name, p in points(np.array([DRAWN_INPUT])).items()}  # mm
+    truth = runpy.run_path(str(HERE / "truth.py"))
+    at = {name: 1000.0 * p[0] for name, p in truth["points"](np.array([truth["DRAWN_INPUT"]])).items()}  # mm
     doc = new_drawing(units=4)  # millimetres
     msp = doc.modelspace()
     doc.layers.add("frame")
