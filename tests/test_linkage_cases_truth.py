@@ -330,6 +330,12 @@ def test_the_crank_shaper_returns_quicker_by_the_textbook_time_ratio():
     s = math.degrees(math.asin(r / c))
     assert over_the_top / (2 * math.pi - over_the_top) == pytest.approx((180 + 2 * s) / (180 - 2 * s), rel=1e-9)
     assert (180 + 2 * s) / (180 - 2 * s) == pytest.approx(1.5521, abs=1e-4)  # r / c = 1/3
+    # With the crank straight up or down the lever is upright and turns at omega r / (c + r) and
+    # -omega r / (c - r): 1.5 and -3 rad/s at the scene's 6 rad/s.
+    by_input = {round(p["input"]): p for p in stored("whitworth_shaper")["positions"]}
+    omega = scene("whitworth_shaper")["motion"]["input_speed_rad_s"]
+    assert by_input[90]["links"]["lever"]["omega_rad_s"] == pytest.approx(omega * r / (c + r), rel=1e-9)
+    assert by_input[270]["links"]["lever"]["omega_rad_s"] == pytest.approx(-omega * r / (c - r), rel=1e-9)
     # The slow stroke, with the crank over the top, drives the ram toward -x: the cutting stroke the
     # scene's 3 kN resists.
     top = truth["points"](np.array([math.pi / 2 - 1e-3, math.pi / 2 + 1e-3]))["R"][:, 0]
