@@ -14,7 +14,6 @@ within issue 29's bounds; it needs the linkage engine.
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
 import json
 import math
 import runpy
@@ -39,8 +38,6 @@ CASES = (
     "stephenson3_press", "watt2_sixbar", "whitworth_shaper", "jansen_leg", "klann_leg", "triad_sixbar",
     "loader_arm_cylinder",
 )
-ENGINE = "linkstress.kinematics.linkage"
-"""The module of issue 29's engine for ``type = "linkage"`` scenes."""
 
 
 @cache
@@ -412,8 +409,6 @@ def test_the_watt_ii_truth_agrees_with_linkstress_on_the_bell_crank_machine():
 # -- linkstress against the truths ---------------------------------------------------------------
 
 
-@pytest.mark.skipif(importlib.util.find_spec(ENGINE) is None,
-                    reason=f"the engine for type = \"linkage\" scenes ({ENGINE}, issue 29) is not in this checkout")
 @pytest.mark.parametrize("case", CASES)
 def test_linkstress_analyses_each_case_as_its_independent_truth(case):
     # Issue 29's bounds: positions within 1e-9 m, angular velocities and accelerations within 1e-7
