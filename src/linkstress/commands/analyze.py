@@ -20,8 +20,9 @@ from linkstress.errors import InputError
 from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_choice
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.peak_records import peak_summaries
-from linkstress.report.records import stream_position_records
+from linkstress.report.records import stream_position_records, summary_record
 from linkstress.report.text import report
+from linkstress.report.verdict import analysis_verdict
 from linkstress.scene import Scene, load_scene
 
 MEMORY_LIMIT = 6e9
@@ -80,6 +81,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "(ignored when no peaks are computed). Needs --peaks or [analysis] peaks = true, and "
         'pip install "linkstress[cluster]" (docs/cluster.md)',
     )
+    parser.add_argument(
+        "--details", action="store_true",
+        help="also print the motion, joint forces and section stresses position by position, and the FEA peak details "
+        "(the JSON and HTML carry them either way)",
+    )
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -116,16 +122,21 @@ def run(args: argparse.Namespace) -> int:
     # Every output is staged before any is renamed into place, so a failure leaves none half-done; the
     # JSON is encoded into its staged file as its records are made, a block of positions at a time.
     files = []
+    verdict = analysis_verdict(result)
     if args.json is not None:
         records = stream_position_records(result, stations=args.stations)
         cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in retried]}
-        after = (lambda: {"links": peak_summaries(result), **cluster}) if result.peaks else None
+
+        def after() -> dict[str, object]:
+            peaks = {"links": peak_summaries(result)} if result.peaks else {}
+            return {**peaks, **summary_record(result, verdict), **cluster}
+
         files.append((args.json, json_stream("positions", records, "--json", after)))
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 
-        files.append((args.html, analysis_html(result).encode("utf-8")))
-    print(report(result) + "".join(f"\nretried: {r.task} ({r.reason})" for r in retried))
+        files.append((args.html, analysis_html(result, verdict).encode("utf-8")))
+    print(report(result, args.details, verdict) + "".join(f"\nretried: {r.task} ({r.reason})" for r in retried))
     write_all(files)
     return 0
 
