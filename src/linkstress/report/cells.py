@@ -20,9 +20,10 @@ STRESS_DIGITS = 3
 FORCE_DIGITS = 4
 
 
-def significant(value: float, digits: int = 3) -> str:
+def significant(value: float, digits: int = 3, zeros: bool = True) -> str:
     """``value`` to ``digits`` significant digits, in plain notation from 1e-4 to below 1e6 (no
-    exponent for a stress of 1,230 MPa), else in scientific notation; "0" for zero."""
+    exponent for a stress of 1,230 MPa), else in scientific notation; "0" for zero. Without
+    ``zeros``, trailing zeros after the point are dropped ("60" rather than "60.0000")."""
     if value == 0 or not math.isfinite(value):
         return "0" if value == 0 else str(value)
     exponent = math.floor(math.log10(abs(value)))
@@ -30,7 +31,8 @@ def significant(value: float, digits: int = 3) -> str:
     exponent = math.floor(math.log10(abs(rounded)))  # 9.996 rounds up to 10.0
     if -4 <= exponent < 6:
         decimals = max(digits - 1 - exponent, 0)
-        return f"{rounded:.{decimals}f}"
+        text = f"{rounded:.{decimals}f}"
+        return text if zeros or "." not in text else text.rstrip("0").rstrip(".")
     return f"{rounded:.{digits - 1}e}"
 
 
@@ -50,7 +52,8 @@ def without_noise(values: np.ndarray, scale: float | None = None) -> np.ndarray:
 
 def column_cells(rows: Sequence[Sequence[object]], digits: Sequence[int | None]) -> list[list[object]]:
     """``rows`` with each float column ``k`` written to ``digits[k]`` significant digits (None: kept
-    as given) after its round-off noise is set to 0 against the column's largest magnitude."""
+    as given; trailing zeros dropped) after its round-off noise is set to 0 against the column's
+    largest magnitude."""
     columns = list(zip(*rows)) if rows else []
     out = [list(row) for row in rows]
     for k, column in enumerate(columns):
@@ -60,7 +63,7 @@ def column_cells(rows: Sequence[Sequence[object]], digits: Sequence[int | None])
         scale = max((abs(v) for v in numbers), default=0.0)
         for r, value in enumerate(column):
             if isinstance(value, float):
-                out[r][k] = significant(float(without_noise(np.array([value]), scale)[0]), digits[k])
+                out[r][k] = significant(float(without_noise(np.array([value]), scale)[0]), digits[k], zeros=False)
     return out
 
 

@@ -138,6 +138,12 @@ class Verdict:
         return "\n".join(lines)
 
 
+def higher_words(stress: Stress, position: str = "") -> str:
+    """Why a higher stress the run computed does not govern over a converged FEA peak."""
+    why = "an estimate" if stress.governing == ESTIMATE else "beam theory's, nominal" if "nominal)" in stress.where else "beam theory's"
+    return f"the {stress.governing} {mpa(stress.value)} MPa at {stress.where}{position} is higher: {why}, the FEA governs"
+
+
 def yield_factor(strength: float | None, stress: float, note: str = "") -> Factor:
     """``strength`` [Pa] over ``stress`` [Pa] with ``note``; none without a strength or a stress."""
     if strength is None:
@@ -199,11 +205,17 @@ def analysis_places(result: AnalysisResult, name: str, names=None) -> LinkPlaces
     return link_places(result.scene, name, members, names)
 
 
+def positions_words(feasible: NDArray[np.bool_]) -> str:
+    """"the 361 feasible positions", "the 30 feasible positions of 36", "the one feasible position"."""
+    count, total = int(feasible.sum()), len(feasible)
+    words = "the one feasible position" if count == 1 else f"the {count} feasible positions"
+    return words + (f" of {total}" if count < total else "")
+
+
 def analysis_verdict(result: AnalysisResult) -> Verdict:
     """The verdict of an analysis (``analyze``, with its FEA peaks when it ran them)."""
     ok = result.feasible
-    count, total = int(ok.sum()), len(ok)
-    positions = f"the {count} feasible positions" + (f" of {total}" if count < total else "")
+    positions = positions_words(ok)
     if not ok.any():
         return Verdict((), positions=positions)
     names = joint_names(result.scene)
@@ -275,7 +287,7 @@ def _peak_row(result: AnalysisResult, name: str, places: LinkPlaces, beam: Stres
         higher = [s for s in others if s.value > fea.value]
         if higher:
             top = max(higher, key=lambda s: s.value)
-            reason += f"; the {top.governing} {mpa(top.value)} MPa at {top.where} is higher, and less exact"
+            reason += f"; {higher_words(top)}"
         return VerdictRow(
             name, "fea-peaks", fea, yield_factor(material.yield_strength, fea.value, note),
             _fatigue(summary, note, peaks.fatigue_criterion), "FEA", reason,
