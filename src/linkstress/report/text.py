@@ -89,7 +89,8 @@ def header(result: AnalysisResult) -> str:
     feasible = result.feasible
     angles = scene.motion.angle_deg
     span = f" (input {angles.min():.6g} to {angles.max():.6g} deg)" if len(angles) > 1 else f" (input {angles[0]:.6g} deg)"
-    return f"scene {scene.path.name}: {len(feasible)} positions{span}, {int(feasible.sum())} feasible"
+    count = len(feasible)
+    return f"scene {scene.path.name}: {count} position{'s' if count > 1 else ''}{span}, {int(feasible.sum())} feasible"
 
 
 def warnings_text(warnings: tuple[str, ...]) -> str:

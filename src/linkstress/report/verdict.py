@@ -252,13 +252,15 @@ def _analysis_row(result: AnalysisResult, name: str, places: LinkPlaces, ok: NDA
     missing = [c for c in covers if not c.covered]
     if governing is estimate:
         cover = next(c for c in covers if c.largest is estimate)
-        note = "" if cover.covered else f"at {cover.inside} of {cover.loaded} positions"
         others = [c for c in missing if c is not cover]
+        share = "" if cover.covered else f"at {cover.inside} of {cover.loaded} positions"
+        unknown = f"{', '.join(c.label for c in others)} not covered" if others else ""
         reason = "; ".join(filter(None, [
-            note and f"inside the Kt tables {note}",
-            others and f"{holes_words(others)} outside them",
+            f"inside the Kt tables {share}".strip(),
+            others and f"{holes_words(others)} outside the Kt tables",
         ]))
         reason += ", run --peaks" if missing else ""
+        note = ", ".join(filter(None, [share, unknown]))
         return VerdictRow(name, model, governing, yield_factor(strength, governing.value, note), fatigue, "Kt estimate",
                           reason, uncovered)
     if missing:
