@@ -212,6 +212,6 @@ def test_every_column_giving_a_point_names_its_frame(seed_report, capsys):
     headers = [*report_html.STRESS_HEADERS, *text.STRESS_HEADERS, *peak_text.PEAK_HEADERS]
     points = [h for h in headers if "(x, y)" in h]
     assert len(points) == 4 and all(POINT_COLUMN.search(h) for h in points)
-    assert main(["analyze", str(SEED)]) == 0
+    assert main(["analyze", str(SEED), "--details"]) == 0
     for page in (seed_report.read_text(), capsys.readouterr().out):
         assert page.count("(x, y)") == len(POINT_COLUMN.findall(page)) > 0

@@ -27,6 +27,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.geometry.members import MemberCuts
+from linkstress.geometry.profile import LinkProfile
+from linkstress.report.cells import without_noise
 from linkstress.scene import Scene
 
 NORTON = {"crank": ("O2", "A"), "coupler": ("A", "B"), "output": ("O4", "B"), "ground": ("O2", "O4"), "slider": ("B", "B")}
@@ -152,7 +154,8 @@ class LinkPlaces:
         joint = self.hole_joints[h]
         if joint is not None:
             return self.pin_hole(joint)
-        x, y = self.to_drawing(self.hole_centres[h])
+        centre = self.to_drawing(self.hole_centres[h])
+        x, y = without_noise(centre, float(np.abs(centre).max()))
         return f"hole at ({x:.4g}, {y:.4g}) m of the drawing, no joint"
 
     def to_drawing(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -160,8 +163,9 @@ class LinkPlaces:
         return self.drawing_origin + self.drawing_rotation @ p
 
     def _section_at(self, p: NDArray[np.float64]) -> tuple[int, int] | None:
-        """(member, station) whose section holds ``p``: the cut line nearest to it among those whose
-        chord (outline to outline) reaches it; None when none is within a station's spacing."""
+        """(member, station) whose section holds ``p``: on each member, the cut line nearest to it among
+        those whose chord (outline to outline) reaches it, within a station's spacing; of those, the
+        member whose axis is nearest (a cut across one arm may run on through another); None when none."""
         best, found = np.inf, None
         for m, member in enumerate(self.members):
             cuts = member.cuts
@@ -175,8 +179,8 @@ class LinkPlaces:
                 continue
             spacing = float(np.median(np.diff(cuts.s))) if len(cuts.s) > 1 else float(top[0] - bottom[0])
             k = int(np.flatnonzero(on_chord)[np.argmin(along[on_chord])])
-            if along[k] <= spacing and along[k] < best:
-                best, found = along[k], (m, k)
+            if along[k] <= spacing and abs(across[k]) < best:
+                best, found = abs(across[k]), (m, k)
         return found
 
     def _on_member(self, p: NDArray[np.float64], m: int, k: int, nominal_note: bool) -> str:
@@ -187,7 +191,8 @@ class LinkPlaces:
         if cuts.junction[k]:
             other = self._nearest_other_arm(p, m)
             return f"junction of arms {self.joint(i)}-{self.joint(j)} and {other}" if other else f"junction at {self.arm(m)}"
-        s = float(cuts.s[k])
+        # the point's own arc length: its station's, plus its offset along the axis there
+        s = float(cuts.s[k] + np.dot(p - cuts.origin[k], cuts.tangent[k]))
         if s < 0 or s > member.length:
             end = i if s < 0 else j
             return f"{self.arm(m)} past {self.joint(end)}, toward its free end"
@@ -226,16 +231,22 @@ def link_places(scene: Scene, name: str, members: Sequence[tuple[tuple[int, int]
     """The places of link ``name`` of ``scene`` (a profiled link), whose ``members`` are given as
     (joints, length [m], cuts in the load frame); ``names`` the scene's ``joint_names`` if known."""
     link = scene.links[name]
-    profile = link.profile
-    frame = profile.frame(*link.frame_joints)
+    return profile_places(link.profile, link.frame_joints, (names or joint_names(scene))[name], members)
+
+
+def profile_places(profile: LinkProfile, frame_joints: tuple[int, int], joints: Sequence[JointName],
+                   members: Sequence[tuple[tuple[int, int], float, MemberCuts]]) -> LinkPlaces:
+    """The places of the link ``profile`` in the load frame of ``frame_joints``, its joints named
+    ``joints``, its ``members`` given as (joints, length [m], cuts in that frame)."""
+    frame = profile.frame(*frame_joints)
     centres, areas = profile.holes
     joints_at = {hole: j for j, hole in enumerate(profile.joint_holes) if hole is not None}
     return LinkPlaces(
-        (names or joint_names(scene))[name],
+        tuple(joints),
         frame.to_local(centres).reshape(-1, 2),
         np.sqrt(areas / np.pi),
         tuple(joints_at.get(h) for h in range(len(areas))),
-        tuple(MemberPlace(tuple(joints), float(length), cuts) for joints, length, cuts in members),
+        tuple(MemberPlace(tuple(pair), float(length), cuts) for pair, length, cuts in members),
         frame.to_local(profile.joints).reshape(-1, 2),
         np.asarray(frame.origin, float),
         frame.rotation,
