@@ -154,6 +154,12 @@ def test_a_sharp_notchs_growing_corner_peak_is_not_converged_though_its_last_cha
     x, y = crank["fea_max_at_member_m"]
     assert abs(x - 0.05) <= 0.0021 and abs(y + 0.002) < 1e-6  # at a corner of the notch's root
     assert "crank: no yield safety factor: the FEA peak is NOT converged" in capsys.readouterr().out
+    # The verdict: the corner's peak is the largest stress computed; as a lower bound, with no factor.
+    row = next(r for r in data["verdict"]["rows"] if r["link"] == "crank")
+    assert row["trust"] == "NOT converged" and row["governing"] == "FEA peak"
+    assert row["stress_pa"] == crank["fea_max_von_mises_pa"] and row["yield_safety_factor"] is None
+    assert row["yield_safety_factor_note"] == "withheld: FEA NOT converged" and "a lower bound" in row["trust_reason"]
+    assert "did not converge" in data["verdict"]["next_step"]
 
 
 def test_a_converged_peak_gives_the_safety_factor_and_says_how_much_each_quantity_changed(tmp_path, capsys):
@@ -162,6 +168,10 @@ def test_a_converged_peak_gives_the_safety_factor_and_says_how_much_each_quantit
     code, data = run_validate(scene, tmp_path / "v.json", "--mesh-size", "0.004", "--positions", "1")
     crank = data["links"]["crank"]
     assert code == 0 and crank["converged"] is True
+    row = next(r for r in data["verdict"]["rows"] if r["link"] == "crank")
+    assert (row["governing"], row["trust"], row["model"]) == ("FEA peak", "FEA", "fea")
+    assert row["yield_safety_factor"] == crank["fea_yield_safety_factor"]
+    assert row["trust_reason"].startswith("converged ")
     assert {q: v["status"] for q, v in crank["convergence"].items()} == {
         "resultants": "converged", "nominal": "converged", "peak": "converged"}
     assert crank["convergence"]["peak"]["change_pct"] < 5.0

@@ -322,15 +322,13 @@ def validation_text(result: ValidationResult, details: bool = False, verdict: Ve
         f"beam sections against FEA at {len(result.positions)} position(s) (worst over them; MPa, %)",
         text_table(HEADERS, table_rows(result)),
         LEGEND.format(limit=100 * RESULTANT_LIMIT),
+        KT_WORDS,
     ]
     lines += [f"  {name}: FEA failed: {message}" for name, message in result.errors.items()]
     lines.append(check_line(result))
     parts.append("\n".join(lines))
     if details:
-        paragraphs = [f"  {name}: {part}" for name, c in result.comparisons.items() for part in link_lines(result, name, c)]
-        if any(c.hole_peaks for c in result.comparisons.values()):
-            paragraphs.append(KT_WORDS)
-        parts.append("\n".join(paragraphs))
+        parts.append("\n".join(f"  {name}: {part}" for name, c in result.comparisons.items() for part in link_lines(result, name, c)))
     elif result.comparisons:
         parts.append(DETAILS_HINT)
     return "\n\n".join(parts)

@@ -33,7 +33,11 @@ def significant(value: float, digits: int = 3, zeros: bool = True) -> str:
         decimals = max(digits - 1 - exponent, 0)
         text = f"{rounded:.{decimals}f}"
         return text if zeros or "." not in text else text.rstrip("0").rstrip(".")
-    return f"{rounded:.{digits - 1}e}"
+    text = f"{rounded:.{digits - 1}e}"
+    if zeros:
+        return text
+    mantissa, power = text.split("e")
+    return (mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa) + "e" + power
 
 
 def mpa(stress_pa: float, digits: int = STRESS_DIGITS) -> str:
