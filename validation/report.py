@@ -502,10 +502,10 @@ def validation_html(result: ValidationResult, verdict: Verdict | None = None) ->
             ))
         if c.study is not None:
             study_rows = [
-                (int(d), float(h), float(p), float(t))
+                (int(d), float(h), mpa(float(p)), float(t))
                 for d, h, p, t in zip(c.study.dofs, c.study.spacing, c.study.peaks.max(axis=1), c.study.seconds)
             ]
-            body.append(table_html(("dofs", "element spacing [m]", "FEA peak [Pa]", "time [s]"), study_rows))
+            body.append(table_html(("dofs", "element spacing [m]", "FEA peak [MPa]", "time [s]"), study_rows))
             if c.study.has_nominal:
                 body.append(
                     f"<p>Richardson estimate of the finest mesh's error at the nominal points "
