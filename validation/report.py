@@ -31,7 +31,7 @@ from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
 from linkstress.report.figures import LABEL_ZORDER, boxed_label, stress_along_figure
-from linkstress.report.cells import mpa, text_table
+from linkstress.report.cells import mpa, point, text_table, without_noise
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html, verdict_html, warnings_html
 from linkstress.report.places import joint_names
 from linkstress.report.text import KT_WORDS, warnings_text
@@ -149,7 +149,7 @@ class Maximum:
     at: list[float]
 
     def words(self) -> str:
-        return f"{mpa(self.value)} MPa at input angle {self.angle_deg:.4g} deg, ({self.at[0]:.4g}, {self.at[1]:.4g}) m (member frame)"
+        return f"{mpa(self.value)} MPa at input angle {self.angle_deg:.4g} deg, {point(self.at)} m (member frame)"
 
 
 def input_angles(result: ValidationResult) -> NDArray[np.float64]:
@@ -383,8 +383,10 @@ def nominal_note(c: LinkComparison) -> str | None:
     centres = c.fea.link.frame(*c.fea.frame_joints).to_local(c.fea.link.holes[0])[:, 0]
     gap = np.abs(c.stations[:, None] - centres).min(axis=1, initial=np.inf)
     k = int(np.argmax(gap - depth))
+    # a station at a joint's abscissa may carry round-off (x = 1.4e-17): against the link's size it is 0
+    x = float(without_noise(c.stations, float(np.abs(c.stations).max() + depth.max()))[k])
     return (
-        f"no nominal comparison: no station is a section depth from every pin (at x = {c.stations[k]:.4g} m, "
+        f"no nominal comparison: no station is a section depth from every pin (at x = {x:.4g} m, "
         f"member frame, the section is {depth[k]:.4g} m deep and the nearest pin {gap[k]:.4g} m away), and within a "
         "section depth of a pin beam theory does not hold"
     )
@@ -404,7 +406,7 @@ def nominal_words(c: LinkComparison, angles: NDArray[np.float64]) -> str:
         away = m.beam.away
         s = int(np.argmax(np.abs(m.fea_von_mises[k, away] - m.beam.von_mises[k, away])))
         x, y = m.beam.cuts.origin[away][s]
-        where = f"s = {m.beam.cuts.s[away][s]:.4g} m along member joints {m.joints[0]}-{m.joints[1]}, ({x:.4g}, {y:.4g}) m member frame"
+        where = f"s = {m.beam.cuts.s[away][s]:.4g} m along member joints {m.joints[0]}-{m.joints[1]}, {point((x, y))} m member frame"
     return f"nominal stresses within {100 * c.nominal_error[k]:.3g} % (worst at input angle {angles[k]:.4g} deg, {where})"
 
 
@@ -412,8 +414,7 @@ def pin_hole_words(h: HolePeak, angles: NDArray[np.float64], name: str = "") -> 
     """A pin hole's Kt x nominal estimate against the FEA's peak at the same hole and position; the
     hole named ``name`` (its joint's, default "joint k")."""
     r = pin_hole_record(h, angles)
-    hole = (f"pin hole {name or f'at joint {h.joint}'} (d = {h.diameter:.4g} m, centre ({h.centre[0]:.4g}, "
-            f"{h.centre[1]:.4g}) m, member frame)")
+    hole = f"pin hole {name or f'at joint {h.joint}'} (d = {h.diameter:.4g} m, centre {point(h.centre)} m, member frame)"
     if r["estimate_pa"] is None:
         return (
             f"{hole}: the FEA's peak there is {mpa(r['fea_peak_pa'])} MPa at input angle {r['input_angle_deg']:.4g} deg; "

@@ -54,6 +54,13 @@ def without_noise(values: np.ndarray, scale: float | None = None) -> np.ndarray:
     return np.where(np.abs(values) <= NOISE * scale, 0.0, values) + 0.0
 
 
+def point(xy, digits: int = 4) -> str:
+    """"(x, y)" to ``digits`` significant digits, a coordinate that is round-off against the other
+    (a pin at y = 1.4e-17 on the x axis) written 0."""
+    x, y = without_noise(np.asarray(xy, float)[:2])
+    return f"({x:.{digits}g}, {y:.{digits}g})"
+
+
 def column_cells(rows: Sequence[Sequence[object]], digits: Sequence[int | None]) -> list[list[object]]:
     """``rows`` with each float column ``k`` written to ``digits[k]`` significant digits (None: kept
     as given; trailing zeros dropped) after its round-off noise is set to 0 against the column's

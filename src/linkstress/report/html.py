@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 
 from linkstress import __version__
 from linkstress.analysis import AnalysisResult
-from linkstress.report.cells import column_cells, mpa, significant
+from linkstress.report.cells import column_cells, mpa, point, significant
 from linkstress.report.figures import (
     mechanism_figure,
     mechanism_sweep_figure,
@@ -265,7 +265,7 @@ def _stress_table(result: AnalysisResult) -> str:
             continue
         peak = figures.max_von_mises
         rows.append((
-            name, mpa(peak.value), peak.input_angle_deg, f"({peak.at[0]:.4g}, {peak.at[1]:.4g})",
+            name, mpa(peak.value), peak.input_angle_deg, point(peak.at),
             "-" if figures.away_from_holes is None else mpa(figures.away_from_holes.value),
             "-" if figures.pin_hole is None else mpa(figures.pin_hole.value),
             "yes" if result.curved(name) else "no",

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
-from linkstress.report.cells import mpa, significant
+from linkstress.report.cells import mpa, point, significant
 from linkstress.safety import SafetyFactors
 
 
@@ -47,7 +47,7 @@ class SweepFigure:
         hole = "" if joint is None else f"the pin hole at {joint}, centre "
         return (
             f"{self.what} {value} at input {self.input_angle_deg:.6g} deg, {hole}at "
-            f"({self.at[0]:.4g}, {self.at[1]:.4g}) m, ground frame"
+            f"{point(self.at)} m, ground frame"
         )
 
 

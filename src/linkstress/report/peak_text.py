@@ -4,7 +4,7 @@ what each figure means and why a factor is withheld. Stresses in MPa."""
 from __future__ import annotations
 
 from linkstress.analysis import AnalysisResult
-from linkstress.report.cells import mpa, significant, text_table
+from linkstress.report.cells import mpa, point, significant, text_table
 from linkstress.report.peak_records import peak_summaries
 
 PEAK_HEADERS = (
@@ -24,14 +24,14 @@ def peaks_table(result: AnalysisResult) -> str:
         fatigue = s["fatigue_safety_factor"]
         where = s.get("fatigue_critical_at_m")
         rows.append((
-            name, mpa(s["peak_max_von_mises_pa"]), f"{s['peak_max_input_angle_deg']:.6g}", f"({at[0]:.4g}, {at[1]:.4g})",
+            name, mpa(s["peak_max_von_mises_pa"]), f"{s['peak_max_input_angle_deg']:.6g}", point(at),
             "-" if beam is None else mpa(beam),
             "-" if not beam else f"{s['peak_max_von_mises_pa'] / beam:.3g}",
             f"{s['peak_change_pct']:.2g} %, {s['peak_previous_change_pct']:.2g} %"
             + ("" if s["peak_converged"] else " NOT converged"),
             _factor(s.get("peak_yield_safety_factor"), "peak_yield_safety_factor" in s),
             "-" if fatigue is None else f"{significant(fatigue)} ({s['fatigue_criterion']})",
-            "-" if fatigue is None or where is None else f"({where[0]:.4g}, {where[1]:.4g})",
+            "-" if fatigue is None or where is None else point(where),
         ))
         mesh = s["peak_mesh"]
         line = (

@@ -177,7 +177,8 @@ class LinkPlaces:
             on_chord = (across >= bottom - slack) & (across <= top + slack)
             if not on_chord.any():
                 continue
-            spacing = float(np.median(np.diff(cuts.s))) if len(cuts.s) > 1 else float(top[0] - bottom[0])
+            # stations are the centres of equal cells (``Member.stations``); numpy's median would load numpy.ma
+            spacing = float(np.ptp(cuts.s)) / (len(cuts.s) - 1) if len(cuts.s) > 1 else float(top[0] - bottom[0])
             k = int(np.flatnonzero(on_chord)[np.argmin(along[on_chord])])
             if along[k] <= spacing and abs(across[k]) < best:
                 best, found = abs(across[k]), (m, k)

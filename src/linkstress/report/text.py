@@ -27,7 +27,7 @@ from linkstress.kinematics.linkage_class import (
     stroke,
     toggle_angles,
 )
-from linkstress.report.cells import column_cells, mpa, significant, text_table, without_noise
+from linkstress.report.cells import column_cells, mpa, point, significant, text_table, without_noise
 from linkstress.report.maxima import LinkFigures, link_figures
 from linkstress.report.peak_text import peaks_table
 from linkstress.report.places import force_names, joint_names
@@ -346,7 +346,7 @@ def stress_table(result: AnalysisResult) -> str:
         peak = figures.max_von_mises
         mismatch = float(stress.mismatch[ok].max())
         row = [
-            name, mpa(peak.value), f"{peak.input_angle_deg:.6g}", f"({peak.at[0]:.4g}, {peak.at[1]:.4g})",
+            name, mpa(peak.value), f"{peak.input_angle_deg:.6g}", point(peak.at),
             "-" if figures.away_from_holes is None else mpa(figures.away_from_holes.value),
             _estimate_cell(result, name), "0" if mismatch <= 1e-9 else f"{mismatch:.2g}",
         ]
