@@ -297,7 +297,7 @@ def _pin_holes_table(result: AnalysisResult) -> str:
             inside = int((loaded & ~hole.outside).sum())
             if largest is None:
                 k = worst_position(hole.nominal, ok)
-                estimate = "none: outside the Kt tables"
+                estimate = "- (outside the Kt tables)"
             else:
                 k = worst_position(np.where(hole.outside, -1.0, hole.estimate), ok)
                 estimate = mpa(largest)

@@ -318,7 +318,7 @@ def _estimate_cell(result: AnalysisResult, name: str) -> str:
     figures = link_figures(result, name)
     stress = result.stresses[name]
     if figures is None or figures.pin_hole is None:
-        return "none (outside the Kt tables)" if stress.pin_holes else "- (no pin hole)"
+        return "- (outside the Kt tables)" if stress.pin_holes else "- (no pin hole)"
     hole = next(h for h in stress.pin_holes if h.joint == figures.pin_hole.joint)
     loaded = ok & (hole.nominal > 0)
     inside = int((loaded & ~hole.outside).sum())
