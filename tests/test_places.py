@@ -42,7 +42,7 @@ def test_points_along_a_bar_are_named_by_their_share_of_the_arm_and_the_pins_by_
     assert places.name(np.array([-0.75 * hole, 0.0])) == "pin hole O2"
     # a section within a depth of a pin gives a nominal beam value: said so; an FEA point there is on the arm
     assert places.name(np.array([0.0, height / 2])) == "arm O2-A beside pin hole O2 (nominal)"
-    assert places.name(np.array([-0.9 * height, height / 2]), nominal_note=False) == "arm O2-A past O2, toward its free end"
+    assert places.name(np.array([-0.9 * height, height / 2]), beam=False) == "arm O2-A past O2, toward its free end"
 
 
 @pytest.mark.parametrize("bend_deg", [60.0, 90.0, 120.0])
@@ -81,10 +81,10 @@ def test_a_curved_arms_concave_side_is_its_inner_fillet(sag):
         body = body.difference(Point(joint).buffer(0.004, quad_segs=64))
     places = places_of(LinkProfile(body, np.array([[0.0, 0.0], [span, 0.0]]), 0.008, STEEL), ("A", "B"))
     # radius 2.4-3.5 section depths: the arm bends (under ten depths); its centre of curvature is below
-    inner = places.name(np.array([span / 2, sag - 0.45 * width]))
-    outer = places.name(np.array([span / 2, sag + 0.45 * width]))
-    assert inner == "inner fillet of arm A-B at 50 % of its length"
-    assert outer == "outer edge of the bend of arm A-B at 50 % of its length"
+    inner, outer = np.array([span / 2, sag - 0.45 * width]), np.array([span / 2, sag + 0.45 * width])
+    assert places.name(inner, beam=False) == "inner fillet of arm A-B at 50 % of its length"  # an FEA peak's place
+    assert places.name(inner) == "inner edge of the bend of arm A-B at 50 % of its length"  # a beam value's
+    assert places.name(outer) == "outer edge of the bend of arm A-B at 50 % of its length"
 
 
 def test_joints_take_nortons_letters_and_the_links_their_pin_joins():

@@ -116,7 +116,7 @@ def link_record(result: ValidationResult, name: str) -> dict:
 def fea_where(result: ValidationResult, name: str, c: LinkComparison) -> str:
     """Where on link ``name`` the FEA's largest von Mises is, in words ("pin hole O2 (crank-ground)")."""
     places = analysis_places(result.analysis, name)
-    return places.name(c.fea.von_mises_peak_at[int(np.argmax(c.fea_peak))], nominal_note=False)
+    return places.name(c.fea.von_mises_peak_at[int(np.argmax(c.fea_peak))], beam=False)
 
 
 def member_record(m: MemberComparison) -> dict:

@@ -56,7 +56,7 @@ def fea_peak_stress(result: ValidationResult, name: str, places: LinkPlaces, c: 
     """The FEA's largest von Mises of link ``name`` over the compared positions, where on the link."""
     k = int(np.argmax(c.fea_peak))
     angle = float(np.asarray(result.analysis.scene.motion.angle_deg, float)[result.positions[k]])
-    return Stress(FEA_PEAK, float(c.fea_peak[k]), angle, places.name(c.fea.von_mises_peak_at[k], nominal_note=False))
+    return Stress(FEA_PEAK, float(c.fea_peak[k]), angle, places.name(c.fea.von_mises_peak_at[k], beam=False))
 
 
 def _row(result: ValidationResult, name: str, places: LinkPlaces, c: LinkComparison | None, error: str) -> VerdictRow:

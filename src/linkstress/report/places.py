@@ -11,8 +11,9 @@ stresses and FEA peaks) is named, in this order, as:
   of the drawing"), within ``HOLE_REACH`` hole radii of its centre (where validate looks for a hole's
   peak);
 - on a member's section: "junction of arms O4-B and O4-C" (the station is within a section depth of
-  another arm's axis), "inner fillet of arm O4-C" or "outer edge of the bend of arm O4-C" (the axis
-  there turns tighter than ``BEND_DEPTHS`` section depths, on the concave or convex side), or "arm
+  another arm's axis), "inner fillet of arm O4-C" (an FEA value; a beam value is at the "inner edge of
+  the bend") or "outer edge of the bend of arm O4-C" (the axis there turns tighter than
+  ``BEND_DEPTHS`` section depths, on the concave or convex side), or "arm
   O4-C at 40 % of its length" (from its first joint), "beside pin hole O4" when the section is within
   a section depth of a pin (nominal), and "past O4, toward the free end" beyond an end joint;
 - otherwise the nearest joint ("near joint 2").
@@ -130,9 +131,10 @@ class LinkPlaces:
         i, j = self.members[m].joints
         return f"arm {self.joint(i)}-{self.joint(j)}"
 
-    def name(self, point: NDArray[np.float64], nominal_note: bool = True) -> str:
-        """The name of ``point`` (2,) [m, load frame] (see the module's docstring); ``nominal_note``
-        adds "beside pin hole X (nominal)" on a section within a section depth of a pin."""
+    def name(self, point: NDArray[np.float64], beam: bool = True) -> str:
+        """The name of ``point`` (2,) [m, load frame] (see the module's docstring) where a ``beam``
+        value is (on a section within a section depth of a pin: "beside pin hole X (nominal)"; on a
+        bend's concave side "inner edge of the bend"), or else an FEA value ("inner fillet")."""
         p = np.asarray(point, float)
         hole = self._hole_at(p)
         if hole is not None:
@@ -142,7 +144,7 @@ class LinkPlaces:
             j = int(np.argmin(np.hypot(*(self.points - p).T)))
             return f"near joint {self.joint(j)}"
         m, k = found
-        return self._on_member(p, m, k, nominal_note)
+        return self._on_member(p, m, k, beam)
 
     def _hole_at(self, p: NDArray[np.float64]) -> str | None:
         if not len(self.hole_radii):
@@ -184,7 +186,7 @@ class LinkPlaces:
                 best, found = abs(across[k]), (m, k)
         return found
 
-    def _on_member(self, p: NDArray[np.float64], m: int, k: int, nominal_note: bool) -> str:
+    def _on_member(self, p: NDArray[np.float64], m: int, k: int, beam: bool) -> str:
         member = self.members[m]
         cuts = member.cuts
         i, j = member.joints
@@ -197,7 +199,7 @@ class LinkPlaces:
         if s < 0 or s > member.length:
             end = i if s < 0 else j
             return f"{self.arm(m)} past {self.joint(end)}, toward its free end"
-        if nominal_note and cuts.near_hole[k]:
+        if beam and cuts.near_hole[k]:
             pin = self._nearest_pin(cuts.origin[k])
             if pin is not None:
                 return f"{self.arm(m)} beside pin hole {self.joint(pin)} (nominal)"
@@ -205,7 +207,8 @@ class LinkPlaces:
         curvature = float(cuts.curvature[k])
         if abs(curvature) * depth * BEND_DEPTHS > 1:
             side = float(np.dot(p - cuts.origin[k], cuts.normal[k])) * curvature
-            return f"inner fillet of {share}" if side > 0 else f"outer edge of the bend of {share}"
+            inner = "inner edge of the bend of" if beam else "inner fillet of"
+            return f"{inner} {share}" if side > 0 else f"outer edge of the bend of {share}"
         return share
 
     def _nearest_other_arm(self, p: NDArray[np.float64], m: int) -> str:

@@ -134,7 +134,8 @@ def describe_loop(scene: Scene, name: str, result: AnalysisResult | None = None)
         limit_what = "output"
     else:
         lines.append(
-            f"  {role('crank')} {linkage.crank:.6g} m, rod ({loop.coupler.link}) {linkage.rod:.6g} m, offset "
+            f"  {role('crank')} {linkage.crank:.6g} m, rod{'' if loop.coupler.link == 'rod' else f' ({loop.coupler.link})'} "
+            f"{linkage.rod:.6g} m, offset "
             f"{linkage.offset:.6g} m, slider line at {math.degrees(linkage.slider_angle):.6g} deg; stroke {stroke(linkage):.6g} m"
         )
         toggles, ranges = slider_toggle_angles(linkage), slider_feasible_input_ranges(linkage)

@@ -280,7 +280,7 @@ def _peak_row(result: AnalysisResult, name: str, places: LinkPlaces, beam: Stres
     summary = peak_summaries_of(result, name)
     material = result.scene.links[name].material
     worst = peaks.worst_position
-    fea = Stress(FEA_PEAK, peaks.peak_max, float(result.scene.motion.angle_deg[worst]), places.name(peaks.peak_at[worst], False))
+    fea = Stress(FEA_PEAK, peaks.peak_max, float(result.scene.motion.angle_deg[worst]), places.name(peaks.peak_at[worst], beam=False))
     covered_positions = len(peaks.sweep.positions)
     note = "" if covered_positions == count else f"at {covered_positions} of {count} positions"
     others = [s for s in (beam, estimate) if s is not None]
