@@ -92,7 +92,7 @@ def _row(result: ValidationResult, name: str, places: LinkPlaces, c: LinkCompari
     else:
         trust = "NOT converged"
         worst = max(float(peak.change.max()), float(peak.previous.max()) if peak.previous is not None else 0.0)
-        change = f"{percent(worst)} over a mesh refinement (limit {percent(peak.limit)})"
+        change = f"{percent(worst)} over a mesh refinement (limit {100 * peak.limit:g} %)"
     withheld = Factor(None, f"withheld: FEA {trust}")
     if fea.value >= best.value:
         return VerdictRow(name, "fea", fea, withheld, fatigue, trust, f"{change}: a lower bound, no safety factor",

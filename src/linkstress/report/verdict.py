@@ -31,9 +31,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
+from linkstress.report.cells import mpa, significant, text_table
 from linkstress.report.peak_records import peak_summaries
 from linkstress.report.places import LinkPlaces, joint_names, link_places
-from linkstress.report.cells import mpa, significant, text_table
 
 FEA_PEAK, ESTIMATE, BEAM = "FEA peak", "pin-hole estimate", "beam nominal"
 """What governs a link: the FEA's largest von Mises, Kt x nominal at a pin hole, or beam theory's."""
@@ -219,8 +219,17 @@ def analysis_verdict(result: AnalysisResult) -> Verdict:
     if not ok.any():
         return Verdict((), positions=positions)
     names = joint_names(result.scene)
-    rows = tuple(_analysis_row(result, name, analysis_places(result, name, names), ok) for name in result.stresses)
-    return Verdict(rows, analysis_next_step(result, rows), positions)
+    summaries = peak_summaries(result) if result.peaks else {}
+    rows = []
+    for name in result.stresses:
+        places = analysis_places(result, name, names)
+        beam = beam_stress(result, name, places, ok)
+        covers = hole_covers(result, name, places, ok)
+        if name in result.peaks:
+            rows.append(_peak_row(result, name, places, beam, covers, summaries[name]))
+        else:
+            rows.append(_section_row(result, name, beam, covers))
+    return Verdict(tuple(rows), analysis_next_step(result, tuple(rows)), positions)
 
 
 def beam_stress(result: AnalysisResult, name: str, places: LinkPlaces, positions: NDArray[np.intp] | NDArray[np.bool_]) -> Stress:
@@ -233,82 +242,75 @@ def beam_stress(result: AnalysisResult, name: str, places: LinkPlaces, positions
     return Stress(BEAM, float(stress.max_von_mises[k]), float(result.scene.motion.angle_deg[k]), where)
 
 
-def _analysis_row(result: AnalysisResult, name: str, places: LinkPlaces, ok: NDArray[np.bool_]) -> VerdictRow:
-    count = int(ok.sum())
+def largest_estimate(covers: list[HoleCover]) -> Stress | None:
+    """The largest pin-hole estimate of ``covers``, None where no hole has one."""
+    return max((c.largest for c in covers if c.largest is not None), key=lambda s: s.value, default=None)
+
+
+def _section_row(result: AnalysisResult, name: str, beam: Stress, covers: list[HoleCover]) -> VerdictRow:
+    """The row of a link without FEA: the larger of its beam maximum and its pin-hole estimates."""
     material = result.scene.links[name].material
-    strength = material.yield_strength
-    beam = beam_stress(result, name, places, ok)
-    covers = hole_covers(result, name, places, ok)
-    uncovered = tuple(c.name for c in covers if not c.covered)
-    estimates = [c.largest for c in covers if c.largest is not None]
-    estimate = max(estimates, key=lambda s: s.value, default=None)
-    peaks = result.peaks.get(name)
-    curved = any(m.theory == "curved" for m in result.stresses[name].members)
-    if peaks is not None:
-        return _peak_row(result, name, places, beam, estimate, count)
-    governing = beam if estimate is None or beam.value >= estimate.value else estimate
-    model = "beam+Kt" if covers else "beam"
+    estimate = largest_estimate(covers)
     fatigue = Factor(None, "run --peaks" if material.fatigue_strength is not None else "")
+    model = "beam+Kt" if covers else "beam"
+    if estimate is not None and estimate.value > beam.value:
+        return _estimate_row(name, model, estimate, covers, material.yield_strength, fatigue)
     missing = [c for c in covers if not c.covered]
-    if governing is estimate:
-        cover = next(c for c in covers if c.largest is estimate)
-        others = [c for c in missing if c is not cover]
-        share = "" if cover.covered else f"at {cover.inside} of {cover.loaded} positions"
-        unknown = f"{', '.join(c.label for c in others)} not covered" if others else ""
-        reason = "; ".join(filter(None, [
-            f"inside the Kt tables {share}".strip(),
-            others and f"{holes_words(others)} outside the Kt tables",
-        ]))
-        reason += ", run --peaks" if missing else ""
-        note = ", ".join(filter(None, [share, unknown]))
-        return VerdictRow(name, model, governing, yield_factor(strength, governing.value, note), fatigue, "Kt estimate",
-                          reason, uncovered)
     if missing:
         trust, note, reason = "beam only", "sections only", f"{holes_words(missing)} outside the Kt tables, run --peaks"
     elif covers:
         trust, note, reason = "beam + Kt", "", "every pin hole's Kt estimate is below it"
     else:
         trust, note, reason = "beam", "", "no pin holes"
+    curved = any(m.theory == "curved" for m in result.stresses[name].members)
     reason = "; ".join(filter(None, ["curved beam (Winkler-Bach)" if curved else "", reason]))
-    return VerdictRow(name, model, governing, yield_factor(strength, governing.value, note), fatigue, trust, reason, uncovered)
+    return VerdictRow(name, model, beam, yield_factor(material.yield_strength, beam.value, note), fatigue, trust, reason,
+                      tuple(c.name for c in missing))
 
 
-def _peak_row(result: AnalysisResult, name: str, places: LinkPlaces, beam: Stress, estimate: Stress | None,
-              count: int) -> VerdictRow:
-    """The row of a link with FEA peaks over the sweep."""
+def _estimate_row(name: str, model: str, estimate: Stress, covers: list[HoleCover], strength: float | None,
+                  fatigue: Factor) -> VerdictRow:
+    """The row of a link whose largest stress is a pin-hole estimate: over how many positions it
+    exists, and which other holes nothing covers."""
+    cover = next(c for c in covers if c.largest is estimate)
+    missing = [c for c in covers if not c.covered]
+    others = [c for c in missing if c is not cover]
+    share = "" if cover.covered else f"at {cover.inside} of {cover.loaded} positions"
+    reason = "; ".join(filter(None, [
+        f"inside the Kt tables {share}".strip(), others and f"{holes_words(others)} outside the Kt tables",
+    ])) + (", run --peaks" if missing else "")
+    note = ", ".join(filter(None, [share, f"{', '.join(c.label for c in others)} not covered" if others else ""]))
+    return VerdictRow(name, model, estimate, yield_factor(strength, estimate.value, note), fatigue, "Kt estimate", reason,
+                      tuple(c.name for c in missing))
+
+
+def _peak_row(result: AnalysisResult, name: str, places: LinkPlaces, beam: Stress, covers: list[HoleCover],
+              summary: dict[str, object]) -> VerdictRow:
+    """The row of a link with FEA peaks over the sweep (``summary``: its ``peak_summaries`` record)."""
     peaks = result.peaks[name]
-    summary = peak_summaries_of(result, name)
-    material = result.scene.links[name].material
+    strength = result.scene.links[name].material.yield_strength
     worst = peaks.worst_position
-    fea = Stress(FEA_PEAK, peaks.peak_max, float(result.scene.motion.angle_deg[worst]), places.name(peaks.peak_at[worst], beam=False))
-    covered_positions = len(peaks.sweep.positions)
-    note = "" if covered_positions == count else f"at {covered_positions} of {count} positions"
-    others = [s for s in (beam, estimate) if s is not None]
+    where = places.name(peaks.peak_at[worst], beam=False)
+    fea = Stress(FEA_PEAK, peaks.peak_max, float(result.scene.motion.angle_deg[worst]), where)
+    count, solved = int(result.feasible.sum()), len(peaks.sweep.positions)
+    note = "" if solved == count else f"at {solved} of {count} positions"
+    estimate = largest_estimate(covers)
+    best = beam if estimate is None or beam.value >= estimate.value else estimate
     if peaks.trusted:
         reason = f"converged {percent(peaks.check.change)}"
-        higher = [s for s in others if s.value > fea.value]
-        if higher:
-            top = max(higher, key=lambda s: s.value)
-            reason += f"; {higher_words(top)}"
-        return VerdictRow(
-            name, "fea-peaks", fea, yield_factor(material.yield_strength, fea.value, note),
-            _fatigue(summary, note, peaks.fatigue_criterion), "FEA", reason,
-        )
-    change = f"{percent(max(peaks.check.change, peaks.check.previous_change))} over a mesh refinement (limit {percent(peaks.check.limit)})"
-    best = max(others, key=lambda s: s.value)
+        if best.value > fea.value:
+            reason += f"; {higher_words(best)}"
+        return VerdictRow(name, "fea-peaks", fea, yield_factor(strength, fea.value, note),
+                          _fatigue(summary, note, peaks.fatigue_criterion), "FEA", reason)
+    change = (f"{percent(max(peaks.check.change, peaks.check.previous_change))} over a mesh refinement "
+              f"(limit {100 * peaks.check.limit:g} %)")
     withheld = Factor(None, "withheld: FEA NOT converged")
     if fea.value >= best.value:
         return VerdictRow(name, "fea-peaks", fea, withheld, withheld, "NOT converged",
-                          f"{change}: a lower bound, no safety factor; refine the mesh")
-    return VerdictRow(
-        name, "fea-peaks", best, yield_factor(material.yield_strength, best.value, "sections only" if best is beam else ""),
-        withheld, "NOT converged", f"the FEA peak {mpa(fea.value)} MPa changed {change}; the {best.governing} governs",
-    )
-
-
-def peak_summaries_of(result: AnalysisResult, name: str) -> dict[str, object]:
-    """Link ``name``'s FEA peak summary record (``peak_records``)."""
-    return peak_summaries(result)[name]
+                          f"{change}: a lower bound, no safety factor")
+    note = "sections only" if best is beam and not all(c.covered for c in covers) else ""
+    return VerdictRow(name, "fea-peaks", best, yield_factor(strength, best.value, note), withheld, "NOT converged",
+                      f"the FEA peak {mpa(fea.value)} MPa changed {change}; the {best.governing} governs")
 
 
 CRITERION_NAMES = {"goodman": "Goodman", "gerber": "Gerber", "asme-elliptic": "ASME-elliptic"}
