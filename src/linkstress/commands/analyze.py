@@ -1,10 +1,12 @@
-"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--explain]``: motion, joint forces and
-section stresses of a scene's machine at every input position.
+"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--peaks] [--details] [--explain]``:
+motion, joint forces and section stresses of a scene's machine at every input position.
 
-stdout: each mechanism's class (Grashof, Barker), toggles, feasible input range and limit
-positions; the motion of every link; joint forces and the driving torque; the largest section
-stress per link; the infeasible positions and why. ``--json`` writes docs/design.md's ``analyze`` JSON
-(see ``linkstress.report.records``); ``--explain`` prints what will be computed and stops.
+stdout: the verdict first (``linkstress.report.verdict``: per link the stress that governs it, where,
+its safety factors and how far to trust it), the scene's warnings, each mechanism's class (Grashof,
+Barker), toggles, feasible input range, limit positions and driving torque range, each link's
+maxima, and the notes and infeasible positions; ``--details`` adds the motion, joint forces and
+section stresses position by position. ``--json`` writes docs/design.md's ``analyze`` JSON (see
+``linkstress.report.records``); ``--explain`` prints what will be computed and stops.
 """
 
 from __future__ import annotations

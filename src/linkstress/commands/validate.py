@@ -1,5 +1,6 @@
-"""``linkstress validate SCENE [--json OUT] [--html OUT] [--vtu DIR]``: beam sections against
-plane-stress FEA of every profiled link of a scene, under the same loads.
+"""``linkstress validate SCENE [--json OUT] [--html OUT] [--vtu DIR] [--details]``: beam sections
+against plane-stress FEA of every profiled link of a scene, under the same loads; the verdict first
+(``linkstress.validation.verdict``), then a compact comparison per link (``--details``: in full).
 
 Exit 0 when the check passes, 1 when it fails (a link's FEA could not run, its support reactions are
 not ~0, or its section resultants disagree with the beam's), 2 on bad input. Convergence is reported
