@@ -183,7 +183,7 @@ def analysis_sections(result: AnalysisResult, top: list[str] | None = None) -> l
     if top is None:
         top = verdict_html(analysis_verdict(result)) + warnings_html(result)
     sections = [
-        f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} positions, '
+        f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} position{"s" if len(feasible) > 1 else ""}, '
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
         *top,
         *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
