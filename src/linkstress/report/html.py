@@ -28,14 +28,8 @@ from linkstress.report.maxima import link_figures, worst_position
 from linkstress.report.mechanism_view import view_html
 from linkstress.report.places import force_names, joint_names
 from linkstress.report.records import link_columns
-from linkstress.report.text import (
-    KT_WORDS,
-    crossing_warnings,
-    curved_warnings,
-    figure_lines,
-    transmission_warnings,
-    uncovered_text,
-)
+from linkstress.report.detail_tables import figure_lines, uncovered_text
+from linkstress.report.text import KT_WORDS, crossing_warnings, curved_warnings, transmission_warnings
 from linkstress.report.verdict import HEADERS as VERDICT_HEADERS
 from linkstress.report.verdict import Verdict, analysis_verdict
 from linkstress.safety import link_safety_factors, uncovered_pin_holes
