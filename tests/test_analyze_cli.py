@@ -63,7 +63,7 @@ def read_json(path: Path) -> dict:
 
 def test_json_has_the_design_shape_and_the_seeds_values(tmp_path, capsys):
     out = tmp_path / "out.json"
-    assert main(["analyze", str(scene_file(tmp_path, SEED)), "--json", str(out)]) == 0
+    assert main(["analyze", str(scene_file(tmp_path, SEED)), "--json", str(out), "--details"]) == 0
     data = read_json(out)
     first, second = data["positions"]
     assert set(first) == {"input_angle_deg", "feasible", "reason", "links", "transmission_angle_deg"}

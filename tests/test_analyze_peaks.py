@@ -99,7 +99,7 @@ def test_the_sweeps_summary_gives_the_worst_peak_the_check_and_the_fatigue_at_th
 
 
 def test_the_text_report_has_the_peak_table_and_the_frames_of_its_points(tmp_path, capsys):
-    assert main(["analyze", str(seed_scene(tmp_path, "{ start = 0.0, stop = 300.0, num = 6 }")), "--peaks"]) == 0
+    assert main(["analyze", str(seed_scene(tmp_path, "{ start = 0.0, stop = 300.0, num = 6 }")), "--peaks", "--details"]) == 0
     out = capsys.readouterr().out
     assert "FEA peak stresses over the sweep" in out
     assert "at (x, y) [m], ground frame" in out and "critical point (x, y) [m], drawing" in out

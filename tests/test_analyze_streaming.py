@@ -16,7 +16,8 @@ from linkstress.cli import main
 from linkstress.dynamics import section_stress
 from linkstress.dynamics.section_stress import StressSummary
 from linkstress.output import json_bytes, json_stream, write_json, write_json_stream
-from linkstress.report.records import position_records
+from linkstress.report.records import position_records, summary_record
+from linkstress.report.verdict import analysis_verdict
 from linkstress.scene import load_scene
 from linkstress.validation.bench.memory import analyze_in_child, seed_sweep_scene
 
@@ -40,7 +41,8 @@ def test_streamed_json_with_stations_is_the_json_of_the_records_built_in_memory(
     result = run_analysis(load_scene(scene_path))
     assert [b.stop - b.start for b in result.stresses["crank"].blocks] == [5, 4, 5, 4, 5]
     records = position_records(result, stations=True)
-    assert out.read_bytes() == (json.dumps({"positions": records}, indent=1, allow_nan=False) + "\n").encode()
+    after = summary_record(result, analysis_verdict(result))
+    assert out.read_bytes() == (json.dumps({"positions": records, **after}, indent=1, allow_nan=False) + "\n").encode()
     ok = result.feasible
     assert ok.sum() == 23
     for name in LINKS:

@@ -122,7 +122,7 @@ def test_a_six_bar_drawn_assembled_becomes_two_chained_loops_at_the_drawn_angle(
     same_joints_as_the_case(out)
     assert main(["analyze", str(out)]) == 0
     report = capsys.readouterr().out
-    assert "1 positions, 1 feasible" in report and "mechanism loop2: four-bar" in report
+    assert "1 position (input 30 deg), 1 feasible" in report and "mechanism loop2: four-bar" in report
 
 
 def test_a_six_bar_with_its_ternary_ground_drawn_on_layer_Base_names_the_grounds_joints(tmp_path):

@@ -118,11 +118,12 @@ def test_a_sketched_linkage_gets_section_stresses_and_pin_hole_estimates(tmp_pat
 def test_html_report_of_a_linkage_lists_pins_and_draws_the_view(tmp_path):
     path = case(tmp_path / "six")
     out = tmp_path / "report.html"
-    done = subprocess.run([sys.executable, "-m", "linkstress", "analyze", str(path), "--html", str(out)],
+    done = subprocess.run([sys.executable, "-m", "linkstress", "analyze", str(path), "--html", str(out), "--details"],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "mechanism six: linkage of 6 links" in done.stdout
-    assert "pin coupler:1-rocker:1" in done.stdout and "T crank [N m]" in done.stdout
+    assert "pin coupler:1-rocker:1" in done.stdout and "coupler on rocker at coupler:1" in done.stdout
+    assert "T crank [N m]" in done.stdout
     page = out.read_text()
     assert "pin rocker:2-link2:0" in page and "view-data" in page and "Gruebler" in page
 

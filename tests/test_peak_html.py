@@ -14,6 +14,7 @@ import pytest
 from skfem import Basis, ElementTriP2, MeshTri
 
 from linkstress.analysis import plan_for, run_analysis
+from linkstress.report.cells import mpa
 from linkstress.report.html import analysis_html
 from linkstress.report.peak_html import linear_triangles, peak_field_figure, peak_sweep_figure
 from linkstress.report.peak_records import peak_summaries
@@ -89,9 +90,9 @@ def test_the_table_gives_the_peak_summary_and_the_factors_from_the_fea_peak(seed
     for name in LINKS:
         s, rows = summaries[name], peak_table(text, name)
         peak = s["peak_max_von_mises_pa"]
-        assert rows["FEA peak von Mises, largest over the sweep [Pa]"] == f"{peak:.6g}"
+        assert rows["FEA peak von Mises, largest over the sweep [MPa]"] == mpa(peak)
         assert rows["at input angle [deg]"] == f"{s['peak_max_input_angle_deg']:.6g}"
-        assert rows["peak check: change over the last mesh refinement, over the one before"] == (
+        assert rows["peak convergence: change over the last mesh refinement, over the one before"] == (
             f"{s['peak_change_pct']:.3g} %, {s['peak_previous_change_pct']:.3g} % (limit 5 % each): converged")
         # The yield factor is the material's 250 MPa over the FEA peak, not over the beam's maximum.
         assert rows["yield safety factor, from the FEA peak"] == f"{YIELD / peak:.3g}"
@@ -100,7 +101,7 @@ def test_the_table_gives_the_peak_summary_and_the_factors_from_the_fea_peak(seed
             f"{factors['goodman']:.3g} (Goodman); Gerber {factors['gerber']:.3g}, "
             f"ASME-elliptic {factors['asme-elliptic']:.3g}"
         )
-        assert rows["corrected endurance limit S_e [Pa]"] == f"{ENDURANCE:.6g}"
+        assert rows["corrected endurance limit S_e [MPa]"] == mpa(ENDURANCE)
         x, y = s["fatigue_critical_at_m"]
         assert rows["fatigue critical point (x, y) [m], drawing frame (the sketch's coordinates)"] == f"({x:.4g}, {y:.4g})"
         # 12 of the 13 positions are feasible: the note says the history is not a whole cycle.
@@ -168,7 +169,7 @@ def test_an_unconverged_peak_shows_its_factors_withheld_and_why(tmp_path):
     assert s["peak_converged"] is False
     page = analysis_html(result)
     rows = peak_table(page, "crank")
-    assert rows["peak check: change over the last mesh refinement, over the one before"] == (
+    assert rows["peak convergence: change over the last mesh refinement, over the one before"] == (
         f"{s['peak_change_pct']:.3g} %, {s['peak_previous_change_pct']:.3g} % (limit 5 % each): NOT converged")
     assert rows["yield safety factor, from the FEA peak"].startswith("withheld: the FEA peak is NOT converged")
     assert rows["fatigue safety factor (Goodman), other criteria beside it"].startswith("withheld")

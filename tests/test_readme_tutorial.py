@@ -3,6 +3,8 @@ with peaks, validate; the figures the tutorial quotes are the ones the run gives
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import os
 import re
@@ -75,9 +77,13 @@ def run(tmp_path_factory):
         scene = folder / "fourbar.toml"
         scene.write_text(edit_scene(scene.read_text(), edits))
         analyze = steps[1] + ["--json", "analysis.json"]
-        assert main(analyze) == 0
+        with contextlib.redirect_stdout(io.StringIO()) as printed:
+            assert main(analyze) == 0
+        (folder / "analyze.txt").write_text(printed.getvalue())
         validate = steps[2] + ["--json", "check.json"]
-        code = main(validate)
+        with contextlib.redirect_stdout(io.StringIO()) as printed:
+            code = main(validate)
+        (folder / "validate.txt").write_text(printed.getvalue())
     finally:
         os.chdir(here)
     return folder, code
@@ -108,6 +114,33 @@ def test_the_figures_the_tutorial_quotes_are_those_of_the_run(run):
     assert round(rocker["peak_yield_safety_factor"], 1) == float(factors.group(1))
     assert round(beam_factor, 1) == float(factors.group(2))
     assert rocker["fatigue_safety_factor"] is not None
+
+
+def test_the_tutorial_analyze_prints_its_verdict_first_as_the_readme_quotes_it(run):
+    from test_verdict import assert_verdict_is_the_jsons
+
+    folder, _ = run
+    text = (folder / "analyze.txt").read_text()
+    lines = text.splitlines()
+    heading = next(k for k, line in enumerate(lines) if line.startswith("verdict:"))
+    end = lines.index("", heading)
+    assert end <= 25  # the verdict and its next step within the first 25 lines of the terminal
+    assert_verdict_is_the_jsons(text, json.loads((folder / "analysis.json").read_text())["verdict"])
+    quoted = re.search(r"```text\n(verdict: .+?)\n```", tutorial(), re.S).group(1)
+    assert quoted == "\n".join(lines[heading:end])
+
+
+def test_the_tutorial_validate_prints_its_verdict_first_over_the_positions_it_compared(run):
+    from test_verdict import assert_verdict_is_the_jsons
+
+    folder, _ = run
+    text = (folder / "validate.txt").read_text()
+    data = json.loads((folder / "check.json").read_text())
+    assert text.startswith("verdict:") and text.splitlines().index("") <= 25
+    assert_verdict_is_the_jsons(text, data["verdict"])
+    for row in data["verdict"]["rows"]:
+        if row["governing"] == "FEA peak":
+            assert row["yield_safety_factor_note"] == "at 4 of 361 positions"
 
 
 def test_the_tutorial_validate_passes(run):

@@ -17,7 +17,7 @@ import pytest
 from linkstress.analysis import plan_for, run_analysis
 from linkstress.cli import main
 from linkstress.report import html as report_html
-from linkstress.report import peak_text, text
+from linkstress.report import detail_tables, peak_text
 from linkstress.report.figures import (
     LABEL_ZORDER,
     TICK_GAP_PX,
@@ -209,9 +209,9 @@ POINT_COLUMN = re.compile(r"\(x, y\) \[m\], (ground|member|drawing) frame")
 
 
 def test_every_column_giving_a_point_names_its_frame(seed_report, capsys):
-    headers = [*report_html.STRESS_HEADERS, *text.STRESS_HEADERS, *peak_text.PEAK_HEADERS]
+    headers = [*report_html.STRESS_HEADERS, *detail_tables.STRESS_HEADERS, *peak_text.PEAK_HEADERS]
     points = [h for h in headers if "(x, y)" in h]
     assert len(points) == 4 and all(POINT_COLUMN.search(h) for h in points)
-    assert main(["analyze", str(SEED)]) == 0
+    assert main(["analyze", str(SEED), "--details"]) == 0
     for page in (seed_report.read_text(), capsys.readouterr().out):
         assert page.count("(x, y)") == len(POINT_COLUMN.findall(page)) > 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 from pathlib import Path
 
@@ -10,6 +11,7 @@ import numpy as np
 import pytest
 
 from linkstress.cli import main
+from linkstress.report.cells import significant
 from linkstress.safety import finite_or_none, yield_factor
 
 CASE = Path(__file__).resolve().parents[1] / "validation" / "cases" / "seed_ansys_fourbar"
@@ -31,9 +33,18 @@ def seed_scene(tmp_path: Path, material: str = "", motion: str = "") -> Path:
 
 
 def analyze(scene: Path, tmp_path: Path, capsys) -> tuple[dict, str]:
+    """The JSON and the text (with --details, the stress table) of analysing ``scene``."""
     out = tmp_path / "out.json"
-    assert main(["analyze", str(scene), "--json", str(out)]) == 0
+    assert main(["analyze", str(scene), "--json", str(out), "--details"]) == 0
     return json.loads(out.read_text(), parse_constant=pytest.fail), capsys.readouterr().out
+
+
+def stress_rows(text: str) -> dict[str, dict[str, str]]:
+    """The detailed stress table's rows: per link, its cells by column header."""
+    table = text.split("section stresses (beam theory", 1)[1].split("\nwhere each figure", 1)[0].splitlines()[1:]
+    headers = re.split(r"\s{2,}", table[0].strip())
+    rows = [re.split(r"\s{2,}", line.strip()) for line in table[2:]]
+    return {row[0]: dict(zip(headers, row)) for row in rows}
 
 
 def test_the_factor_is_the_yield_strength_over_the_stress_and_infinite_at_no_stress():
@@ -56,14 +67,20 @@ def test_each_seed_link_reports_its_yield_strength_over_its_largest_stresses(tmp
     # the coupler's section peak is 20,159 Pa at 60 deg (nominal: a station within a depth of pin B,
     # by the body-load term away from holes 20,150 Pa at the next station): a factor of 12,402
     assert links["coupler"]["yield_safety_factor"] == pytest.approx(12_402, rel=1e-3)
-    assert "yield safety factor" in text
-    assert any(line.strip().startswith("coupler") and "1.24e+04" in line for line in text.splitlines())
+    assert stress_rows(text)["coupler"]["yield safety factor, sections"] == "12400"
+    # the verdict's factor is the governing stress's: Kt x nominal at the coupler's pin A, 0.696 MPa
+    verdict = {row["link"]: row for row in data["verdict"]["rows"]}
+    assert verdict["coupler"]["yield_safety_factor"] == pytest.approx(250e6 / verdict["coupler"]["stress_pa"], rel=1e-15)
+    assert verdict["coupler"]["governing"] == "pin-hole estimate"
 
 
 def test_without_a_yield_strength_no_factor_is_reported(tmp_path, capsys):
     data, text = analyze(seed_scene(tmp_path), tmp_path, capsys)
     assert not any("safety" in key for key in data["positions"][0]["links"]["coupler"])
-    assert "safety factor" not in text
+    assert "yield safety factor" not in text  # no factor columns in the stress table
+    for row in data["verdict"]["rows"]:
+        assert (row["yield_safety_factor"], row["yield_safety_factor_note"]) == (None, "no yield_strength")
+        assert re.search(rf"(?m)^{row['link']} .* - \(no yield_strength\) ", text)
 
 
 def test_a_link_without_stress_has_no_factor_rather_than_an_infinite_one(tmp_path, capsys):
@@ -81,12 +98,17 @@ def test_validate_gives_the_factor_against_a_converged_fea_peak(tmp_path, capsys
     # The default three-level study: every peak of the seed changes < 0.5 % over the last refinement.
     scene = seed_scene(tmp_path, "yield_strength = 250e6\n")
     out = tmp_path / "validate.json"
-    assert main(["validate", str(scene), "--json", str(out)]) == 0
+    assert main(["validate", str(scene), "--json", str(out), "--details"]) == 0
     text = capsys.readouterr().out
-    links = json.loads(out.read_text(), parse_constant=pytest.fail)["links"]
+    data = json.loads(out.read_text(), parse_constant=pytest.fail)
+    links = data["links"]
+    verdict = {row["link"]: row for row in data["verdict"]["rows"]}
     for name, link in links.items():
         assert link["fea_yield_safety_factor"] == pytest.approx(250e6 / link["fea_max_von_mises_pa"], rel=1e-15)
         assert f"{name}: yield safety factor {link['fea_yield_safety_factor']:.3g} against the FEA peak" in text
+        # the verdict takes the converged FEA peak, and its factor
+        assert verdict[name]["governing"] == "FEA peak" and verdict[name]["trust"] == "FEA"
+        assert verdict[name]["yield_safety_factor"] == link["fea_yield_safety_factor"]
     # the coupler's FEA peak at its pins, 6.705e5 Pa (validate's text on the seed), against 250 MPa
     assert links["coupler"]["fea_yield_safety_factor"] == pytest.approx(373, rel=0.01)
 
@@ -95,13 +117,20 @@ def test_validate_on_one_mesh_gives_no_factor_since_the_peaks_convergence_is_unc
     # One mesh is the study's coarsest: a hole's peak there is typically below the converged one.
     scene = seed_scene(tmp_path, "yield_strength = 250e6\n")
     out = tmp_path / "validate.json"
-    assert main(["validate", str(scene), "--mesh-levels", "1", "--json", str(out)]) == 0
+    assert main(["validate", str(scene), "--mesh-levels", "1", "--json", str(out), "--details"]) == 0
     text = capsys.readouterr().out
-    for name, link in json.loads(out.read_text())["links"].items():
+    data = json.loads(out.read_text())
+    verdict = {row["link"]: row for row in data["verdict"]["rows"]}
+    for name, link in data["links"].items():
         assert link["fea_yield_safety_factor"] is None
         assert "--mesh-levels 1" in link["fea_yield_safety_factor_reason"]
         assert link["convergence"]["peak"]["status"] == "not checked"
         assert f"{name}: no yield safety factor: one mesh" in text
+        # the verdict shows the (larger) unchecked FEA peak as a lower bound, with no factor
+        assert verdict[name]["trust"] == "one mesh"
+        assert verdict[name]["stress_pa"] >= link["fea_max_von_mises_pa"]
+        if verdict[name]["governing"] == "FEA peak":
+            assert verdict[name]["yield_safety_factor"] is None
 
 
 def test_validate_without_a_yield_strength_gives_no_factor(tmp_path, capsys):
@@ -116,11 +145,9 @@ def test_the_table_gives_each_links_lowest_factor_over_the_sweep(tmp_path, capsy
     sweep = "input_angle_deg = [30.0, 60.0, 90.0, 120.0]\ninput_speed_rad_s = -1.0\n"
     data, text = analyze(seed_scene(tmp_path, "yield_strength = 250e6\n", sweep), tmp_path, capsys)
     peaks = [p["links"]["coupler"]["max_von_mises_pa"] for p in data["positions"]]
-    lowest, highest = f"{250e6 / max(peaks):.3g}", f"{250e6 / min(peaks):.3g}"
+    lowest, highest = significant(250e6 / max(peaks)), significant(250e6 / min(peaks))
     assert lowest != highest
-    # the last column may carry a flag for a hole no estimate covers: " (joint k: no estimate *)"
-    row = next(line.split(" (joint")[0].split() for line in text.splitlines() if line.strip().startswith("coupler "))
-    assert row[-2] == lowest
+    assert stress_rows(text)["coupler"]["yield safety factor, sections"] == lowest
 
 
 def test_a_pin_hole_no_estimate_covers_is_flagged_beside_the_factors_with_where_to_find_its_stress(tmp_path, capsys):
@@ -130,19 +157,24 @@ def test_a_pin_hole_no_estimate_covers_is_flagged_beside_the_factors_with_where_
     holes = {name: [h["joint"] for h in link["pin_holes"] if h["kt_outside_table"]]
              for name, link in data["positions"][0]["links"].items() if "pin_holes" in link}
     assert holes == {"crank": [0], "coupler": [], "output": [0]}
-    rows = {line.split()[0]: line for line in text.splitlines() if line.strip().split(" ")[0] in ("crank", "coupler", "output")
-            and "e+" in line}
-    assert rows["crank"].endswith("(joint 0: no estimate *)") and rows["output"].endswith("(joint 0: no estimate *)")
-    assert "*" not in rows["coupler"]
     notes = [line for line in text.splitlines() if line.startswith("* ")]
     assert [n.split(":")[0] for n in notes] == ["* crank", "* output"]
-    assert all("joint 0 (at 1 of 1 positions)" in n and "analyze --peaks" in n for n in notes)
+    assert "O2 (at 1 of 1 positions)" in notes[0] and "O4 (at 1 of 1 positions)" in notes[1]
+    assert all("analyze --peaks" in n for n in notes)
+    # the verdict's factor names the hole it leaves uncovered beside the number, and says what to run
+    verdict = {row["link"]: row for row in data["verdict"]["rows"]}
+    assert verdict["crank"]["uncovered"] == ["pin hole O2 (crank-ground)"]
+    assert verdict["output"]["uncovered"] == ["pin hole O4 (output-ground)"]
+    assert verdict["coupler"]["uncovered"] == []
+    assert verdict["crank"]["yield_safety_factor_note"] == "O2 not covered"
+    assert verdict["coupler"]["yield_safety_factor_note"] is None
+    assert "--peaks` for the pin holes of crank, output" in data["verdict"]["next_step"]
 
 
 def test_with_peaks_the_flag_points_to_the_fea_peak_table(tmp_path, capsys):
     sweep = "input_angle_deg = [30.0, 60.0]\ninput_speed_rad_s = -1.0\n"
     scene = seed_scene(tmp_path, "yield_strength = 250e6\n", sweep)
-    assert main(["analyze", str(scene), "--peaks"]) == 0
+    assert main(["analyze", str(scene), "--peaks", "--details"]) == 0
     notes = [line for line in capsys.readouterr().out.splitlines() if line.startswith("* ")]
     assert notes and all("the FEA peak table below gives the stress there" in n for n in notes)
 
@@ -154,7 +186,7 @@ def test_the_html_safety_table_names_the_pin_holes_no_factor_covers(tmp_path):
     table = text.split("<h3>Safety factors against yield</h3>", 1)[1].split("</table>", 1)[0]
     rows = {row.split("</td>", 1)[0]: row for row in table.split('<tr><td class="text">')[1:]}
     assert "pin holes NO factor covers" in table
-    assert rows["crank"].endswith('<td class="text">joint 0 (at 1 of 1 positions)</td></tr>')
-    assert rows["output"].endswith('<td class="text">joint 0 (at 1 of 1 positions)</td></tr>')
+    assert rows["crank"].endswith('<td class="text">O2 (at 1 of 1 positions)</td></tr>')
+    assert rows["output"].endswith('<td class="text">O4 (at 1 of 1 positions)</td></tr>')
     assert rows["coupler"].endswith('<td class="text">-</td></tr>')
     assert "analyze --peaks gives the FEA peak there" in text

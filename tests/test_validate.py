@@ -99,7 +99,7 @@ def test_seed_report_states_the_ansys_loads_caveat_and_writes_vtu(seed):
 def test_a_curved_coupler_is_sectioned_normal_to_its_centreline_and_agrees_with_the_fea(tmp_path, capsys):
     out = tmp_path / "banana.json"
     scene = CASES / "banana_coupler" / "scene.toml"
-    assert main(["validate", str(scene), "--positions", "2", "--mesh-levels", "1", "--json", str(out)]) == 0
+    assert main(["validate", str(scene), "--positions", "2", "--mesh-levels", "1", "--json", str(out), "--details"]) == 0
     text = capsys.readouterr().out
     assert "coupler" in text and "the link is curved" in text and "Winkler-Bach" in text
     links = json.loads(out.read_text())["links"]
@@ -113,7 +113,7 @@ def test_a_curved_coupler_is_sectioned_normal_to_its_centreline_and_agrees_with_
 def test_a_bell_crank_is_validated_along_each_arm_and_reports_each(tmp_path, capsys):
     out = tmp_path / "bell.json"
     scene = CASES / "bell_crank" / "scene.toml"
-    assert main(["validate", str(scene), "--positions", "1", "--mesh-levels", "1", "--json", str(out)]) == 0
+    assert main(["validate", str(scene), "--positions", "1", "--mesh-levels", "1", "--json", str(out), "--details"]) == 0
     text = capsys.readouterr().out
     record = json.loads(out.read_text())["links"]["bellcrank"]
     members = record["members"]

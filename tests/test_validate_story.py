@@ -29,6 +29,8 @@ import pytest
 from linkstress.analysis import plan_for, run_analysis
 from linkstress.geometry.builders import straight_bar
 from linkstress.cli import main
+from linkstress.report.cells import significant
+from linkstress.report.places import joint_names
 from linkstress.scene import load_scene
 from linkstress.validation import compare
 from linkstress.validation.fea.convergence import PEAK_CONVERGED_CHANGE
@@ -84,7 +86,7 @@ def write_four_bar(folder: Path, spacing: float, depth: float, hole: float, yiel
 
 
 def run_validate(scene: Path, out: Path, *options: str) -> tuple[int, dict]:
-    code = main(["validate", str(scene), "--json", str(out), *options])
+    code = main(["validate", str(scene), "--json", str(out), "--details", *options])
     return code, json.loads(out.read_text(), parse_constant=pytest.fail)
 
 
@@ -152,6 +154,12 @@ def test_a_sharp_notchs_growing_corner_peak_is_not_converged_though_its_last_cha
     x, y = crank["fea_max_at_member_m"]
     assert abs(x - 0.05) <= 0.0021 and abs(y + 0.002) < 1e-6  # at a corner of the notch's root
     assert "crank: no yield safety factor: the FEA peak is NOT converged" in capsys.readouterr().out
+    # The verdict: the corner's peak is the largest stress computed; as a lower bound, with no factor.
+    row = next(r for r in data["verdict"]["rows"] if r["link"] == "crank")
+    assert row["trust"] == "NOT converged" and row["governing"] == "FEA peak"
+    assert row["stress_pa"] == crank["fea_max_von_mises_pa"] and row["yield_safety_factor"] is None
+    assert row["yield_safety_factor_note"] == "withheld: FEA NOT converged" and "a lower bound" in row["trust_reason"]
+    assert "did not converge" in data["verdict"]["next_step"]
 
 
 def test_a_converged_peak_gives_the_safety_factor_and_says_how_much_each_quantity_changed(tmp_path, capsys):
@@ -160,6 +168,10 @@ def test_a_converged_peak_gives_the_safety_factor_and_says_how_much_each_quantit
     code, data = run_validate(scene, tmp_path / "v.json", "--mesh-size", "0.004", "--positions", "1")
     crank = data["links"]["crank"]
     assert code == 0 and crank["converged"] is True
+    row = next(r for r in data["verdict"]["rows"] if r["link"] == "crank")
+    assert (row["governing"], row["trust"], row["model"]) == ("FEA peak", "FEA", "fea")
+    assert row["yield_safety_factor"] == crank["fea_yield_safety_factor"]
+    assert row["trust_reason"].startswith("converged ")
     assert {q: v["status"] for q, v in crank["convergence"].items()} == {
         "resultants": "converged", "nominal": "converged", "peak": "converged"}
     assert crank["convergence"]["peak"]["change_pct"] < 5.0
@@ -246,7 +258,7 @@ def six_bar(tmp_path_factory):
     scene = CASES / "six_bar" / "scene.toml"
     buffer = io.StringIO()
     with contextlib.redirect_stdout(buffer):
-        code = main(["validate", str(scene), "--json", str(out), "--positions", "4", "--mesh-levels", "1"])
+        code = main(["validate", str(scene), "--json", str(out), "--positions", "4", "--mesh-levels", "1", "--details"])
     loaded = load_scene(scene)
     return code, buffer.getvalue(), json.loads(out.read_text()), run_analysis(loaded, plan_for(loaded))
 
@@ -254,26 +266,31 @@ def six_bar(tmp_path_factory):
 def test_the_table_and_the_text_give_the_same_beam_maximum_at_the_same_input_angle(six_bar):
     _, text, data, _ = six_bar
     rocker = data["links"]["rocker"]
-    row = next(line.split() for line in text.splitlines() if line.split()[:1] == ["rocker"])
-    table_beam, table_angle = float(row[1]), float(row[2])
-    said = re.search(r"rocker: beam maximum (\S+) Pa at input angle (\S+) deg, \((\S+), (\S+)\) m \(member frame\)", text)
+    table = text.split("beam sections against FEA", 1)[1].splitlines()
+    row = next(line.split() for line in table if line.split()[:1] == ["rocker"])
+    table_beam = row[1]
+    said = re.search(r"rocker: beam maximum (\S+) MPa at input angle (\S+) deg, \((\S+), (\S+)\) m \(member frame\)", text)
     assert said, text
-    assert float(said.group(1)) == pytest.approx(table_beam, rel=5e-4) == rocker["beam_max_von_mises_pa"]
-    assert float(said.group(2)) == table_angle == rocker["beam_max_input_angle_deg"]
+    # both in MPa to 3 significant digits, the JSON's value in Pa
+    assert said.group(1) == table_beam == significant(rocker["beam_max_von_mises_pa"] / 1e6)
+    assert float(said.group(2)) == rocker["beam_max_input_angle_deg"]
     assert [float(said.group(3)), float(said.group(4))] == pytest.approx(rocker["beam_max_at_member_m"], rel=5e-4)
     # The JSON's per-position list holds the same maximum at that angle.
     positions = rocker["positions"]
     k = positions["input_angle_deg"].index(rocker["beam_max_input_angle_deg"])
     assert positions["beam_max_von_mises_pa"][k] == rocker["beam_max_von_mises_pa"] == max(positions["beam_max_von_mises_pa"])
-    # The FEA peak and the peak error name their angles too.
-    assert float(row[4]) == rocker["fea_max_input_angle_deg"]
-    assert re.search(r"rocker: peak error \S+ % at input angle \S+ deg: the FEA peak", text)
+    # The FEA peak and its ratio to the beam's maximum (the stress raiser) name their angles and place too.
+    assert re.search(rf"rocker: .*FEA peak {significant(rocker['fea_max_von_mises_pa'] / 1e6)} MPa at input angle "
+                     rf"{rocker['fea_max_input_angle_deg']:.4g} deg", text)
+    assert re.search(r"rocker: FEA peak / beam maximum = \S+ x, at .+ - the stress raiser the beam does not model; "
+                     r"see the verdict \(at input angle \S+ deg: the FEA peak", text)
 
 
 def test_each_pin_estimate_is_set_against_the_fea_peak_at_its_own_hole_and_position(six_bar):
     _, text, data, analysis = six_bar
     rocker = data["links"]["rocker"]
     analysis_holes = {h.joint: h for h in analysis.stresses["rocker"].pin_holes}
+    names = joint_names(analysis.scene)["rocker"]
     angles = list(rocker["positions"]["input_angle_deg"])
     assert [h["joint"] for h in rocker["pin_holes"]] == [0, 1, 2]
     for hole in rocker["pin_holes"]:
@@ -282,7 +299,7 @@ def test_each_pin_estimate_is_set_against_the_fea_peak_at_its_own_hole_and_posit
         assert math.dist(hole["fea_peak_at_member_m"], hole["centre_member_m"]) <= 2 * radius
         k = data["positions_compared"][angles.index(hole["input_angle_deg"])]
         beam = analysis_holes[hole["joint"]]
-        assert f"rocker: pin hole at joint {hole['joint']} (d = {hole['diameter_m']:.4g} m" in text
+        assert f"rocker: pin hole {names[hole['joint']].words()} (d = {hole['diameter_m']:.4g} m" in text
         if hole["estimate_pa"] is None:
             # Outside the Kt tables at every compared position: no estimate to compare, and why.
             assert beam.outside[data["positions_compared"]].all() and hole["kt_outside_table"]

@@ -1,10 +1,12 @@
-"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--explain]``: motion, joint forces and
-section stresses of a scene's machine at every input position.
+"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--peaks] [--details] [--explain]``:
+motion, joint forces and section stresses of a scene's machine at every input position.
 
-stdout: each mechanism's class (Grashof, Barker), toggles, feasible input range and limit
-positions; the motion of every link; joint forces and the driving torque; the largest section
-stress per link; the infeasible positions and why. ``--json`` writes docs/design.md's ``analyze`` JSON
-(see ``linkstress.report.records``); ``--explain`` prints what will be computed and stops.
+stdout: the verdict first (``linkstress.report.verdict``: per link the stress that governs it, where,
+its safety factors and how far to trust it), the scene's warnings, each mechanism's class (Grashof,
+Barker), toggles, feasible input range, limit positions and driving torque range, each link's
+maxima, and the notes and infeasible positions; ``--details`` adds the motion, joint forces and
+section stresses position by position. ``--json`` writes docs/design.md's ``analyze`` JSON (see
+``linkstress.report.records``); ``--explain`` prints what will be computed and stops.
 """
 
 from __future__ import annotations
@@ -21,8 +23,9 @@ from linkstress.errors import InputError
 from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_choice
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.peak_records import peak_summaries
-from linkstress.report.records import stream_position_records
+from linkstress.report.records import stream_position_records, summary_record
 from linkstress.report.text import report
+from linkstress.report.verdict import analysis_verdict
 from linkstress.scene import Scene, load_scene
 
 MEMORY_LIMIT = 6e9
@@ -82,6 +85,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         'pip install "linkstress[cluster]" (docs/cluster.md)',
     )
     add_cache_options(parser)
+    parser.add_argument(
+        "--details", action="store_true",
+        help="also print the motion, joint forces and section stresses position by position, and the FEA peak details "
+        "(the JSON and HTML carry them either way)",
+    )
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -119,16 +127,21 @@ def run(args: argparse.Namespace) -> int:
     # Every output is staged before any is renamed into place, so a failure leaves none half-done; the
     # JSON is encoded into its staged file as its records are made, a block of positions at a time.
     files = []
+    verdict = analysis_verdict(result)
     if args.json is not None:
         records = stream_position_records(result, stations=args.stations)
         cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in retried]}
-        after = (lambda: {"links": peak_summaries(result), **cluster}) if result.peaks else None
+
+        def after() -> dict[str, object]:
+            peaks = {"links": peak_summaries(result)} if result.peaks else {}
+            return {**peaks, **summary_record(result, verdict), **cluster}
+
         files.append((args.json, json_stream("positions", records, "--json", after)))
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 
-        files.append((args.html, analysis_html(result).encode("utf-8")))
-    print(report(result) + "".join(f"\nretried: {r.task} ({r.reason})" for r in retried))
+        files.append((args.html, analysis_html(result, verdict).encode("utf-8")))
+    print(report(result, args.details, verdict) + "".join(f"\nretried: {r.task} ({r.reason})" for r in retried))
     write_all(files)
     return 0
 

@@ -1,5 +1,6 @@
-"""``linkstress validate SCENE [--json OUT] [--html OUT] [--vtu DIR]``: beam sections against
-plane-stress FEA of every profiled link of a scene, under the same loads.
+"""``linkstress validate SCENE [--json OUT] [--html OUT] [--vtu DIR] [--details]``: beam sections
+against plane-stress FEA of every profiled link of a scene, under the same loads; the verdict first
+(``linkstress.validation.verdict``), then a compact comparison per link (``--details``: in full).
 
 Exit 0 when the check passes, 1 when it fails (a link's FEA could not run, its support reactions are
 not ~0, or its section resultants disagree with the beam's), 2 on bad input. Convergence is reported
@@ -79,6 +80,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         'this machine (--jobs). Needs pip install "linkstress[cluster]" (docs/cluster.md)',
     )
     add_cache_options(parser)
+    parser.add_argument(
+        "--details", action="store_true",
+        help="also print each link's comparison in full: every pin hole's estimate against the FEA, each member, "
+        "the convergence of every quantity",
+    )
     parser.add_argument("--explain", action="store_true", help="print what would be computed, and stop")
     parser.set_defaults(run=run)
 
@@ -92,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
     # The FEA stack (gmsh, scikit-fem) loads only when a validation runs.
     from linkstress.validation.report import validation_html, validation_json, validation_text
     from linkstress.validation.validate_scene import MAX_POSITIONS, validate_scene
+    from linkstress.validation.verdict import validation_verdict
 
     scene = load_scene(args.scene)
     check_outputs(outputs, scene_sketches(scene))
@@ -118,11 +125,12 @@ def run(args: argparse.Namespace) -> int:
     cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in where.retried]}
     # Every output is made before any is written, so a failure leaves none half-done.
     files = []
+    verdict = validation_verdict(result)
     if args.json is not None:
-        files.append((args.json, json_bytes({**validation_json(result), **cluster}, "--json")))
+        files.append((args.json, json_bytes({**validation_json(result, verdict), **cluster}, "--json")))
     if args.html is not None:
-        files.append((args.html, validation_html(result).encode("utf-8")))
-    print(validation_text(result) + "".join(f"\nretried: {r.task} ({r.reason})" for r in where.retried))
+        files.append((args.html, validation_html(result, verdict).encode("utf-8")))
+    print(validation_text(result, args.details, verdict) + "".join(f"\nretried: {r.task} ({r.reason})" for r in where.retried))
     write_all(files)
     if args.vtu is not None:
         args.vtu.mkdir(parents=True, exist_ok=True)

@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 
 from linkstress import __version__
 from linkstress.analysis import AnalysisResult
-from linkstress.dynamics.pin_holes import SOURCE as PIN_HOLE_SOURCE
+from linkstress.report.cells import column_cells, mpa, point, significant
 from linkstress.report.figures import (
     mechanism_figure,
     mechanism_sweep_figure,
@@ -27,14 +27,25 @@ from linkstress.report.figures import (
 from linkstress.report.maxima import link_figures, worst_position
 from linkstress.report.linkage_summary import describe_linkage
 from linkstress.report.mechanism_view import view_html
+from linkstress.report.places import force_names, joint_names
 from linkstress.report.records import link_columns
-from linkstress.report.text import crossing_warnings, curved_warnings, figure_lines, transmission_warnings, uncovered_text
+from linkstress.report.detail_tables import figure_lines, uncovered_text
+from linkstress.report.text import KT_WORDS, crossing_warnings, curved_warnings, transmission_warnings
+from linkstress.report.verdict import HEADERS as VERDICT_HEADERS
+from linkstress.report.verdict import Verdict, analysis_verdict
 from linkstress.safety import link_safety_factors, uncovered_pin_holes
 
 DEPENDENCIES = ("numpy", "scipy", "shapely", "ezdxf", "scikit-fem", "gmsh", "meshio", "matplotlib")
 MAX_DRAWN_POSITIONS = 4
-STRESS_HEADERS = ("link", "max von Mises [Pa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [Pa]",
-                  "pin hole estimate [Pa]", "curved")
+STRESS_HEADERS = ("link", "max von Mises [MPa]", "at input [deg]", "at (x, y) [m], ground frame", "away from holes [MPa]",
+                  "pin-hole estimate [MPa]", "curved")
+PIN_HOLE_NOTE = (
+    "Estimate: Kt x P / ((H - d) t), H the link's width across the pin force through the hole's centre (at most 10 d; "
+    "a round end's diameter), for a close-fitting pin; Kt from linkstress's plane-stress FEA of pin-loaded lugs with "
+    "square ends, round ends concentric with the hole and holes far from the edges, read per position by the direction "
+    "of the pin force (docs/numbers.md). A pin that carries a couple (a driving torque, a keyed shaft) is outside the "
+    "tables."
+)
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1000px; color: #222; }
@@ -56,14 +67,24 @@ def figure_tag(fig: Figure, alt: str) -> str:
 
 
 def table_html(headers, rows) -> str:
+    """A table of ``rows`` under ``headers``: floats to 6 significant digits; numbers, and text that
+    reads as one, right-aligned, other text left."""
     def cell(value, tag):
         text = f"{value:.6g}" if isinstance(value, float) else html.escape(str(value))
-        kind = "" if isinstance(value, (int, float)) else ' class="text"'
+        kind = "" if isinstance(value, (int, float)) or _reads_as_number(str(value)) else ' class="text"'
         return f"<{tag}{kind}>{text}</{tag}>"
 
     head = "".join(cell(h, "th") for h in headers)
     body = "".join("<tr>" + "".join(cell(v, "td") for v in row) + "</tr>" for row in rows)
     return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def _reads_as_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def versions_html() -> str:
@@ -132,13 +153,34 @@ def _span(values) -> str:
     return f"{lo:.6g}" if lo == hi else f"{lo:.6g} to {hi:.6g}"
 
 
-def analysis_sections(result: AnalysisResult) -> list[str]:
-    """The sections every report of an analysis has (``validate`` adds its own after them)."""
+def verdict_html(verdict: Verdict) -> list[str]:
+    """The verdict as the report's first section: its table and the next step (``report.verdict``)."""
+    if not verdict.rows:
+        return ["<h2>Verdict</h2>", "<p>No link has section stresses at a feasible position.</p>"]
+    rows = [row.cells() for row in verdict.rows]
+    sections = ["<h2>Verdict</h2>", f'<p class="note">{html.escape(verdict.heading())}.</p>',
+                table_html(VERDICT_HEADERS, rows)]
+    if verdict.next_step:
+        sections.append(f"<p><b>Next:</b> {html.escape(verdict.next_step)}</p>")
+    return sections
+
+
+def warnings_html(result: AnalysisResult) -> list[str]:
+    """The scene's warnings (implausible values, a unit slip most likely), right after the verdict."""
+    return [f'<p><b>warning: {html.escape(line)}</b></p>' for line in result.scene.warnings]
+
+
+def analysis_sections(result: AnalysisResult, top: list[str] | None = None) -> list[str]:
+    """The sections every report of an analysis has, after ``top`` (default: the analysis's verdict
+    and the scene's warnings; ``validate`` gives its own verdict and adds its sections after these)."""
     scene = result.scene
     feasible = result.feasible
+    if top is None:
+        top = verdict_html(analysis_verdict(result)) + warnings_html(result)
     sections = [
-        f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} positions, '
+        f'<p>Scene <code>{html.escape(str(scene.path))}</code>: {len(feasible)} position{"s" if len(feasible) > 1 else ""}, '
         f"{int(feasible.sum())} feasible. Ground frame, SI units; Fij is the force of link i on link j.</p>",
+        *top,
         *(f'<p class="note">{html.escape(note)}</p>' for note in scene.notes),
         *(f"<p><b>{html.escape(line)}</b></p>" for line in _warning_lines(result)),
         "<h2>Mechanism, position by position</h2>", view_html(result),
@@ -182,8 +224,10 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
     return sections
 
 
-def analysis_html(result: AnalysisResult) -> str:
-    return page(f"linkstress analyze: {result.scene.title}", analysis_sections(result))
+def analysis_html(result: AnalysisResult, verdict: Verdict | None = None) -> str:
+    """The analysis's HTML report, its ``verdict`` (made here when not given) first."""
+    top = verdict_html(verdict or analysis_verdict(result)) + warnings_html(result)
+    return page(f"linkstress analyze: {result.scene.title}", analysis_sections(result, top))
 
 
 def _shown(result: AnalysisResult) -> list[int]:
@@ -202,7 +246,8 @@ def _accelerations_table(result: AnalysisResult) -> str:
             acc = ("", "") if c.acc_g is None else (float(c.acc_g[k, 0]), float(c.acc_g[k, 1]))
             rows.append((angle, name, float(c.angle_deg[k]), float(c.omega[k]), float(c.alpha[k]), *acc))
     return table_html(
-        ("input [deg]", "link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]", "a_Gx [m/s^2]", "a_Gy [m/s^2]"), rows,
+        ("input [deg]", "link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]", "a_Gx [m/s^2]", "a_Gy [m/s^2]"),
+        column_cells(rows, (6, None, 6, 6, 6, 6, 6)),
     )
 
 
@@ -217,12 +262,12 @@ def _stress_table(result: AnalysisResult) -> str:
             continue
         peak = figures.max_von_mises
         rows.append((
-            name, peak.value, peak.input_angle_deg, f"({peak.at[0]:.4g}, {peak.at[1]:.4g})",
-            "-" if figures.away_from_holes is None else figures.away_from_holes.value,
-            "-" if figures.pin_hole is None else figures.pin_hole.value,
+            name, mpa(peak.value), peak.input_angle_deg, point(peak.at),
+            "-" if figures.away_from_holes is None else mpa(figures.away_from_holes.value),
+            "-" if figures.pin_hole is None else mpa(figures.pin_hole.value),
             "yes" if result.curved(name) else "no",
         ))
-        lines = figure_lines(figures)
+        lines = figure_lines(figures, tuple(j.label for j in joint_names(result.scene)[name]))
         where += [f"{name}: {line}" for line in lines]
     if not rows:
         return ""
@@ -239,28 +284,32 @@ def _pin_holes_table(result: AnalysisResult) -> str:
     comes from: an estimate, said so."""
     ok = result.feasible
     rows = []
+    names = joint_names(result.scene)
     for name, stress in result.stresses.items():
         for hole in stress.pin_holes:
             if not ok.any():
                 continue
             largest = hole.largest(ok)
+            loaded = ok & (hole.nominal > 0)
+            inside = int((loaded & ~hole.outside).sum())
             if largest is None:
                 k = worst_position(hole.nominal, ok)
-                estimate = "outside the Kt tables"
+                estimate = "- (outside the Kt tables)"
             else:
                 k = worst_position(np.where(hole.outside, -1.0, hole.estimate), ok)
-                estimate = largest
-            rows.append((name, hole.joint, hole.diameter, hole.depth, "-" if hole.kt is None else hole.kt,
-                         float(hole.nominal[k]), estimate, float(result.scene.motion.angle_deg[k])))
+                estimate = mpa(largest)
+            rows.append((name, names[name][hole.joint].words(), hole.diameter, hole.depth,
+                         "-" if hole.kt is None else significant(hole.kt), mpa(float(hole.nominal[k])), estimate,
+                         f"{inside} of {int(loaded.sum())}", float(result.scene.motion.angle_deg[k])))
     if not rows:
         return ""
-    headers = ("link", "joint", "hole d [m]", "depth H [m]", "Kt", "net-section stress [Pa]", "Kt x nominal [Pa]",
-               "at input [deg]")
+    headers = ("link", "pin hole", "hole d [m]", "depth H [m]", "Kt", "net-section stress [MPa]", "Kt x nominal [MPa]",
+               "loaded positions inside the Kt tables", "at input [deg]")
     return (
         "<h3>Pin holes: peak stress ESTIMATES</h3>"
         + table_html(headers, rows)
-        + f'<p class="note">{html.escape(PIN_HOLE_SOURCE)}. Each row: the largest over the sweep, at the input '
-        "angle given.</p>"
+        + f'<p class="note">{html.escape(PIN_HOLE_NOTE)} {html.escape(KT_WORDS)}. Each row: the largest over the '
+        "sweep, at the input angle given.</p>"
     )
 
 
@@ -275,19 +324,20 @@ def _safety_table(result: AnalysisResult) -> str:
             return ""
         section, pin = figures.section_factor, figures.pin_hole_factor
         uncovered = uncovered_pin_holes(result.stresses[name], ok)
+        labels = [j.label for j in joint_names(result.scene)[name]]
         rows.append((
-            name, factors.yield_strength,
+            name, mpa(factors.yield_strength),
             _finite(section.value),
             "-" if section is None else section.input_angle_deg,
             "-" if pin is None else _finite(pin.value),
             "-" if pin is None else pin.input_angle_deg,
-            "-" if pin is None else pin.joint,
-            uncovered_text(uncovered, int(ok.sum())) or "-",
+            "-" if pin is None else labels[pin.joint],
+            uncovered_text(uncovered, int(ok.sum()), labels) or "-",
         ))
     if not rows:
         return ""
-    headers = ("link", "yield strength [Pa]", "lowest, sections", "at input [deg]", "lowest, pin holes (ESTIMATE)",
-               "at input [deg]", "at the pin hole of joint", "pin holes NO factor covers")
+    headers = ("link", "yield strength [MPa]", "lowest, sections", "at input [deg]", "lowest, pin holes (ESTIMATE)",
+               "at input [deg]", "at the pin hole", "pin holes NO factor covers")
     return (
         "<h3>Safety factors against yield</h3>"
         + table_html(headers, rows)
@@ -300,22 +350,25 @@ def _safety_table(result: AnalysisResult) -> str:
     )
 
 
-def _finite(value) -> float | str:
-    return float(value) if np.isfinite(value) else "- (no stress)"
+def _finite(value) -> str:
+    return significant(float(value)) if np.isfinite(value) else "- (no stress)"
 
 
 def _forces_table(result: AnalysisResult) -> str:
+    """Joint forces by position, each named by the links it acts between; driving torque or force."""
     rows = []
+    named = force_names(result.scene)
     for k in _shown(result):
         angle = float(result.scene.motion.angle_deg[k])
         for name, mech in result.forces.mechanisms.items():
             for label, force in mech.forces.items():
-                rows.append((angle, name, label, float(force[k, 0]), float(force[k, 1])))
+                rows.append((angle, name, label, named[name].get(label, ""), float(force[k, 0]), float(force[k, 1])))
             if mech.driving_torque is not None:
-                rows.append((angle, name, f"{mech.torque_name} [N m]", float(mech.driving_torque[k]), ""))
+                rows.append((angle, name, f"{mech.torque_name} [N m]", "driving torque", float(mech.driving_torque[k]), ""))
             if mech.driving_force is not None:
-                rows.append((angle, name, f"{mech.force_name} [N]", float(mech.driving_force[k]), ""))
-    return table_html(("input [deg]", "mechanism", "force", "x [N]", "y [N]"), rows)
+                rows.append((angle, name, f"{mech.force_name} [N]", "driving force", float(mech.driving_force[k]), ""))
+    headers = ("input [deg]", "mechanism", "force", "of link on link, at", "x [N]", "y [N]")
+    return table_html(headers, column_cells(rows, (6, None, None, None, 4, 4)))
 
 
 def _warning_lines(result: AnalysisResult) -> list[str]:

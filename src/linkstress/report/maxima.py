@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
+from linkstress.report.cells import mpa, point, significant
 from linkstress.safety import SafetyFactors
 
 
@@ -32,15 +33,21 @@ class SweepFigure:
     input_angle_deg: float
     at: NDArray[np.float64]
     joint: int | None = None
+    factor: bool = False
+    """A safety factor [-] (else a stress [Pa])."""
 
-    def describe(self, unit: str, digits: int = 6) -> str:
-        """One line: the value (``digits`` significant, then ``unit``), its input angle and its
-        location with its frame."""
-        value = f"{self.value:.{digits}g}{unit}" if np.isfinite(self.value) else "- (no stress)"
-        hole = "" if self.joint is None else f"the pin hole at joint {self.joint}, centre "
+    def describe(self, joint_labels: tuple[str, ...] | None = None) -> str:
+        """One line: the value (a stress in MPa, a factor, 3 significant digits), its input angle and
+        its location with its frame; a pin hole named by ``joint_labels`` (per joint) when given."""
+        if not np.isfinite(self.value):
+            value = "- (no stress)"
+        else:
+            value = significant(self.value) if self.factor else f"{mpa(self.value)} MPa"
+        joint = None if self.joint is None else (f"joint {self.joint}" if joint_labels is None else joint_labels[self.joint])
+        hole = "" if joint is None else f"the pin hole at {joint}, centre "
         return (
             f"{self.what} {value} at input {self.input_angle_deg:.6g} deg, {hole}at "
-            f"({self.at[0]:.4g}, {self.at[1]:.4g}) m, ground frame"
+            f"{point(self.at)} m, ground frame"
         )
 
 
@@ -87,13 +94,14 @@ def link_figures(result: AnalysisResult, name: str, factors: SafetyFactors | Non
         return LinkFigures(peak, away, pin_hole, members=members)
     section_factor = None
     if factors.sections is not None:
-        section_factor = SweepFigure("yield safety factor", float(factors.sections[k]), k, peak.input_angle_deg, peak.at)
+        section_factor = SweepFigure("yield safety factor", float(factors.sections[k]), k, peak.input_angle_deg, peak.at,
+                                     factor=True)
     pin_factor = None
     if pin_hole is not None and factors.pin_holes is not None:
         j = pin_hole.position
         pin_factor = SweepFigure(
             "yield safety factor at pin holes (estimate)", float(factors.pin_holes[j]), j, pin_hole.input_angle_deg,
-            pin_hole.at, pin_hole.joint,
+            pin_hole.at, pin_hole.joint, factor=True,
         )
     return LinkFigures(peak, away, pin_hole, section_factor, pin_factor, members)
 

@@ -3,7 +3,7 @@
 Per link: the sweep's summary (``peak_records.peak_summaries``, the figures of the text report's
 table), the FEA peak along the sweep beside the beam's nominal maximum, and the von Mises field at
 the worst position drawn on the peak mesh in the ground frame, with the peak and the fatigue
-critical point marked. Figures in MPa, tables in Pa.
+critical point marked. Stresses in MPa.
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from matplotlib.ticker import MaxNLocator, MultipleLocator
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
+from linkstress.report.cells import mpa, point
 from linkstress.report.figures import plt  # pyplot on the reports' Agg backend
 from linkstress.report.html import figure_tag, table_html
 from linkstress.report.peak_records import peak_summaries
@@ -44,10 +45,10 @@ def peak_sections(result: AnalysisResult) -> list[str]:
         "<h2>FEA peak stresses and fatigue</h2>",
         '<p class="note">Plane-stress FEA of each link on a refined mesh, its unit load cases superposed at every '
         "feasible position: the von Mises peak anywhere in the link (pin holes, fillets, curved crowns), beside the "
-        "beam's largest nominal section value. The peak check is the peak's change at its worst position over the "
+        "beam's largest nominal section value. The peak's convergence is its change at its worst position over the "
         "last two mesh refinements; a peak that has not settled gives no safety factor. Fatigue: per point, the "
         "alternating and mean of the signed von Mises over the sweep, against the Marin-corrected endurance limit "
-        "(docs/fatigue.md). Tables in Pa, figures in MPa.</p>",
+        "(docs/fatigue.md). Stresses in MPa.</p>",
     ]
     for name, summary in peak_summaries(result).items():
         sections += [
@@ -61,18 +62,18 @@ def peak_sections(result: AnalysisResult) -> list[str]:
 
 
 def peak_rows(summary: dict[str, object]) -> list[tuple[str, str]]:
-    """A link's summary record (``peak_summaries``) as (quantity, value) text rows (numbers to 6 digits,
-    as the report's other tables)."""
+    """A link's summary record (``peak_summaries``) as (quantity, value) text rows (stresses in MPa
+    and factors to 3 significant digits, as the report's other tables)."""
     s = summary
     peak, beam = s["peak_max_von_mises_pa"], s.get("beam_max_von_mises_pa")
     status = "converged" if s["peak_converged"] else "NOT converged"
     rows = [
-        ("FEA peak von Mises, largest over the sweep [Pa]", f"{peak:.6g}"),
+        ("FEA peak von Mises, largest over the sweep [MPa]", mpa(peak)),
         ("at input angle [deg]", f"{s['peak_max_input_angle_deg']:.6g}"),
         ("at (x, y) [m], ground frame", _point(s["peak_max_at_m"])),
-        ("beam maximum, section von Mises (nominal), same positions [Pa]", "-" if beam is None else f"{beam:.6g}"),
+        ("beam maximum, section von Mises (nominal), same positions [MPa]", "-" if beam is None else mpa(beam)),
         ("FEA peak / beam maximum", "-" if not beam else f"{peak / beam:.3g}"),
-        ("peak check: change over the last mesh refinement, over the one before",
+        ("peak convergence: change over the last mesh refinement, over the one before",
          f"{s['peak_change_pct']:.3g} %, {s['peak_previous_change_pct']:.3g} % (limit {s['peak_change_limit_pct']:g} % "
          f"each): {status}"),
         ("yield safety factor, from the FEA peak", _yield_factor(s)),
@@ -81,9 +82,9 @@ def peak_rows(summary: dict[str, object]) -> list[tuple[str, str]]:
     ]
     if "fatigue_alternating_pa" in s:
         rows += [
-            ("alternating stress sigma_a at the critical point [Pa]", f"{s['fatigue_alternating_pa']:.6g}"),
-            ("mean stress sigma_m at the critical point [Pa]", f"{s['fatigue_mean_pa']:.6g}"),
-            ("corrected endurance limit S_e [Pa]", f"{s['fatigue_endurance_limit_pa']:.6g}"),
+            ("alternating stress sigma_a at the critical point [MPa]", mpa(s["fatigue_alternating_pa"])),
+            ("mean stress sigma_m at the critical point [MPa]", mpa(s["fatigue_mean_pa"])),
+            ("corrected endurance limit S_e [MPa]", mpa(s["fatigue_endurance_limit_pa"])),
             ("fatigue critical point (x, y) [m], drawing frame (the sketch's coordinates)",
              _point(s["fatigue_critical_at_m"])),
         ]
@@ -104,7 +105,7 @@ def _notes_html(summary: dict[str, object]) -> str:
 
 
 def _point(xy) -> str:
-    return f"({xy[0]:.4g}, {xy[1]:.4g})"
+    return point(xy)
 
 
 def _yield_factor(s: dict[str, object]) -> str:

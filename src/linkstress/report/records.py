@@ -25,7 +25,8 @@ link's joint order) and per mechanism ``pins`` (each pin's ``joints``, ``at_m`` 
 force it puts on each joint's link), ``sliders`` (``point``, ``on``, ``stroke_m``,
 ``normal_force_n``, ``couple_nm``, ``friction_force_n``, ``pin_force_n``) and ``driving_torque_nm``
 or ``driving_force_n``; a linkage driven by a slider's stroke gives ``input_stroke_m`` in place of
-``input_angle_deg``.
+``input_angle_deg``. After the positions, ``summary_record``: the verdict, the scene's warnings
+and the joint forces' names.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 The records are made a block of positions at a time (``stream_position_records``), for
 ``output.write_json_stream`` to write as they come.
@@ -43,6 +44,8 @@ from numpy.typing import NDArray
 from linkstress.analysis import AnalysisResult
 from linkstress.dynamics.section_stress import StressSummary
 from linkstress.report.peak_records import peak_columns
+from linkstress.report.places import force_names
+from linkstress.report.verdict import Verdict
 from linkstress.safety import finite_or_none, link_safety_factors
 from linkstress.threads import even_blocks
 
@@ -73,6 +76,17 @@ def link_columns(result: AnalysisResult) -> dict[str, LinkColumns]:
         acc_g = None if com is None else motion.point(com)[2]
         columns[name] = LinkColumns(degrees_360(motion.angle), motion.omega, motion.alpha, acc_g)
     return columns
+
+
+def summary_record(result: AnalysisResult, verdict: Verdict) -> dict[str, object]:
+    """The top-level keys that follow the positions: ``verdict`` (its rows and next step,
+    ``report.verdict``), the scene's ``warnings`` (a list, empty when none) and, where joint forces
+    were computed, ``force_names``: per mechanism, each force's name by the links it acts between
+    ("F32": "coupler on crank at A")."""
+    record: dict[str, object] = {"verdict": verdict.record(), "warnings": list(result.scene.warnings)}
+    if result.forces is not None:
+        record["force_names"] = force_names(result.scene)
+    return record
 
 
 def position_records(result: AnalysisResult, stations: bool = False) -> list[dict]:
