@@ -29,7 +29,7 @@ from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
 from linkstress.validation.compare import HolePeak, LinkComparison, MemberComparison
 from linkstress.validation.fea.convergence import CONVERGED_CHANGE, PEAK_CONVERGED_CHANGE, RESULTANT_CONVERGED_CHANGE
-from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT, ValidationResult
+from linkstress.validation.validate_scene import ValidationResult
 
 NOTE = (
     "Beam sections are checked against plane-stress FEA of the same link under the same loads: pin "
@@ -59,7 +59,8 @@ def link_record(result: ValidationResult, name: str) -> dict:
         "nominal_error_pct": None if c.nominal_error is None else float(100 * c.nominal_error.max()),
         "nominal_note": nominal_note(c),
         "peak_error_pct": float(100 * c.peak_error.max()),
-        "resultant_error_pct": float(100 * c.resultant_error.max()),
+        "resultant_error_pct": None if c.resultant_error is None else float(100 * c.resultant_error.max()),
+        "not_compared": [s.note for s in c.skipped],
         "dofs": int(c.fea.dofs),
         "beam_seconds": float(c.beam_seconds),
         "fea_seconds": float(c.fea_seconds),
@@ -86,7 +87,7 @@ def link_record(result: ValidationResult, name: str) -> dict:
             "fea_max_at_m": _ground(result, name, c.fea.von_mises_peak_at).tolist(),
             "nominal_error_pct": None if c.nominal_error is None else (100 * c.nominal_error).tolist(),
             "peak_error_pct": (100 * c.peak_error).tolist(),
-            "resultant_error_pct": (100 * c.resultant_error).tolist(),
+            "resultant_error_pct": None if c.resultant_error is None else (100 * c.resultant_error).tolist(),
         },
     }
 
@@ -226,6 +227,7 @@ def validation_json(result: ValidationResult) -> dict:
         "positions_compared": result.positions.tolist(),
         "failures": result.failures(),
         "not_converged": result.unconverged(),
+        "not_compared": result.not_compared(),
     }
 
 
@@ -244,7 +246,7 @@ def table_rows(result: ValidationResult, reasons: bool = False) -> list[tuple]:
             continue
         rows.append((
             name, r["beam_max_von_mises_pa"], r["beam_max_input_angle_deg"], r["fea_max_von_mises_pa"],
-            r["fea_max_input_angle_deg"], r["resultant_error_pct"],
+            r["fea_max_input_angle_deg"], "-" if r["resultant_error_pct"] is None else r["resultant_error_pct"],
             "-" if r["nominal_error_pct"] is None else r["nominal_error_pct"], r["peak_error_pct"], r["dofs"],
             converged_word(r["convergence"]),
         ))
@@ -264,9 +266,10 @@ def check_line(result: ValidationResult) -> str:
     """The check's verdict, what it checked, and beside it what did not converge (not part of it)."""
     failures = result.failures()
     verdict = "passed" if not failures else "FAILED"
-    checked = (f"FEA support reactions below {REACTION_LIMIT:g} of the load and section resultants within "
-               f"{100 * RESULTANT_LIMIT:g} % of the beam's")
-    line = f"check: {verdict} ({checked})"
+    line = f"check: {verdict} ({result.checked()})"
+    if result.not_compared():
+        line += ("; not compared, so not checked: " + ", ".join(result.not_compared_names())
+                 + " (every cut through a hole: see each link)")
     unconverged = result.unconverged()
     if unconverged:
         line += "; reported beside this check, not part of it: " + "; ".join(unconverged)
@@ -303,8 +306,9 @@ def link_lines(result: ValidationResult, name: str, c: LinkComparison) -> list[s
         peak_words(c, angles),
         nominal_words(c, angles),
     ]
-    if c.station_note:
+    if c.station_note and c.frame_compared:
         lines.append(c.station_note)
+    lines += [s.note for s in c.skipped]
     if len(c.members) > 1:
         lines += [member_words(m) for m in c.members]
         lines += [f"member joints {m.joints[0]}-{m.joints[1]}: {m.beam.note}" for m in c.members if m.beam.note]
@@ -334,6 +338,9 @@ def nominal_note(c: LinkComparison) -> str | None:
     """Why no nominal comparison is possible on this link, or None when it is made."""
     if c.nominal_error is not None:
         return None
+    if not c.frame_compared:
+        return ("no nominal comparison: no compared member has a station a section depth from every pin and junction"
+                if c.members else "no nominal comparison: no member of the link could be compared")
     depth = c.beam.sections.top - c.beam.sections.bottom
     centres = c.fea.link.frame(*c.fea.frame_joints).to_local(c.fea.link.holes[0])[:, 0]
     gap = np.abs(c.stations[:, None] - centres).min(axis=1, initial=np.inf)
