@@ -54,14 +54,12 @@ RESULTANT_LIMIT = 0.01
 NOMINAL_LIMIT = 0.05
 """Largest nominal von Mises difference between beam and FEA, relative to the largest beam value at
 the member's nominal stations, before the check fails. Nominal stations start one section depth
-from a pin, where the bearing pressure's disturbance has not quite died out: measured on straight
-bars 20 mm deep (tests/test_validate_checks.py), a station exactly one depth from an 8 mm pin hole
-is 4.2 % off (0.9 % beside a 4 mm hole, under 0.7 % from 1.2 depths on); the shipped cases are
-within 1.6 % (straight bars 0.1-0.7 %, curved members and arms up to 1.5 %). Where the beam is
-wrong where it claims to hold, the difference is well beyond: a 40 mm crank whose midpoint is one
-depth from two 12 mm pins (their fields overlap) 29 % (tests/test_validate_story.py), an S-shaped
-rod whose centreline was traced straight across a bend 5.07 %, a dog-leg rocker sectioned
-straight across its bend 28 %."""
+from a pin, where the bearing pressure's disturbance has not quite died out: measured on a straight
+bar 20 mm deep (tests/test_validate_checks.py), a station exactly one depth from an 8 mm pin hole
+is 4.2 % off, those 1.67 depths away within 0.3 % (beside 4 mm holes 0.9 % at one depth); the
+shipped cases' stored references are within 1.7 %. Where the beam is wrong where it claims to hold
+the difference is well beyond: 29 % at the midpoint of a 40 mm crank, one depth from both of its
+12 mm pins, whose fields overlap there (tests/test_validate_story.py)."""
 LINEAR_REFINEMENT = 2.25
 """Linear (P1) elements get meshes this much finer than the default sizes (two of the study's
 refinement steps) unless the scene gives a mesh size. Measured by ``linkstress bench`` (docs/benchmarks.md,
