@@ -23,7 +23,7 @@ from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
-from linkstress.report.figures import LABEL_ZORDER, boxed_label, stress_along_figure
+from linkstress.report.figures import LABEL_ZORDER, boxed_label, field_colour_bar, field_scale, stress_along_figure
 from linkstress.report.html import analysis_sections, figure_tag, page, table_html
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
@@ -419,9 +419,10 @@ def fea_contour_figure(c: LinkComparison, k: int, angle_deg: float) -> Figure:
     values = c.fea.nodal_von_mises[k, c.fea.model.scalar.nodal_dofs[0][:corners]] / 1e6
     fig, ax = plt.subplots(figsize=(7.5, 3.8), layout="constrained")
     triangles = Triangulation(mesh.p[0, :corners], mesh.p[1, :corners], mesh.t.T)
-    # A pin's peak can be a hundred times the rest: cap the scale so the link's own field shows.
-    shading = ax.tripcolor(triangles, values, shading="gouraud", cmap="viridis", vmax=float(np.percentile(values, 99)))
-    fig.colorbar(shading, ax=ax, label="von Mises [MPa] (capped at the 99th percentile)", extend="max")
+    # A pin's peak can be a hundred times the rest: a log scale keeps the link's own field in view.
+    scale = field_scale(values)
+    shading = ax.tripcolor(triangles, values, shading="gouraud", cmap="viridis", norm=scale.norm)
+    field_colour_bar(fig, ax, shading, scale.label)
     peak = c.fea.von_mises_peak_at[k]
     for x in c.stations:
         ax.axvline(x, color="white", lw=0.4, alpha=0.6)

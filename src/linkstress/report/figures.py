@@ -4,6 +4,7 @@ stresses along each link, and plots over a sweep's input angle. Ground frame, SI
 from __future__ import annotations
 
 import io
+from dataclasses import dataclass
 
 import matplotlib
 
@@ -11,6 +12,7 @@ matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.colors import LogNorm, Normalize  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 from numpy.typing import NDArray  # noqa: E402
@@ -22,6 +24,15 @@ TICK_GAP_PX = 4.0
 """Tick labels closer than this (at the saved resolution) run together to the eye ("0.3250.350")."""
 LABEL_ZORDER = 10
 """Above every line and fill of a figure: a label on a marked point is never hidden by a curve or cut."""
+LOG_FIELD_RATIO = 10.0
+"""A stress field whose largest value is more than this many times its median (a pin's peak over the
+link's own field) is drawn on a logarithmic colour scale: on a linear one the rest of the link would
+be one dark colour."""
+FIELD_DECADES = 3
+"""A logarithmic colour scale spans this many decades below the field's largest value; smaller
+values take its lowest colour (and the colour bar says so)."""
+COLOUR_BAR_WIDTH = 0.04
+"""A field's colour bar: this fraction of its plot's width, beside it and exactly as tall."""
 
 
 def png_bytes(fig: Figure, dpi: int = 110) -> bytes:
@@ -68,6 +79,34 @@ def x_tick_gaps(ax, renderer) -> list[float]:
     ]
     boxes = sorted((label.get_window_extent(renderer) for label in shown), key=lambda box: box.x0)
     return [b.x0 - a.x1 for a, b in zip(boxes, boxes[1:])]
+
+
+@dataclass(frozen=True)
+class FieldScale:
+    """How a stress field is coloured: ``norm`` (linear from 0, or logarithmic over FIELD_DECADES
+    below the largest value) and ``label``, which says which, for the colour bar."""
+
+    norm: Normalize
+    label: str
+
+
+def field_scale(values: NDArray[np.float64], quantity: str = "von Mises [MPa]") -> FieldScale:
+    """The colour scale that shows the field ``values`` (in the unit of ``quantity``): logarithmic
+    when its largest is more than LOG_FIELD_RATIO times its median, else linear from 0."""
+    largest = float(np.max(values)) if np.size(values) else 0.0
+    median = float(np.median(values)) if np.size(values) else 0.0
+    if largest > 0 and largest > LOG_FIELD_RATIO * median:
+        lowest = largest / 10**FIELD_DECADES
+        return FieldScale(LogNorm(lowest, largest, clip=True), f"{quantity}, log scale\n(below {lowest:.2g}: lowest colour)")
+    return FieldScale(Normalize(0.0, largest if largest > 0 else 1.0), f"{quantity}, linear scale")
+
+
+def field_colour_bar(fig: Figure, ax, mappable, label: str):
+    """A colour bar for ``mappable`` beside ``ax``, as tall as the plot as drawn (an equal-aspect
+    drawing of a long link is much lower than its axes' space, where a plain colour bar would stand
+    twice its height): an inset of the axes, which follows their drawn box."""
+    bar = ax.inset_axes([1.0 + COLOUR_BAR_WIDTH, 0.0, COLOUR_BAR_WIDTH, 1.0])
+    return fig.colorbar(mappable, cax=bar, label=label)
 
 
 def boxed_label(ax, text: str, at, offset=(8, 8), **options) -> None:
