@@ -18,6 +18,7 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 from numpy.typing import NDArray  # noqa: E402
 
 from linkstress.analysis import AnalysisResult  # noqa: E402
+from linkstress.report.labels import LabelPlacer  # noqa: E402
 
 LINK_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 TICK_GAP_PX = 4.0
@@ -109,13 +110,14 @@ def field_colour_bar(fig: Figure, ax, mappable, label: str):
     return fig.colorbar(mappable, cax=bar, label=label)
 
 
+LABEL_BOX = dict(boxstyle="round,pad=0.2", fc="white", ec="0.6", lw=0.5, alpha=0.9)
+"""The white box a label sits on, readable over lines, fills and cut marks."""
+
+
 def boxed_label(ax, text: str, at, offset=(8, 8), **options) -> None:
     """``text`` beside the point ``at``, offset by ``offset`` points, on a white box above every
     other artist: readable over lines, fills and cut marks."""
-    ax.annotate(
-        text, at, textcoords="offset points", xytext=offset, zorder=LABEL_ZORDER,
-        bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="0.6", lw=0.5, alpha=0.9), **options,
-    )
+    ax.annotate(text, at, textcoords="offset points", xytext=offset, zorder=LABEL_ZORDER, bbox=LABEL_BOX, **options)
 
 
 def _to_ground(result: AnalysisResult, name: str, k: int, local: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -151,18 +153,26 @@ def mechanism_figure(result: AnalysisResult, k: int) -> Figure:
                 ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.15)
     cloud = np.vstack(points)
     size = float(np.ptp(cloud, axis=0).max()) or 1.0
-    if result.forces is not None:
-        _force_arrows(ax, result, k, size)
+    labels = LabelPlacer(ax)
     for name in result.stresses:
         where = result.max_location(name)[k]
         ax.plot(*where, marker="*", color="k", ms=12)
-        boxed_label(ax, f"max {name}", where, offset=(6, 6), fontsize=8)
+        labels.avoid(where)
+        labels.add(f"max {name}", where, fontsize=8, zorder=LABEL_ZORDER, bbox=LABEL_BOX)
+    if result.forces is not None:
+        _force_arrows(ax, result, k, size, labels)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m], ground frame")
     ax.set_ylabel("y [m], ground frame")
     ax.set_title(f"input angle {result.scene.motion.angle_deg[k]:.4g} deg")
-    outside_legend(ax)
     ax.grid(alpha=0.3)
+    outside_legend(ax)
+    left_off = labels.place()
+    if left_off:
+        # No room beside its point on the drawing: the label is listed in the legend instead.
+        for text in left_off:
+            ax.plot([], [], " ", label=f"{text} (no room on the drawing)")
+        outside_legend(ax)
     return fig
 
 
@@ -216,20 +226,21 @@ def joint_paths(result: AnalysisResult) -> dict[str, NDArray[np.float64]]:
     }
 
 
-def _force_arrows(ax, result: AnalysisResult, k: int, size: float) -> None:
-    """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing."""
+def _force_arrows(ax, result: AnalysisResult, k: int, size: float, labels: LabelPlacer) -> None:
+    """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing, each
+    labelled at its tail (through ``labels``, largest first)."""
     paths = joint_paths(result)
     arrows = [(label, paths[joint][k], force[k]) for label, joint, force in joint_forces(result)]
     largest = max((np.hypot(*f) for _, _, f in arrows), default=0.0)
     if largest <= 0:
         return
     scale = 0.25 * size / largest
-    for label, p, f in arrows:
+    for label, p, f in sorted(arrows, key=lambda arrow: -np.hypot(*arrow[2])):
         ax.annotate(
             "", xy=p, xytext=p - scale * f,
             arrowprops=dict(arrowstyle="->", color="crimson", lw=1.5),
         )
-        ax.annotate(f"{label} {np.hypot(*f):.4g} N", p - scale * f, fontsize=7, color="crimson", zorder=LABEL_ZORDER)
+        labels.add(f"{label} {np.hypot(*f):.4g} N", p - scale * f, fontsize=7, color="crimson", zorder=LABEL_ZORDER)
 
 
 def stress_along_figure(
