@@ -24,7 +24,7 @@ from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
 from linkstress.report.figures import LABEL_ZORDER, boxed_label, field_colour_bar, field_scale, stress_along_figure
-from linkstress.report.html import analysis_sections, figure_tag, page, table_html
+from linkstress.report.html import analysis_sections, figure_tag, page, report_title, table_html
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.tables import format_table
 from linkstress.validation.compare import HolePeak, LinkComparison, MemberComparison
@@ -470,4 +470,4 @@ def validation_html(result: ValidationResult) -> str:
                     f"{100 * c.discretisation_error.max():.3g} %.</p>"
                 )
     sections[-2:-2] = body
-    return page(f"linkstress validate: {result.analysis.scene.title}", sections)
+    return page(report_title(result.analysis.scene, "validate"), sections)

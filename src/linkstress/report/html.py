@@ -179,8 +179,21 @@ def analysis_sections(result: AnalysisResult) -> list[str]:
     return sections
 
 
+def report_title(scene, command: str) -> str:
+    """The page's title: the scene's ``title``, or where it gives none its file's name (with its
+    folder's when the file is a case's ``scene.toml``), then the command that wrote it."""
+    path = scene.path
+    if scene.title != path.stem:
+        name = scene.title
+    elif path.stem == "scene" and path.parent.name:
+        name = f"{path.parent.name}/{path.name}"
+    else:
+        name = path.name
+    return f"{name}: linkstress {command}"
+
+
 def analysis_html(result: AnalysisResult) -> str:
-    return page(f"linkstress analyze: {result.scene.title}", analysis_sections(result))
+    return page(report_title(result.scene, "analyze"), analysis_sections(result))
 
 
 def _shown(result: AnalysisResult) -> list[int]:
