@@ -18,10 +18,11 @@ the link (the arms between its joints, ``linkstress.geometry.members``), each se
   hole radii of that hole's centre, at the same position.
 
 A link's errors are the worst over its members. Where the stations lie, and the default mesh:
-``stations``. A member with no station (every cut passes through a hole: ``ComparisonStations.skipped``)
-is not compared, and the link's ``skipped`` notes say so; with no member compared the link has no
-resultant or nominal error (None), while its FEA peak and pin holes are compared as ever. A link's positions may be solved in blocks (``solve_compared`` on each, joined by
-``join_link_fea``): what one solve of them all gives, to the bit.
+``stations``. A member with no station (every cut passes through a hole:
+``ComparisonStations.skipped``) is not compared, and the link's ``skipped`` notes say so; with no
+member compared the link has no resultant or nominal error (None), while its FEA peak and pin holes
+are compared as ever. A link's positions may be solved in blocks (``solve_compared`` on each, joined
+by ``join_link_fea``): what one solve of them all gives, to the bit.
 
 With a refinement study, ``LinkComparison.convergence`` says how much each compared quantity
 (resultants, nominal, peak) changed between the two finest meshes, against its own limit.
@@ -446,8 +447,9 @@ class LinkBeams:
     def nominal_points(self) -> NDArray[np.float64]:
         """(Q, 2) [m, member frame]: the critical fibres of the nominal stations at every position,
         each once: the points a refinement study follows."""
+        frame = [] if self.along is None else [self.along.fibres[:, self.away].reshape(-1, 2)]
         return np.unique(np.concatenate([
-            np.zeros((0, 2)), *(b.fibres[:, b.away].reshape(-1, 2) for b in self.compared)
+            np.zeros((0, 2)), *frame, *(b.fibres[:, b.away].reshape(-1, 2) for b in self.members)
         ]), axis=0)
 
     def at(self, rows: NDArray[np.intp]) -> tuple[MemberBeam, ...]:
