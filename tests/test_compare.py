@@ -11,7 +11,6 @@ from linkstress.geometry.builders import straight_bar
 from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.compare import relative, resultant_error
 from linkstress.validation.stations import choose_stations, comparison_stations
-from linkstress.validation.fea.errors import FEAError
 
 
 def stack(n, v, m):
@@ -52,10 +51,13 @@ def test_a_60_mm_crank_with_13_mm_holes_is_compared_at_its_midpoint_and_says_so(
     assert "short for its holes" in chosen.note and "s = 0.03 m" in chosen.note and "4.62 radii" in chosen.note
 
 
-def test_a_link_whose_big_hole_spans_the_midpoint_has_no_cut_and_the_error_names_it():
-    # Joints 20 mm apart: a 30 mm hole at the first spans x = -15..15 mm, past the midpoint at 10 mm.
+def test_a_link_whose_big_hole_spans_the_midpoint_has_no_station_and_the_note_says_why():
+    # Joints 20 mm apart: a 30 mm hole at the first spans x = -15..15 mm, past the midpoint at 10 mm:
+    # the midpoint cut passes 10 mm = 0.67 radii from that hole's centre, through it.
     shell = Polygon([(-0.03, -0.03), (0.03, -0.03), (0.03, 0.03), (-0.03, 0.03)])
     holes = [Point(0.0, 0.0).buffer(0.015, 64).exterior.coords, Point(0.02, 0.0).buffer(0.002, 64).exterior.coords]
     link = LinkProfile(Polygon(shell.exterior.coords, holes), np.array([[0.0, 0.0], [0.02, 0.0]]), 0.005, None, "lug")
-    with pytest.raises(FEAError, match=r"link 'lug', member \[0, 1\]: the midpoint cut .* nowhere to compare section resultants"):
-        choose_stations(link, (0, 1))
+    chosen = choose_stations(link, (0, 1))
+    assert chosen.skipped and chosen.x.shape == (0,)
+    assert chosen.note.startswith("link 'lug', member [0, 1]: not compared with the FEA: its midpoint cut at s = 0.01 m")
+    assert "passes through a hole (0.67 hole radii from its centre)" in chosen.note

@@ -44,9 +44,10 @@ FOURBARS = {
 @pytest.mark.parametrize("name", list(FOURBARS))
 def test_four_bar_in_blocks_of_7_on_threads_equals_one_block_bit_for_bit(monkeypatch, name):
     linkage = FOURBARS[name]
-    # 3,001 angles over two turns, then the toggle and change-point angles themselves
+    # 3,002 angles over two turns (none within 1.7e-3 rad of 0 or 180 deg, outside a change point's
+    # reach, so that the sweep crosses them), then the toggle and change-point angles themselves
     points = [point.angle for point in fourbar.branch_points(linkage)]
-    theta2 = np.concatenate([np.linspace(-2.0, 2.0 + 4 * math.pi, 3001), points])
+    theta2 = np.concatenate([np.linspace(-2.0, 2.0 + 4 * math.pi, 3002), points])
     rng = np.random.default_rng(7)
     omega2, alpha2 = rng.normal(size=theta2.size), rng.normal(size=theta2.size)
     one = in_blocks_of(monkeypatch, theta2.size, lambda: solve_fourbar(linkage, theta2, omega2, alpha2))

@@ -144,7 +144,7 @@ def test_sweeps_that_approach_a_change_point_or_turn_a_crank_rocker_fully_are_no
 
 @pytest.mark.parametrize("at", [180.0, 180.0 - 1e-7, 180.0 + 1e-7])
 def test_a_sample_exactly_at_the_change_point_is_infeasible_with_its_reason_and_not_also_flagged(at):
-    # 1e-7 deg off, 1 - |cos(mu)| ~ 1e-18 is still below TOGGLE_TOLERANCE: the sample is at the point.
+    # 1e-7 deg off, 1 + cos(mu) ~ 1e-18 is far below CHANGE_POINT_REACH: the sample is at the point.
     result = solve_machine(four_bar_machine(*PARALLELOGRAM), angle_motion([179.5, at, 180.5], 1.0))
     assert result.feasible.tolist() == [True, False, True]
     assert result.reasons[1].startswith("change point: all four links aligned")

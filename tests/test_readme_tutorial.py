@@ -1,5 +1,6 @@
 """The README's tutorial runs as written: import the drawing into a scene, edit it as shown, analyze
-with peaks, validate; the figures the tutorial quotes are the ones the run gives."""
+with peaks, validate, make it a regression case and regress it; the figures the tutorial quotes are
+the ones the run gives."""
 
 from __future__ import annotations
 
@@ -9,6 +10,8 @@ import json
 import os
 import re
 import shlex
+import subprocess
+import sys
 import tomllib
 from pathlib import Path
 
@@ -24,12 +27,22 @@ def tutorial() -> str:
     return text.split("## Tutorial", 1)[1].split("\n## ", 1)[0]
 
 
+def shell_lines() -> list[str]:
+    """Every shell command of the tutorial, in order."""
+    return re.findall(r"```sh\n(.+?)\n```", tutorial(), re.S)
+
+
 def commands() -> list[list[str]]:
-    """The tutorial's shell commands, without the venv's path."""
-    lines = re.findall(r"```sh\n(.+?)\n```", tutorial(), re.S)
-    words = [shlex.split(line) for line in lines]
-    assert all(w[0] == ".venv/bin/linkstress" for w in words)
+    """The tutorial's linkstress commands up to its regression step, without the venv's path."""
+    words = [shlex.split(line) for line in shell_lines()]
+    words = [w for w in words if w[0] == ".venv/bin/linkstress" and w[1] != "regress"]
     return [w[1:] for w in words]
+
+
+def regress_step() -> list[str]:
+    """Step 6's shell commands, as written."""
+    step = tutorial().split("**6.", 1)[1]
+    return re.findall(r"```sh\n(.+?)\n```", step, re.S)
 
 
 def edit_scene(text: str, edits: str) -> str:
@@ -141,6 +154,27 @@ def test_the_tutorial_validate_prints_its_verdict_first_over_the_positions_it_co
     for row in data["verdict"]["rows"]:
         if row["governing"] == "FEA peak":
             assert row["yield_safety_factor_note"] == "at 4 of 361 positions"
+
+
+def test_the_regress_step_runs_as_written_stores_a_reference_and_passes(run):
+    # Step 6 in a shell, in the tutorial's folder after steps 1-5, with the README's
+    # .venv/bin/linkstress being this interpreter's linkstress.
+    folder, _ = run
+    lines = regress_step()
+    assert len(lines) == 4 and lines[-2:] == [".venv/bin/linkstress regress cases --update", ".venv/bin/linkstress regress cases"]
+    linkstress = f"{shlex.quote(sys.executable)} -m linkstress"
+    outputs = []
+    for line in lines:
+        done = subprocess.run(["bash", "-c", line.replace(".venv/bin/linkstress", linkstress)], cwd=folder,
+                              capture_output=True, text=True, timeout=600)
+        assert done.returncode == 0, (line, done.stdout, done.stderr)
+        outputs.append(done.stdout)
+    case = folder / "cases" / "fourbar"
+    assert tomllib.loads((case / "scene.toml").read_text())["links"]["rocker"]["sketch"] == "fourbar.dxf"
+    stored = json.loads((case / "reference.json").read_text())
+    assert set(stored["validation"]["links"]) == {"crank", "coupler", "rocker"}
+    assert outputs[2].strip() == "fourbar: reference rewritten"
+    assert "1 of 1 cases passed" in outputs[3]
 
 
 def test_the_tutorial_validate_passes(run):

@@ -105,3 +105,17 @@ def set_(data, path, value):
 def test_a_folder_without_cases_exits_2(tmp_path, capsys):
     assert main(["regress", str(tmp_path)]) == 2
     assert "holds no case" in capsys.readouterr().err
+
+
+def test_a_case_whose_sketch_path_is_wrong_is_bad_input_naming_the_case_and_the_path(seed_copy, capsys):
+    # The scene points into a folder that does not exist: exit 2 before any case runs (not 1, a
+    # failed check), one message with the case, the key and the path as the scene resolves it.
+    scene = seed_copy / "scene.toml"
+    scene.write_text(scene.read_text().replace('sketch = "ansys_four_bars.dxf"', 'sketch = "drawings/ansys_four_bars.dxf"'))
+    shutil.copytree(CASES / "textbook_fourbar", seed_copy.parent / "textbook")
+    assert main(["regress", str(seed_copy.parent)]) == 2
+    captured = capsys.readouterr()
+    (line,) = captured.err.strip().splitlines()
+    assert line.startswith("linkstress: error: case seed: scene.toml: links.crank.sketch: file ")
+    assert "seed/drawings/ansys_four_bars.dxf' not found" in line
+    assert "cases passed" not in captured.out

@@ -216,3 +216,30 @@ def test_moving_the_slider_redraws_the_links_colours_joints_and_angle_from_the_f
         assert shown["fill"] == stress_colour(coupler["von_mises_mpa"][k], data["stress_scale"])
     assert infeasible["angle"].startswith("input angle 180.0 deg, position 19 of 36 \u2014 infeasible: ")
     assert infeasible["visible"] == "hidden"
+
+
+def test_with_peaks_each_link_is_coloured_by_its_fea_peak_at_each_position_and_the_view_says_so(tmp_path):
+    # The seed's 12 positions with --peaks: every link's colour is its superposed FEA peak at that
+    # position (at a pin hole, several times the beam's largest section value), the dot where it is.
+    from linkstress.analysis import plan_for
+    from linkstress.report.mechanism_view import BEAM, FEA_PEAK
+
+    scene = load_scene(seed_sweep(tmp_path, "{start = 0.0, stop = 330.0, num = 12}"))
+    result = run_analysis(scene, plan_for(scene).with_peaks())
+    data = view_data(result)
+    ok = result.feasible
+    for name in ("crank", "coupler", "output"):
+        link, peaks = data["links"][name], result.peaks[name]
+        assert link["stress_label"] == FEA_PEAK
+        shown = np.array([v if v is not None else np.nan for v in link["von_mises_mpa"]])
+        # to four digits of the sweep's largest, as every value of the view
+        np.testing.assert_allclose(shown[ok], peaks.peak[ok] / 1e6, rtol=0, atol=0.5 * 10.0 ** -data["stress_scale"]["decimals"])
+        assert (shown[ok] > 1.5 * result.stresses[name].max_von_mises[ok] / 1e6).all()
+        at = np.array([p for p in link["max_at_m"] if p is not None])
+        np.testing.assert_allclose(at, result.to_ground(name, peaks.peak_at[ok], np.flatnonzero(ok)), atol=1e-4)
+    assert data["stress_scale"]["label"] == FEA_PEAK
+    assert data["stress_scale"]["max_mpa"] == pytest.approx(max(p.peak_max for p in result.peaks.values()) / 1e6, rel=1e-3)
+    text = view_html(result)
+    assert "Links filled by their FEA peak von Mises (anywhere in the link, pin holes included" in text
+    beam_only = view_data(run_analysis(scene, plan_for(scene)))
+    assert {link["stress_label"] for link in beam_only["links"].values() if "stress_label" in link} == {BEAM}

@@ -18,8 +18,11 @@ the link (the arms between its joints, ``linkstress.geometry.members``), each se
   hole radii of that hole's centre, at the same position.
 
 A link's errors are the worst over its members. Where the stations lie, and the default mesh:
-``stations``. A link's positions may be solved in blocks (``solve_compared`` on each, joined by
-``join_link_fea``): what one solve of them all gives, to the bit.
+``stations``. A member with no station (every cut passes through a hole:
+``ComparisonStations.skipped``) is not compared, and the link's ``skipped`` notes say so; with no
+member compared the link has no resultant or nominal error (None), while its FEA peak and pin holes
+are compared as ever. A link's positions may be solved in blocks (``solve_compared`` on each, joined
+by ``join_link_fea``): what one solve of them all gives, to the bit.
 
 With a refinement study, ``LinkComparison.convergence`` says how much each compared quantity
 (resultants, nominal, peak) changed between the two finest meshes, against its own limit.
@@ -37,7 +40,7 @@ from numpy.typing import NDArray
 from linkstress.dynamics.pin_holes import PinHoleEstimate
 from linkstress.dynamics.section_stress import SectionStresses, section_stresses
 from linkstress.loads import LinkLoadCase
-from linkstress.geometry.members import Member, MemberCuts
+from linkstress.geometry.members import Member, MemberCuts, frame_member
 from linkstress.geometry.profile import LinkProfile
 from linkstress.stress_state import von_mises
 from linkstress.validation.fea.cache import DiskCache
@@ -51,7 +54,7 @@ from linkstress.validation.fea.convergence import (
 )
 from linkstress.validation.fea.link import CutResultants, LinkFEAResult, join_cut_resultants, join_results, solve_link
 from linkstress.validation.fea.mesh import MeshSettings
-from linkstress.validation.stations import choose_stations, default_mesh, member_stations
+from linkstress.validation.stations import ComparisonStations, choose_stations, default_mesh, member_stations
 
 HOLE_NEIGHBOURHOOD = 2.0
 """The FEA peak at a pin hole: the largest von Mises within this many hole radii of its centre (the
@@ -105,6 +108,33 @@ class HolePeak:
 
 
 @dataclass(frozen=True)
+class Skipped:
+    """A member of a link (between ``joints``) that is not compared with the FEA, and ``note``: why
+    (``ComparisonStations.skipped``: every cut passes through a hole)."""
+
+    joints: tuple[int, int]
+    note: str
+
+
+@dataclass(frozen=True)
+class NominalDifference:
+    """The worst nominal comparison of a link: at compared position ``position`` (index into the
+    compared positions), on the member between ``joints``, at arc length ``s`` [m] from its first
+    joint (axis point ``at`` (2,) [m, member frame]): the beam's von Mises ``beam`` [Pa] at its
+    critical fibre against the FEA's ``fea`` [Pa] there; ``error`` [-] the link's nominal error at
+    that position (the largest difference over the member's nominal stations over its largest beam
+    value)."""
+
+    position: int
+    joints: tuple[int, int]
+    s: float
+    at: NDArray[np.float64]
+    beam: float
+    fea: float
+    error: float
+
+
+@dataclass(frozen=True)
 class LinkComparison:
     """One link compared over the positions ``positions`` (indices into the sweep).
 
@@ -115,7 +145,10 @@ class LinkComparison:
     comparison; ``study`` the mesh refinement study (None with a single mesh level); ``station_note``
     why the stations are not the usual ones ("" when they are); ``members`` each member of the link
     compared along its own axis (none: along the frame's member only). With members, the link's
-    errors are the worst over them.
+    errors are the worst over them. ``skipped``: for each member (the frame's included) with no
+    station to compare at, why (``ComparisonStations.skipped``); when the frame's member is one,
+    ``stations`` is empty, ``fea_resultants`` None and ``beam`` is its section at its midpoint alone
+    (its pin-hole estimates and theory), compared with nothing.
     """
 
     name: str
@@ -124,34 +157,44 @@ class LinkComparison:
     away: NDArray[np.bool_]
     beam: SectionStresses
     fea: LinkFEAResult
-    fea_resultants: CutResultants
+    fea_resultants: CutResultants | None
     fea_von_mises: NDArray[np.float64]
     beam_seconds: float
     fea_seconds: float
     study: ConvergenceStudy | None
     station_note: str = ""
     members: tuple[MemberComparison, ...] = ()
+    skipped: tuple[Skipped, ...] = ()
+
+    @property
+    def frame_compared(self) -> bool:
+        """Whether the frame's member is compared (has stations)."""
+        return self.fea_resultants is not None
 
     @property
     def convergence(self) -> dict[str, Convergence | None] | None:
         """Change over the last refinement of ``resultants`` (the measure of ``resultant_error``),
         ``nominal`` (over the largest nominal value; None without a nominal station) and ``peak``
         (over the finer peak, judged over the refinement before too), each against its limit; None
-        with a single mesh (nothing checked)."""
+        with a single mesh (nothing checked). ``resultants`` is None where no cut is compared."""
         if self.study is None:
             return None
         s = self.study
-        resultants = Convergence(self._resultant_change(), RESULTANT_CONVERGED_CHANGE)
+        change = self._resultant_change()
+        resultants = None if change is None else Convergence(change, RESULTANT_CONVERGED_CHANGE)
         compared = any(m.beam.away.any() for m in self.members) if self.members else self.away.any()
         nominal = Convergence(s.change, CONVERGED_CHANGE) if compared else None
         peak = Convergence(s.peak_change, PEAK_CONVERGED_CHANGE, s.peak_changes[-2])
         return {"resultants": resultants, "nominal": nominal, "peak": peak}
 
-    def _resultant_change(self) -> NDArray[np.float64]:
+    def _resultant_change(self) -> NDArray[np.float64] | None:
         """(Pc,) [-]: the resultants' change between the two finest meshes, measured as
-        ``resultant_error`` is: over the stations, or the worst over the members' cuts."""
+        ``resultant_error`` is: over the stations, or the worst over the members' cuts; None where
+        no cut is compared."""
         finer, coarser = self.study.resultants[-1], self.study.resultants[-2]
         if not self.members:
+            if not self.frame_compared:
+                return None
             depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
             return resultant_error(finer, coarser, depth)
         counts = [len(m.beam.cuts.ends) for m in self.members]
@@ -177,11 +220,14 @@ class LinkComparison:
         return tuple(_hole_peak(self.fea, h) for h in self.beam.pin_holes)
 
     @property
-    def resultant_error(self) -> NDArray[np.float64]:
+    def resultant_error(self) -> NDArray[np.float64] | None:
         """(Pc,) [-]: largest N, V, M difference over the stations, relative to the link's largest;
-        with members, the worst over them (each relative to its own largest)."""
+        with members, the worst over them (each relative to its own largest); None where no cut is
+        compared (``skipped``)."""
         if self.members:
             return np.max([m.resultant_error for m in self.members], axis=0)
+        if not self.frame_compared:
+            return None
         b, f = self.beam.forces, self.fea_resultants
         depth = float((self.beam.sections.top - self.beam.sections.bottom).max())
         return resultant_error(
@@ -201,10 +247,31 @@ class LinkComparison:
         fea = self.fea_von_mises[:, self.away]
         return relative(np.abs(fea - beam).max(axis=1), beam.max(axis=1))
 
+    def worst_nominal(self) -> NominalDifference | None:
+        """Where the nominal comparison differs most (the position and station behind the largest
+        ``nominal_error``), None when there is no nominal station."""
+        error = self.nominal_error
+        if error is None:
+            return None
+        k = int(np.argmax(error))
+        if self.members:
+            m = max((m for m in self.members if m.nominal_error is not None), key=lambda m: m.nominal_error[k])
+            away, joints = m.beam.away, m.joints
+            beam, fea, cuts = m.beam.von_mises[k, away], m.fea_von_mises[k, away], m.beam.cuts
+        else:
+            away, joints = self.away, tuple(self.beam.cuts.joints)
+            beam, fea, cuts = self.beam.von_mises[k, away], self.fea_von_mises[k, away], self.beam.cuts
+        s = int(np.argmax(np.abs(fea - beam)))
+        return NominalDifference(
+            k, joints, float(cuts.s[away][s]), cuts.origin[away][s], float(beam[s]), float(fea[s]), float(error[k]),
+        )
+
     @property
     def beam_max(self) -> NDArray[np.float64]:
-        """(Pc,) [Pa]: the beam's largest von Mises at the compared stations, over every member."""
-        return np.max([self.beam.max_von_mises, *(m.beam_max for m in self.members)], axis=0)
+        """(Pc,) [Pa]: the beam's largest von Mises at the compared stations, over every member
+        (with none compared, at the frame member's midpoint section)."""
+        frame = [self.beam.max_von_mises] if self.frame_compared or not self.members else []
+        return np.max([*frame, *(m.beam_max for m in self.members)], axis=0)
 
     @property
     def fea_peak(self) -> NDArray[np.float64]:
@@ -341,9 +408,11 @@ def _hole_peak(fea: LinkFEAResult, hole: PinHoleEstimate) -> HolePeak:
     )
 
 
-def member_beam(link: LinkProfile, loads: LinkLoadCase, member: Member, body_load_near_holes: bool = False) -> MemberBeam:
-    """The beam along ``member`` at its comparison stations (``member_stations``) for every position of ``loads``."""
-    chosen = member_stations(member)
+def member_beam(link: LinkProfile, loads: LinkLoadCase, member: Member, body_load_near_holes: bool = False,
+                chosen: ComparisonStations | None = None) -> MemberBeam:
+    """The beam along ``member`` at its comparison stations (``chosen``, default ``member_stations``;
+    at least one) for every position of ``loads``."""
+    chosen = chosen or member_stations(member)
     beam = section_stresses(link, loads, chosen.x, body_load_near_holes, member=member)
     forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
     return MemberBeam(member.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y, chosen.note)
@@ -353,30 +422,35 @@ def member_beam(link: LinkProfile, loads: LinkLoadCase, member: Member, body_loa
 class LinkBeams:
     """The beam side of a link's comparison at Pc positions: ``sections`` at ``stations`` (S,) [m]
     along the member of its frame joints, the same as ``along``, and ``members`` each along its own
-    axis; ``note``: why the stations are not the usual ones ("" when they are); ``seconds`` to make them."""
+    axis; ``note``: why the stations are not the usual ones ("" when they are); ``seconds`` to make them.
+    ``skipped``: why each member without a station (``ComparisonStations.skipped``) is not compared;
+    such members are not in ``members``, and when the frame's is one, ``along`` is None, ``stations``
+    empty and ``sections`` the frame member's section at its midpoint (its pin holes, its theory)."""
 
     stations: NDArray[np.float64]
     sections: SectionStresses
-    along: MemberBeam
+    along: MemberBeam | None
     members: tuple[MemberBeam, ...]
     note: str
     seconds: float
+    skipped: tuple[Skipped, ...] = ()
 
     @property
     def away(self) -> NDArray[np.bool_]:
         """(S,): the frame member's stations compared as nominal, a section depth from the holes."""
-        return ~self.sections.near_hole
+        return np.zeros(0, bool) if self.along is None else ~self.sections.near_hole
 
     @property
     def compared(self) -> tuple[MemberBeam, ...]:
-        """The frame's member, then each member: what the FEA is compared along."""
-        return (self.along, *self.members)
+        """The frame's member (when compared), then each member: what the FEA is compared along."""
+        return (*([] if self.along is None else [self.along]), *self.members)
 
     def nominal_points(self) -> NDArray[np.float64]:
         """(Q, 2) [m, member frame]: the critical fibres of the nominal stations at every position,
         each once: the points a refinement study follows."""
+        frame = [] if self.along is None else [self.along.fibres[:, self.away].reshape(-1, 2)]
         return np.unique(np.concatenate([
-            self.along.fibres[:, self.away].reshape(-1, 2), *(b.fibres[:, b.away].reshape(-1, 2) for b in self.members)
+            np.zeros((0, 2)), *frame, *(b.fibres[:, b.away].reshape(-1, 2) for b in self.members)
         ]), axis=0)
 
     def at(self, rows: NDArray[np.intp]) -> tuple[MemberBeam, ...]:
@@ -393,26 +467,36 @@ def link_beams(
     members: Sequence[Member] = (),
 ) -> LinkBeams:
     """The beam along the link's frame member at ``stations`` (default ``choose_stations``) and along
-    each of ``members`` at its own (``member_beam``), for every position of ``loads``."""
+    each of ``members`` at its own (``member_beam``), for every position of ``loads``. No
+    ``stations`` (a frame member whose every cut passes through a hole; ``station_note`` says why)
+    leaves the frame's member out of the comparison; a member without stations is left out with its
+    note in ``skipped``."""
     start = time.perf_counter()
     if stations is None:
         chosen = choose_stations(link, loads.frame_joints)
         stations, station_note = chosen.x, chosen.note
     stations = np.asarray(stations, float)
     on_frame = [m for m in members if m.joints == tuple(loads.frame_joints)]
-    beam = section_stresses(link, loads, stations, body_load_near_holes, member=on_frame[0] if on_frame else None)
+    frame = on_frame[0] if on_frame else frame_member(link, loads.frame_joints)
+    sectioned = stations if len(stations) else np.array([frame.length / 2])
+    beam = section_stresses(link, loads, sectioned, body_load_near_holes, member=frame)
     forces = np.stack([beam.forces.normal, beam.forces.shear, beam.forces.moment])
     # The stations are on the frame's member (its sections normal to its axis, vertical when straight).
-    along = MemberBeam(beam.cuts.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y)
-    beams = tuple(member_beam(link, loads, m, body_load_near_holes) for m in members)
-    return LinkBeams(stations, beam, along, beams, station_note, time.perf_counter() - start)
+    along = MemberBeam(beam.cuts.joints, beam.cuts, forces, beam.von_mises, beam.fibre_y) if len(stations) else None
+    chosen_members = [(m, member_stations(m)) for m in members]
+    beams = tuple(member_beam(link, loads, m, body_load_near_holes, c) for m, c in chosen_members if not c.skipped)
+    # The frame's pair is named only when it is what is compared (no members given).
+    skipped = tuple([Skipped(frame.joints, station_note)] if not len(stations) and not members else []) + tuple(
+        Skipped(m.joints, c.note) for m, c in chosen_members if c.skipped
+    )
+    return LinkBeams(stations, beam, along, beams, station_note, time.perf_counter() - start, skipped)
 
 
 def comparison_mesh(link: LinkProfile, loads: LinkLoadCase, beams: LinkBeams, mesh: MeshSettings | None = None,
                     members: Sequence[Member] = ()) -> MeshSettings:
     """``mesh`` (default ``default_mesh``) with the cut segments of every compared member meshed."""
     mesh = mesh or default_mesh(link, loads.frame_joints, beams.stations, members=members)
-    segments = np.concatenate([b.cuts.ends for b in beams.compared])
+    segments = np.concatenate([np.zeros((0, 2, 2)), *(b.cuts.ends for b in beams.compared)])
     return replace(mesh, stations=(), cuts=segments.tolist())
 
 
@@ -474,12 +558,15 @@ def join_link_fea(parts: Sequence[LinkFEA]) -> LinkFEA:
 
 def link_comparison(name: str, positions: NDArray[np.intp], beams: LinkBeams, fea: LinkFEA) -> LinkComparison:
     """Link ``name``'s ``beams`` against its ``fea`` at the sweep ``positions``."""
+    first = 0 if beams.along is None else 1
     members = tuple(
-        MemberComparison(b, r, v) for b, r, v in zip(beams.members, fea.resultants[1:], fea.von_mises[1:])
+        MemberComparison(b, r, v) for b, r, v in zip(beams.members, fea.resultants[first:], fea.von_mises[first:])
     )
+    frame_resultants = None if beams.along is None else fea.resultants[0]
+    frame_von_mises = np.zeros((len(positions), 0)) if beams.along is None else fea.von_mises[0]
     return LinkComparison(
-        name, np.asarray(positions), beams.stations, beams.away, beams.sections, fea.fea, fea.resultants[0],
-        fea.von_mises[0], beams.seconds, fea.seconds, fea.study, beams.note, members,
+        name, np.asarray(positions), beams.stations, beams.away, beams.sections, fea.fea, frame_resultants,
+        frame_von_mises, beams.seconds, fea.seconds, fea.study, beams.note, members, beams.skipped,
     )
 
 

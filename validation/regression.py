@@ -117,6 +117,16 @@ def read_reference(case: Path) -> dict:
     return stored
 
 
+def check_case(case: Path) -> None:
+    """Read ``case``'s scene (its keys and sketches) before any case runs: an ``InputError``
+    naming the case when it cannot be read (a sketch path that leads nowhere is bad input, not a
+    regression)."""
+    try:
+        load_scene(case / SCENE_FILE)
+    except InputError as error:
+        raise InputError(f"case {case.name}: {error}") from None
+
+
 def current_values(case: Path, settings: dict, cache: CacheSettings | None = None) -> dict:
     """Analysis records and, where the scene has profiled links, the beam-against-FEA errors (the
     FEA's meshes from and into the disk cache of ``cache`` when given)."""

@@ -30,16 +30,18 @@ from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
-from linkstress.report.figures import LABEL_ZORDER, boxed_label, stress_along_figure
+from linkstress.report.figures import LABEL_ZORDER, boxed_label, field_colour_bar, field_scale, stress_along_figure
 from linkstress.report.cells import mpa, point, text_table, without_noise
-from linkstress.report.html import analysis_sections, figure_tag, page, table_html, verdict_html, warnings_html
+from linkstress.report.html import (
+    analysis_sections, figure_tag, page, report_title, table_html, verdict_html, warnings_html,
+)
 from linkstress.report.places import joint_names
 from linkstress.report.text import KT_WORDS, warnings_text
 from linkstress.report.verdict import Verdict, analysis_places
 from linkstress.safety import finite_or_none, yield_factor
 from linkstress.validation.compare import HolePeak, LinkComparison, MemberComparison
 from linkstress.validation.fea.convergence import CONVERGED_CHANGE, PEAK_CONVERGED_CHANGE, RESULTANT_CONVERGED_CHANGE
-from linkstress.validation.validate_scene import REACTION_LIMIT, RESULTANT_LIMIT, ValidationResult
+from linkstress.validation.validate_scene import RESULTANT_LIMIT, ValidationResult
 from linkstress.validation.verdict import validation_verdict
 
 NOTE = (
@@ -81,7 +83,8 @@ def link_record(result: ValidationResult, name: str) -> dict:
         "peak_error_pct": float(100 * c.peak_error.max()),
         "fea_peak_over_beam_max": float(c.fea_peak[k] / c.beam_max[k]) if c.beam_max[k] > 0 else None,
         "fea_max_where": fea_where(result, name, c),
-        "resultant_error_pct": float(100 * c.resultant_error.max()),
+        "resultant_error_pct": None if c.resultant_error is None else float(100 * c.resultant_error.max()),
+        "not_compared": [s.note for s in c.skipped],
         "dofs": int(c.fea.dofs),
         "beam_seconds": float(c.beam_seconds),
         "fea_seconds": float(c.fea_seconds),
@@ -108,7 +111,7 @@ def link_record(result: ValidationResult, name: str) -> dict:
             "fea_max_at_m": _ground(result, name, c.fea.von_mises_peak_at).tolist(),
             "nominal_error_pct": None if c.nominal_error is None else (100 * c.nominal_error).tolist(),
             "peak_error_pct": (100 * c.peak_error).tolist(),
-            "resultant_error_pct": (100 * c.resultant_error).tolist(),
+            "resultant_error_pct": None if c.resultant_error is None else (100 * c.resultant_error).tolist(),
         },
     }
 
@@ -258,6 +261,7 @@ def validation_json(result: ValidationResult, verdict: Verdict | None = None) ->
         "not_converged": result.unconverged(),
         "verdict": (verdict or validation_verdict(result)).record(),
         "warnings": list(result.analysis.scene.warnings),
+        "not_compared": result.not_compared(),
     }
 
 
@@ -277,7 +281,8 @@ def table_rows(result: ValidationResult, reasons: bool = False) -> list[tuple]:
         ratio = r["fea_peak_over_beam_max"]
         rows.append((
             name, mpa(r["beam_max_von_mises_pa"]), mpa(r["fea_max_von_mises_pa"]),
-            "-" if ratio is None else f"{ratio:.3g} x", r["fea_max_where"], f"{r['resultant_error_pct']:.2g}",
+            "-" if ratio is None else f"{ratio:.3g} x", r["fea_max_where"],
+            "-" if r["resultant_error_pct"] is None else f"{r['resultant_error_pct']:.2g}",
             "-" if r["nominal_error_pct"] is None else f"{r['nominal_error_pct']:.2g}", str(r["dofs"]),
             converged_word(r["convergence"]),
         ))
@@ -297,9 +302,10 @@ def check_line(result: ValidationResult) -> str:
     """The check's verdict, what it checked, and beside it what did not converge (not part of it)."""
     failures = result.failures()
     verdict = "passed" if not failures else "FAILED"
-    checked = (f"FEA support reactions below {REACTION_LIMIT:g} of the load and section resultants within "
-               f"{100 * RESULTANT_LIMIT:g} % of the beam's")
-    line = f"check: {verdict} ({checked})"
+    line = f"check: {verdict} ({result.checked()})"
+    if result.not_compared():
+        line += ("; not compared, so not checked: " + ", ".join(result.not_compared_names())
+                 + " (every cut through a hole: see each link)")
     unconverged = result.unconverged()
     if unconverged:
         line += "; reported beside this check, not part of it: " + "; ".join(unconverged)
@@ -343,8 +349,9 @@ def link_lines(result: ValidationResult, name: str, c: LinkComparison) -> list[s
         peak_words(c, angles, fea_where(result, name, c)),
         nominal_words(c, angles),
     ]
-    if c.station_note:
+    if c.station_note and c.frame_compared:
         lines.append(c.station_note)
+    lines += [s.note for s in c.skipped]
     if len(c.members) > 1:
         lines += [member_words(m) for m in c.members]
         lines += [f"member joints {m.joints[0]}-{m.joints[1]}: {m.beam.note}" for m in c.members if m.beam.note]
@@ -379,6 +386,9 @@ def nominal_note(c: LinkComparison) -> str | None:
     """Why no nominal comparison is possible on this link, or None when it is made."""
     if c.nominal_error is not None:
         return None
+    if not c.frame_compared:
+        return ("no nominal comparison: no compared member has a station a section depth from every pin and junction"
+                if c.members else "no nominal comparison: no member of the link could be compared")
     depth = c.beam.sections.top - c.beam.sections.bottom
     centres = c.fea.link.frame(*c.fea.frame_joints).to_local(c.fea.link.holes[0])[:, 0]
     gap = np.abs(c.stations[:, None] - centres).min(axis=1, initial=np.inf)
@@ -459,9 +469,10 @@ def fea_contour_figure(c: LinkComparison, k: int, angle_deg: float) -> Figure:
     values = c.fea.nodal_von_mises[k, c.fea.model.scalar.nodal_dofs[0][:corners]] / 1e6
     fig, ax = plt.subplots(figsize=(7.5, 3.8), layout="constrained")
     triangles = Triangulation(mesh.p[0, :corners], mesh.p[1, :corners], mesh.t.T)
-    # A pin's peak can be a hundred times the rest: cap the scale so the link's own field shows.
-    shading = ax.tripcolor(triangles, values, shading="gouraud", cmap="viridis", vmax=float(np.percentile(values, 99)))
-    fig.colorbar(shading, ax=ax, label="von Mises [MPa] (capped at the 99th percentile)", extend="max")
+    # A pin's peak can be a hundred times the rest: a log scale keeps the link's own field in view.
+    scale = field_scale(values)
+    shading = ax.tripcolor(triangles, values, shading="gouraud", cmap="viridis", norm=scale.norm)
+    field_colour_bar(fig, ax, shading, scale.label)
     peak = c.fea.von_mises_peak_at[k]
     for x in c.stations:
         ax.axvline(x, color="white", lw=0.4, alpha=0.6)
@@ -513,4 +524,4 @@ def validation_html(result: ValidationResult, verdict: Verdict | None = None) ->
                     f"{100 * c.discretisation_error.max():.3g} %.</p>"
                 )
     sections[-2:-2] = body
-    return page(f"linkstress validate: {result.analysis.scene.title}", sections)
+    return page(report_title(result.analysis.scene, "validate"), sections)

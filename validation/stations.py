@@ -4,7 +4,10 @@ Along each member of a link (``linkstress.geometry.members``) the comparison sta
 joints, clear of the pin holes (a cut through a hole splits the bearing pressure between its two
 sides, which a beam cannot) and a section depth from the other members' axes (where arms meet,
 neither arm is a beam), and always include the midpoint. On a member too short for its holes the
-resultants are compared at its midpoint if its cut misses the holes, and the stations say so. The
+resultants are compared at its midpoint if its cut misses the holes, and the stations say so; where
+even that cut passes through a hole (a plate with a lightening hole between its pins), the member
+has no station: its comparison is skipped, with a note that says why, and the rest of the link is
+still compared (its FEA peak, its pin holes, its other members). The
 default mesh takes about ELEMENTS_PER_DEPTH elements across the slenderest compared section and
 ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter.
 """
@@ -22,7 +25,6 @@ from shapely.geometry import Polygon
 from linkstress.geometry.member_cuts import segment_distance
 from linkstress.geometry.members import Member, frame_member
 from linkstress.geometry.profile import LinkProfile
-from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.mesh import MeshSettings
 
 COMPARISON_STATIONS = 15
@@ -43,10 +45,16 @@ is the mesher's to report, naming the holes.) Measured on a 16 mm crank with 12 
 class ComparisonStations:
     """Stations ``x`` (S,) [m: arc length along a member from its joint i, the member frame's x on
     a straight member of the frame joints] to compare at, and ``note``: "" for the usual ones, else
-    what was chosen on a member too short for them, and why."""
+    what was chosen on a member too short for them, and why; no station at all (``skipped``) where
+    every cut, the midpoint's included, passes through a hole, and the note says so."""
 
     x: NDArray[np.float64]
     note: str = ""
+
+    @property
+    def skipped(self) -> bool:
+        """No comparison on this member: every cut passes through a hole."""
+        return not len(self.x)
 
 
 def comparison_stations(link: LinkProfile, frame_joints: tuple[int, int], count: int = COMPARISON_STATIONS) -> NDArray[np.float64]:
@@ -74,8 +82,8 @@ def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> Compari
     ``count`` cell centres between its joints and the midpoint, those whose cut segment keeps
     HOLE_CLEARANCE radii from every hole and whose axis point is at least its section depth from
     every other member's axis (where the arms of a bell crank meet). On a member too short for that,
-    the midpoint when its cut misses the holes (CUT_CLEARANCE), with a note; raises FEAError naming
-    the link and the member when not even that does."""
+    the midpoint when its cut misses the holes (CUT_CLEARANCE), with a note; when not even that
+    does, no station, and the note names the link and the member and says why (``skipped``)."""
     length = member.length
     candidates = np.unique(np.round(np.append(length * (np.arange(count) + 0.5) / count, length / 2), 12))
     cuts = member.cuts(candidates)
@@ -87,11 +95,13 @@ def member_stations(member: Member, count: int = COMPARISON_STATIONS) -> Compari
     middle = int(np.argmin(np.abs(candidates - length / 2)))
     name = f"link {member.link.name!r}, member {list(member.joints)}"
     if not (clearance[middle] > CUT_CLEARANCE).all():
-        raise FEAError(
-            f"{name}: the midpoint cut at s = {candidates[middle]:.6g} m passes {clearance[middle].min():.3g} hole "
-            "radii from a hole's centre and no other station keeps clear of the holes and the other members: "
-            "there is nowhere to compare section resultants"
-        )
+        gap = float(clearance[middle].min())
+        return ComparisonStations(np.zeros(0), (
+            f"{name}: not compared with the FEA: its midpoint cut at s = {candidates[middle]:.4g} m passes through a "
+            f"hole ({gap if gap > 1e-9 else 0.0:.2g} hole radii from its centre) and no other cut keeps "
+            f"{HOLE_CLEARANCE:g} radii clear of the holes and a section depth from the other members, so there is "
+            "no section to compare resultants or nominal stresses at; the FEA peak and the pin holes are still compared"
+        ))
     others = " and a section depth from the other members" if member.others else ""
     note = (
         f"the {'member' if member.others else 'link'} is short for its holes: no station between the joints is more "
@@ -119,12 +129,23 @@ def default_mesh(
     members: Sequence[Member] = (),
 ) -> MeshSettings:
     """Mesh settings sized from the link: about ELEMENTS_PER_DEPTH elements across its slenderest
-    compared section (at ``stations`` and at the ``members``' comparison stations),
+    compared section (at ``stations`` and at the ``members``' comparison stations; a member without
+    one, ``ComparisonStations.skipped``, by its smallest depth between its joints),
     ELEMENTS_PER_HOLE_DIAMETER along a pin hole's diameter."""
     frame = next((m for m in members if m.joints == tuple(frame_joints)), None) or frame_member(link, frame_joints)
-    tables = [frame.cuts(stations).table, *(m.cuts(member_stations(m).x).table for m in members)]
-    depth = float(min((t.top - t.bottom).min() for t in tables))
+    depth = min(_compared_depth(m, x) for m, x in [
+        (frame, np.asarray(stations, float)), *((m, member_stations(m).x) for m in members)
+    ])
     size = size or depth / ELEMENTS_PER_DEPTH
     diameters = [2 * math.sqrt(Polygon(r).area / math.pi) for r in link.outline.interiors]
     hole = min(diameters) / ELEMENTS_PER_HOLE_DIAMETER if diameters else size / 4
-    return MeshSettings(size=size, hole_size=min(hole, size / 2), stations=tuple(stations.tolist()))
+    return MeshSettings(size=size, hole_size=min(hole, size / 2), stations=tuple(np.asarray(stations, float).tolist()))
+
+
+def _compared_depth(member: Member, stations: NDArray[np.float64]) -> float:
+    """The smallest section depth [m] of ``member`` at its compared ``stations``, or where it has
+    none, between its joints."""
+    if not len(stations):
+        return float(member.depth)
+    table = member.cuts(stations).table
+    return float((table.top - table.bottom).min())

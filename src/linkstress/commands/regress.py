@@ -1,7 +1,8 @@
 """``linkstress regress [CASES_DIR] [--update] [--jobs N] [--scheduler ADDRESS] [--json OUT]``: re-run
 every regression case and compare it with its stored reference: kinematics, forces and stresses
 within their tolerances, beam-against-FEA errors no larger than stored and within the case's limits.
-Exit 1 on any regression. With a scheduler each case is a task on that Dask cluster, carried by
+Exit 1 on any regression; 2 when a case cannot be read (its reference, its scene or a sketch the
+scene names), naming the case, before any case runs. With a scheduler each case is a task on that Dask cluster, carried by
 content (its scene, sketches and reference)."""
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from linkstress.output import check_outputs, json_bytes, write_all
 from linkstress.validation.regression import (
     REFERENCE_FILE,
     CaseResult,
+    check_case,
     find_cases,
     packed_case,
     read_reference,
@@ -75,7 +77,9 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--json: not with --update (which rewrites the references and checks nothing); run regress again after it")
     cases = find_cases(args.cases or default_cases())
     for case in cases:
-        read_reference(case)  # a broken reference.json stops the run before any case runs
+        # a broken reference.json or a scene that cannot be read stops the run before any case runs
+        read_reference(case)
+        check_case(case)
     cache = fea_choices(args)
     with executor(scheduler, source, args.jobs) as where:
         if scheduler is None:

@@ -3,7 +3,8 @@ against plane-stress FEA of every profiled link of a scene, under the same loads
 (``linkstress.validation.verdict``), then a compact comparison per link (``--details``: in full).
 
 Exit 0 when the check passes, 1 when it fails (a link's FEA could not run, its support reactions are
-not ~0, or its section resultants disagree with the beam's), 2 on bad input. Convergence is reported
+not ~0, or its section resultants or nominal stresses disagree with the beam's beyond their bounds),
+2 on bad input. Convergence is reported
 beside the check, not judged by it: a peak that moved more than 5 % over either of the last two
 refinements is named NOT converged and gives no safety factor; with ``--mesh-levels 1`` convergence is "not
 checked" and no safety factor is given either.

@@ -12,7 +12,13 @@ cut's neutral-axis point c) the resultant of every load on the left part, d'Alem
     (N, V) = -F_L,   M = M_L.
 
 The right free body gives the same values when the loads are in equilibrium; the difference, the
-resultant of all loads about the cut point, is reported as the equilibrium check.
+resultant of all loads about the cut point, is reported as the equilibrium check, relative to the
+link's load: the force against the sum of the sizes of every load on the link (pin and point
+forces, the d'Alembert load's resultant), the moment against that sum times the reach of the cuts
+from the frame's origin plus the sum of the loads' own moments about it (couples, the force of each
+pin times its lever arm, the rotary inertia's). So a balanced link reads ~1e-16 whatever its
+section forces: a two-force link in pure tension has M ~ 0 along it, and a moment mismatch taken
+over that largest M would be rounding over rounding.
 """
 
 from __future__ import annotations
@@ -36,7 +42,8 @@ class InternalForces:
     """N [N], V [N], M [N m] at each station (P, S), and the two-sided check.
 
     ``mismatch`` (P,): largest difference between the left and right free bodies, relative to the
-    largest section force (N, V) or moment (M) of that position, whichever is worse.
+    link's load at that position (``ForceBasis.mismatch``), the force's or the moment's, whichever
+    is worse.
     """
 
     x: NDArray[np.float64]
@@ -119,8 +126,9 @@ class ForceBasis:
         """(H, 2): the corners of the cut points' convex hull."""
         return shapely.get_coordinates(shapely.convex_hull(shapely.multipoints(self.cut)))
 
-    def mismatch(self, coefficients, normal, shear, moment) -> NDArray[np.float64]:
-        """The two-sided check (P,) of section forces (P, S) made from ``coefficients`` (P, Q).
+    def mismatch(self, coefficients: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The two-sided check (P,) of the section forces made from ``coefficients`` (P, Q),
+        relative to the link's load (``load_scales``).
 
         The right free body carries every load not on the left, so its cut differs from the left's
         by the resultant of all loads, taken about the cut point. That moment is affine in the
@@ -132,8 +140,19 @@ class ForceBasis:
         few = len(coefficients) * len(self.cut) <= EVERY_CUT_PAIRS
         x, y = (self.cut if few else self.corners).T
         d_moment = _largest(total @ np.stack([y, -x, np.ones_like(x)]))
-        force_scale = np.maximum(_largest(normal), _largest(shear))
-        return np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, _largest(moment)))
+        force_scale, moment_scale = self.load_scales(coefficients)
+        return np.maximum(_ratio(d_force, force_scale), _ratio(d_moment, moment_scale))
+
+    def load_scales(self, coefficients: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The link's load at each position of ``coefficients`` (P, Q): the gross force (P,) [N],
+        the sum of every load term's resultant size (each pin force's and point force's components,
+        the d'Alembert load's terms), and the gross moment (P,) [N m], that force times the cuts'
+        largest distance from the frame's origin plus the sum of the terms' own moments about it
+        (couples, pin forces times their lever arms, the rotary inertia's)."""
+        size = np.abs(coefficients) @ np.hypot(self.whole[0], self.whole[1])
+        own = np.abs(coefficients) @ np.abs(self.whole[2])
+        reach = float(np.hypot(*self.cut.T).max(initial=0.0))
+        return size, size * reach + own
 
 
 def force_basis(
@@ -192,7 +211,7 @@ def internal_forces(
     basis = force_basis(link, loads, sections, moments)
     coefficients = load_coefficients(loads)
     normal, shear, moment = (coefficients @ b for b in (basis.normal, basis.shear, basis.moment))
-    return InternalForces(sections.x, normal, shear, moment, basis.mismatch(coefficients, normal, shear, moment))
+    return InternalForces(sections.x, normal, shear, moment, basis.mismatch(coefficients))
 
 
 def _largest(values: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -408,7 +408,7 @@ class _Sweep:
         mean, spread, body = self.fibre_bases
         c = self.coefficients[p]
         normal, shear, moment = (np.matmul(c, b) for b in (basis.normal, basis.shear, basis.moment))
-        forces = InternalForces(self.table.x, normal, shear, moment, basis.mismatch(c, normal, shear, moment))
+        forces = InternalForces(self.table.x, normal, shear, moment, basis.mismatch(c))
         fibres = Fibres(np.empty_like(normal), np.empty_like(normal))
         size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, fibres)
         # a crank turning steadily about a fixed pivot, without gravity, has no body load

@@ -90,6 +90,17 @@ def wrapped_steps(angle: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.mod(np.diff(angle) + math.pi, TURN) - math.pi
 
 
+def distinct_digits(first: float, second: float, least: int = 6) -> tuple[str, str]:
+    """``first`` and ``second`` with at least ``least`` significant digits and as many more as it
+    takes to tell them apart (179.9999999 and 180.0000001, not 180 and 180); 17 at most, which
+    tells any two doubles apart."""
+    for digits in range(least, 18):
+        a, b = f"{first:.{digits}g}", f"{second:.{digits}g}"
+        if a != b:
+            return a, b
+    return a, b
+
+
 ROOT_SIDES = {
     "four-bar": {"open": "B left of A -> O4", "crossed": "B right of A -> O4"},
     "slider-crank": {
@@ -107,7 +118,8 @@ def describe(mechanism: str, kind: str, crossing: Crossing, before_deg: float, a
     where = f"at input {point:.6g} deg" if main else f"(its crank at {point % 360.0:.6g} deg)"
     other = "crossed" if crossing.root == "open" else "open"
     root = f"the {crossing.root} root ({ROOT_SIDES[kind][crossing.root]})"
-    between = f"between input {before_deg:.6g} and {after_deg:.6g} deg"
+    before, after = distinct_digits(before_deg, after_deg)
+    between = f"between input {before} and {after} deg"
     head = f"mechanism {mechanism}: {crossing.kind} {where} crossed {between}: "
     if crossing.kind == KIND_TOGGLE:
         return head + (

@@ -31,14 +31,17 @@ from linkstress.kinematics.crossings import (
 )
 from linkstress.kinematics.blocks import angle_of, dot_into, empty_arrays, set_columns, solve_in_blocks
 from linkstress.kinematics.errors import LinkageError
-from linkstress.kinematics.fourbar import BRANCHES, TOGGLE_TOLERANCE
+from linkstress.kinematics.fourbar import BRANCHES, CHANGE_POINT_REACH, TOGGLE_TOLERANCE
 from linkstress.kinematics.results import FloatArray, JointMotion, LinkMotion, LoopMotion, fixed_link
 
-FEASIBLE, TOGGLE, TOO_FAR = range(3)
+FEASIBLE, TOGGLE, TOO_FAR, CHANGE_POINT = range(4)
 REASONS = (
     "",
     "toggle: connecting rod perpendicular to the slider line",
     "unreachable: crank pin A is farther from the slider line than the connecting rod's length",
+    "change point: crank and connecting rod aligned across the slider line, or too nearly for the joint forces "
+    "to keep their digits (1 - |sin| of the rod's angle to the line under 1e-7), where the open and crossed "
+    "branches meet",
 )
 DEFAULT_FRAMES = {"crank": (0, 1), "coupler": (0, 1), "ground": (0, 1), "slider": (0, 0)}
 
@@ -157,6 +160,19 @@ def branch_points(linkage: SliderCrank) -> tuple[BranchPoint, ...]:
     return tuple(points)
 
 
+def factor_reaches(linkage: SliderCrank) -> tuple[float, float]:
+    """How small 1 - sin(psi) and 1 + sin(psi) may get before a position is reported as a branch
+    point: ``fourbar.CHANGE_POINT_REACH`` for the factor that touches zero at a change point (1 -
+    sin(psi) where |e - b| = a, 1 + sin(psi) where |e + b| = a: a double zero, whose rounding costs
+    the accelerations their digits as at a four-bar's; measured, the joint forces of a slider-crank
+    with a = b are 2e-6 off at 4.5e-8 and 1.7e-3 at 4.5e-10), TOGGLE_TOLERANCE otherwise."""
+    a, b, e = linkage.crank, linkage.rod, linkage.offset
+    tol = CHANGE_POINT_TOLERANCE * (a + b + abs(e))
+    minus = CHANGE_POINT_REACH if abs(abs(e - b) - a) <= tol else TOGGLE_TOLERANCE
+    plus = CHANGE_POINT_REACH if abs(abs(e + b) - a) <= tol else TOGGLE_TOLERANCE
+    return minus, plus
+
+
 @dataclass(frozen=True)
 class _Sweep:
     """The arrays a sweep fills a block of rows at a time, as ``LoopMotion`` holds them."""
@@ -200,13 +216,17 @@ def _solve_rows(linkage: SliderCrank, theta2, w2, al2, out: _Sweep, rows: slice)
     sin_psi /= b
     one_minus = np.subtract(1.0, sin_psi, out=tmp)
     one_plus = np.add(sin_psi, 1.0, out=tmp2)
-    all_feasible = min(one_minus.min(), one_plus.min()) > TOGGLE_TOLERANCE
-    bad = None if all_feasible else (one_minus <= TOGGLE_TOLERANCE) | (one_plus <= TOGGLE_TOLERANCE)
+    reach_minus, reach_plus = factor_reaches(linkage)
+    all_feasible = one_minus.min() > reach_minus and one_plus.min() > reach_plus
+    bad = None if all_feasible else (one_minus <= reach_minus) | (one_plus <= reach_plus)
     if not all_feasible:
+        near_minus, near_plus = one_minus[bad] <= reach_minus, one_plus[bad] <= reach_plus
+        at_change_point = (near_minus & (reach_minus == CHANGE_POINT_REACH)) | (
+            near_plus & (reach_plus == CHANGE_POINT_REACH))
         far = (one_minus[bad] < -TOGGLE_TOLERANCE) | (one_plus[bad] < -TOGGLE_TOLERANCE)
-        out.status[rows][bad] = np.where(far, TOO_FAR, TOGGLE)
+        out.status[rows][bad] = np.where(far, TOO_FAR, np.where(at_change_point, CHANGE_POINT, TOGGLE))
     np.multiply(one_minus, one_plus, out=cos_psi)
-    if not all_feasible:  # elsewhere both factors exceed TOGGLE_TOLERANCE
+    if not all_feasible:  # elsewhere both factors exceed their reach
         np.maximum(cos_psi, 0.0, out=cos_psi)
     np.sqrt(cos_psi, out=cos_psi)
     cos_psi *= linkage.sigma

@@ -4,6 +4,7 @@ stresses along each link, and plots over a sweep's input angle. Ground frame, SI
 from __future__ import annotations
 
 import io
+from dataclasses import dataclass
 
 import matplotlib
 
@@ -11,18 +12,29 @@ matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.colors import LogNorm, Normalize  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 from numpy.typing import NDArray  # noqa: E402
 
 from linkstress.analysis import AnalysisResult  # noqa: E402
 from linkstress.report.figure_notes import figure_warnings  # noqa: E402
+from linkstress.report.labels import LabelPlacer  # noqa: E402
 
 LINK_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 TICK_GAP_PX = 4.0
 """Tick labels closer than this (at the saved resolution) run together to the eye ("0.3250.350")."""
 LABEL_ZORDER = 10
 """Above every line and fill of a figure: a label on a marked point is never hidden by a curve or cut."""
+LOG_FIELD_RATIO = 10.0
+"""A stress field whose largest value is more than this many times its median (a pin's peak over the
+link's own field) is drawn on a logarithmic colour scale: on a linear one the rest of the link would
+be one dark colour."""
+FIELD_DECADES = 3
+"""A logarithmic colour scale spans this many decades below the field's largest value; smaller
+values take its lowest colour (and the colour bar says so)."""
+COLOUR_BAR_WIDTH = 0.04
+"""A field's colour bar: this fraction of its plot's width, beside it and exactly as tall."""
 
 
 def png_bytes(fig: Figure, dpi: int = 110, notes: list[str] | None = None) -> bytes:
@@ -73,13 +85,42 @@ def x_tick_gaps(ax, renderer) -> list[float]:
     return [b.x0 - a.x1 for a, b in zip(boxes, boxes[1:])]
 
 
+@dataclass(frozen=True)
+class FieldScale:
+    """How a stress field is coloured: ``norm`` (linear from 0, or logarithmic over FIELD_DECADES
+    below the largest value) and ``label``, which says which, for the colour bar."""
+
+    norm: Normalize
+    label: str
+
+
+def field_scale(values: NDArray[np.float64], quantity: str = "von Mises [MPa]") -> FieldScale:
+    """The colour scale that shows the field ``values`` (in the unit of ``quantity``): logarithmic
+    when its largest is more than LOG_FIELD_RATIO times its median, else linear from 0."""
+    largest = float(np.max(values)) if np.size(values) else 0.0
+    median = float(np.median(values)) if np.size(values) else 0.0
+    if largest > 0 and largest > LOG_FIELD_RATIO * median:
+        lowest = largest / 10**FIELD_DECADES
+        return FieldScale(LogNorm(lowest, largest, clip=True), f"{quantity}, log scale\n(below {lowest:.2g}: lowest colour)")
+    return FieldScale(Normalize(0.0, largest if largest > 0 else 1.0), f"{quantity}, linear scale")
+
+
+def field_colour_bar(fig: Figure, ax, mappable, label: str):
+    """A colour bar for ``mappable`` beside ``ax``, as tall as the plot as drawn (an equal-aspect
+    drawing of a long link is much lower than its axes' space, where a plain colour bar would stand
+    twice its height): an inset of the axes, which follows their drawn box."""
+    bar = ax.inset_axes([1.0 + COLOUR_BAR_WIDTH, 0.0, COLOUR_BAR_WIDTH, 1.0])
+    return fig.colorbar(mappable, cax=bar, label=label)
+
+
+LABEL_BOX = dict(boxstyle="round,pad=0.2", fc="white", ec="0.6", lw=0.5, alpha=0.9)
+"""The white box a label sits on, readable over lines, fills and cut marks."""
+
+
 def boxed_label(ax, text: str, at, offset=(8, 8), **options) -> None:
     """``text`` beside the point ``at``, offset by ``offset`` points, on a white box above every
     other artist: readable over lines, fills and cut marks."""
-    ax.annotate(
-        text, at, textcoords="offset points", xytext=offset, zorder=LABEL_ZORDER,
-        bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="0.6", lw=0.5, alpha=0.9), **options,
-    )
+    ax.annotate(text, at, textcoords="offset points", xytext=offset, zorder=LABEL_ZORDER, bbox=LABEL_BOX, **options)
 
 
 def _to_ground(result: AnalysisResult, name: str, k: int, local: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -118,18 +159,26 @@ def mechanism_figure(result: AnalysisResult, k: int) -> Figure:
                 ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.15)
     cloud = np.vstack(points)
     size = float(np.ptp(cloud, axis=0).max()) or 1.0
-    if result.forces is not None:
-        _force_arrows(ax, result, k, size)
+    labels = LabelPlacer(ax)
     for name in result.stresses:
         where = result.max_location(name)[k]
         ax.plot(*where, marker="*", color="k", ms=12)
-        boxed_label(ax, f"max {name}", where, offset=(6, 6), fontsize=8)
+        labels.avoid(where)
+        labels.add(f"max {name}", where, fontsize=8, zorder=LABEL_ZORDER, bbox=LABEL_BOX)
+    if result.forces is not None:
+        _force_arrows(ax, result, k, size, labels)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m], ground frame")
     ax.set_ylabel("y [m], ground frame")
     ax.set_title(f"input angle {result.scene.motion.angle_deg[k]:.4g} deg")
-    outside_legend(ax)
     ax.grid(alpha=0.3)
+    outside_legend(ax)
+    left_off = labels.place()
+    if left_off:
+        # No room beside its point on the drawing: the label is listed in the legend instead.
+        for text in left_off:
+            ax.plot([], [], " ", label=f"{text} (no room on the drawing)")
+        outside_legend(ax)
     return fig
 
 
@@ -192,20 +241,21 @@ def joint_paths(result: AnalysisResult) -> dict[str, NDArray[np.float64]]:
     }
 
 
-def _force_arrows(ax, result: AnalysisResult, k: int, size: float) -> None:
-    """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing."""
+def _force_arrows(ax, result: AnalysisResult, k: int, size: float, labels: LabelPlacer) -> None:
+    """Fij at its joint (force of i on j), scaled so the largest is a quarter of the drawing, each
+    labelled at its tail (through ``labels``, largest first)."""
     paths = joint_paths(result)
     arrows = [(label, paths[joint][k], force[k]) for label, joint, force in joint_forces(result)]
     largest = max((np.hypot(*f) for _, _, f in arrows), default=0.0)
     if largest <= 0:
         return
     scale = 0.25 * size / largest
-    for label, p, f in arrows:
+    for label, p, f in sorted(arrows, key=lambda arrow: -np.hypot(*arrow[2])):
         ax.annotate(
             "", xy=p, xytext=p - scale * f,
             arrowprops=dict(arrowstyle="->", color="crimson", lw=1.5),
         )
-        ax.annotate(f"{label} {np.hypot(*f):.4g} N", p - scale * f, fontsize=7, color="crimson", zorder=LABEL_ZORDER)
+        labels.add(f"{label} {np.hypot(*f):.4g} N", p - scale * f, fontsize=7, color="crimson", zorder=LABEL_ZORDER)
 
 
 def stress_along_figure(

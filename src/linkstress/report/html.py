@@ -224,10 +224,23 @@ def analysis_sections(result: AnalysisResult, top: list[str] | None = None) -> l
     return sections
 
 
+def report_title(scene, command: str) -> str:
+    """The page's title: the scene's ``title``, or where it gives none its file's name (with its
+    folder's when the file is a case's ``scene.toml``), then the command that wrote it."""
+    path = scene.path
+    if scene.title != path.stem:
+        name = scene.title
+    elif path.stem == "scene" and path.parent.name:
+        name = f"{path.parent.name}/{path.name}"
+    else:
+        name = path.name
+    return f"{name}: linkstress {command}"
+
+
 def analysis_html(result: AnalysisResult, verdict: Verdict | None = None) -> str:
     """The analysis's HTML report, its ``verdict`` (made here when not given) first."""
     top = verdict_html(verdict or analysis_verdict(result)) + warnings_html(result)
-    return page(f"linkstress analyze: {result.scene.title}", analysis_sections(result, top))
+    return page(report_title(result.scene, "analyze"), analysis_sections(result, top))
 
 
 def _shown(result: AnalysisResult) -> list[int]:

@@ -124,7 +124,7 @@
         parts.path.setAttribute("data-von-mises-mpa", String(value));
         parts.max.setAttribute("cx", link.max_at_m[k][0].toFixed(digits));
         parts.max.setAttribute("cy", (-link.max_at_m[k][1]).toFixed(digits));
-        rows.push(row([name, "largest von Mises", value.toFixed(data.stress_scale.decimals) + " MPa"], "td"));
+        rows.push(row([name, link.stress_label, value.toFixed(data.stress_scale.decimals) + " MPa"], "td"));
       } else if (link.closed) {
         parts.path.setAttribute("fill", "#d8d8d8");
         parts.path.setAttribute("fill-opacity", "0.5");
@@ -160,8 +160,8 @@
     }).join("");
     bar.innerHTML = '<div style="margin:0.3em 1.5em 0 1.5em"><div style="height:14px;background:linear-gradient(to right, ' +
       stops + ')"></div><div style="position:relative;height:1.2em;font-size:0.8em">' + ticks +
-      '</div><div style="text-align:center;font-size:0.85em">largest section von Mises at the position [MPa], ' +
-      "one scale for the whole sweep</div></div>";
+      '</div><div style="text-align:center;font-size:0.85em">' + data.stress_scale.label +
+      " at the position [MPa], one scale for the whole sweep</div></div>";
   }
 
   let timer = null;

@@ -1,6 +1,8 @@
 """The HTML report's interactive view of the mechanism: a slider over the sweep's positions that
-redraws every link's outline in the ground frame, coloured by its largest section von Mises at that
-position, with the joint forces as arrows.
+redraws every link's outline in the ground frame, coloured by its largest von Mises at that
+position, with the joint forces as arrows. The colour is the FEA peak anywhere in the link (pin
+holes included) where the analysis ran the peaks (``--peaks``), else the beam's largest section value,
+and the view says which.
 
 The page carries the data once (JSON in a ``<script type="application/json">`` block) and a small
 inline script draws it (``mechanism_view.js``, package data): no network, no external files. Each
@@ -37,6 +39,8 @@ VIEW_MARGIN = 0.04
 """Room around the links and force arrows, as a fraction of the mechanism's size."""
 COLOUR_STOPS = 11
 COLOUR_MAP = "viridis"
+FEA_PEAK, BEAM = "FEA peak von Mises, anywhere in the link", "largest section von Mises (beam theory)"
+"""What a link's colour is: its FEA peak where the peaks ran, else the beam's largest section value."""
 
 
 def view_frames(count: int) -> NDArray[np.intp]:
@@ -50,8 +54,9 @@ def view_frames(count: int) -> NDArray[np.intp]:
 def view_data(result: AnalysisResult) -> dict:
     """Everything the view draws, JSON-ready: per shown position its input angle [deg] and
     feasibility; per link its rings (member frame [m]) and pose (origin [m], angle [rad]; ground
-    frame), and where stresses were computed its largest section von Mises [MPa] and where it is
-    (ground frame [m]); per joint its position and per joint force (Fij, of link i on link j) its
+    frame), and where stresses were computed its largest von Mises [MPa] and where it is (ground
+    frame [m]) with what that is (``stress_label``: the FEA peak where the peaks ran, else the beam's
+    largest section value); per joint its position and per joint force (Fij, of link i on link j) its
     value [N], ground frame. Null at infeasible positions."""
     frames = view_frames(len(result.feasible))
     ok = result.feasible[frames]
@@ -83,17 +88,20 @@ def view_data(result: AnalysisResult) -> dict:
         "extent_m": _extent(bounds, size),
     }
     if result.stresses:
-        largest = max(float(np.max(s.max_von_mises[frames[ok]], initial=0.0)) for s in result.stresses.values()) / 1e6
+        shown = {name: link_stress(result, name) for name in result.stresses}
+        largest = max(float(np.max(value[frames[ok]], initial=0.0)) for value, _, _ in shown.values()) / 1e6
         digits = _digits(largest)
-        for name, stress in result.stresses.items():
-            links[name]["von_mises_mpa"] = _per_frame(np.round(stress.max_von_mises[frames] / 1e6, digits), ok)
-            at = result.to_ground(name, stress.max_at[frames], frames)
-            links[name]["max_at_m"] = _per_frame(np.round(at, decimals), ok)
+        for name, (value, at, label) in shown.items():
+            links[name]["von_mises_mpa"] = _per_frame(np.round(value[frames] / 1e6, digits), ok)
+            links[name]["max_at_m"] = _per_frame(np.round(result.to_ground(name, at[frames], frames), decimals), ok)
+            links[name]["stress_label"] = label
         colours = matplotlib.colormaps[COLOUR_MAP](np.linspace(0.0, 1.0, COLOUR_STOPS))
+        labels = sorted({label for _, _, label in shown.values()})
         data["stress_scale"] = {
             "max_mpa": round(largest, digits),
             "decimals": digits,
             "colours": [matplotlib.colors.to_hex(c) for c in colours],
+            "label": " or ".join(labels),
         }
     if result.forces is not None:
         forces, tails = _force_data(result, frames, ok, size, decimals)
@@ -102,6 +110,17 @@ def view_data(result: AnalysisResult) -> dict:
             bounds = np.array([np.minimum(bounds[0], tails.min(axis=0)), np.maximum(bounds[1], tails.max(axis=0))])
             data["extent_m"] = _extent(bounds, size)
     return data
+
+
+def link_stress(result: AnalysisResult, name: str) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
+    """Link ``name``'s colour at every position of the sweep: its von Mises (P,) [Pa], where it is
+    (P, 2) [m, member frame] and what it is: the FEA peak where the peaks ran, else the beam's
+    largest section value (both finite filler or nan at infeasible positions, which show null)."""
+    if name in result.peaks:
+        peaks = result.peaks[name]
+        return np.nan_to_num(peaks.peak), np.nan_to_num(peaks.peak_at), FEA_PEAK
+    stress = result.stresses[name]
+    return stress.max_von_mises, stress.max_at, BEAM
 
 
 def _force_data(result: AnalysisResult, frames, ok, size: float, decimals: int) -> tuple[dict, NDArray[np.float64]]:
@@ -204,9 +223,16 @@ def _caption(result: AnalysisResult, data: dict) -> str:
     if count < positions:
         parts.append(f"{count} of the sweep's {positions} positions, evenly chosen (the JSON output has all).")
     if "stress_scale" in data:
+        peaks = [name for name, link in data["links"].items() if link.get("stress_label") == FEA_PEAK]
+        what = (
+            "their FEA peak von Mises (anywhere in the link, pin holes included: the superposed plane-stress FEA of "
+            "--peaks)" if peaks and len(peaks) == len(result.stresses)
+            else f"their FEA peak von Mises ({', '.join(peaks)}) or else their largest section von Mises (beam theory)"
+            if peaks else "their largest section von Mises (beam theory)"
+        )
         parts.append(
-            "Links filled by their largest section von Mises (beam theory) at that position, one colour scale for the "
-            f"whole sweep, 0 to {data['stress_scale']['max_mpa']:.4g} MPa; the dot marks where it is."
+            f"Links filled by {what} at that position, one colour scale for the whole sweep, 0 to "
+            f"{data['stress_scale']['max_mpa']:.4g} MPa; the dot marks where it is."
         )
     else:
         parts.append("No section stresses were computed in this analysis: the links are not coloured.")

@@ -11,14 +11,13 @@ from __future__ import annotations
 import html
 
 import numpy as np
-from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator, MultipleLocator
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
 from linkstress.report.cells import mpa, point
-from linkstress.report.figures import plt  # pyplot on the reports' Agg backend
+from linkstress.report.figures import field_colour_bar, field_scale, plt  # pyplot on the reports' Agg backend
 from linkstress.report.html import figure_tag, table_html
 from linkstress.report.peak_records import peak_summaries
 from linkstress.stress_state import von_mises
@@ -30,10 +29,8 @@ the vertices 0-2, then the mid-edge nodes of edges (0, 1), (1, 2) and (0, 2) as 
 three corner triangles keep the parent's orientation, and so does the middle one (the parent turned
 by 180 deg)."""
 LOG_SCALE_RATIO = 10.0
-"""Above this ratio of the FEA peak to the beam's maximum (sweep figure) or to the median nodal von
-Mises (field figure), the stress scale is logarithmic, so that the smaller values keep their shape."""
-LOG_COLOUR_DECADES_RATIO = 1e3
-"""A logarithmic colour scale spans three decades below the peak; lower values take its lowest colour."""
+"""Above this ratio of the FEA peak to the beam's maximum, the sweep figure's stress axis is
+logarithmic, so that the smaller values keep their shape (the field figure: ``figures.field_scale``)."""
 FIGURE_SIZE = (6.0, 4.0)
 WITHHELD = "withheld: the FEA peak is NOT converged (see the notes)"
 
@@ -172,14 +169,12 @@ def peak_field_figure(result: AnalysisResult, name: str) -> Figure:
 
     xy = ground(nodes)
     stress = von_mises(peaks.sweep.worst_stress) / 1e6
-    largest = float(stress.max())
     # A peak concentrated at a hole would leave the rest of the link one colour on a linear scale.
-    logarithmic = largest > LOG_SCALE_RATIO * float(np.median(stress))
-    norm = LogNorm(largest / LOG_COLOUR_DECADES_RATIO, largest, clip=True) if logarithmic else None
+    scale = field_scale(stress)
     fig, ax = plt.subplots(figsize=FIGURE_SIZE, layout="constrained")
     field = ax.tripcolor(xy[:, 0], xy[:, 1], linear_triangles(cases.model.scalar.element_dofs), stress,
-                         shading="gouraud", cmap="viridis", norm=norm)
-    fig.colorbar(field, ax=ax, label="von Mises [MPa]" + (", log scale" if logarithmic else ""), shrink=0.9)
+                         shading="gouraud", cmap="viridis", norm=scale.norm)
+    field_colour_bar(fig, ax, field, scale.label)
     peak_at = ground(peaks.sweep.peak_at[peaks.sweep.worst:peaks.sweep.worst + 1])[0]
     ax.plot(*peak_at, "*", ms=15, mfc="white", mec="k", label=f"FEA peak {peaks.peak_max / 1e6:.4g} MPa")
     if peaks.fatigue is not None:
