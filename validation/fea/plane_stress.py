@@ -66,6 +66,8 @@ def scalar_element(order: int) -> Element:
     return ELEMENTS[order]()
 SOLVE_TOLERANCE = 1e-8
 """Largest residual |K u - f| of the free dofs, relative to |f| + |K u|, of a successful solve."""
+REFINEMENT_STEPS = 2
+"""Steps of iterative refinement a column above SOLVE_TOLERANCE gets before the solve is refused."""
 
 
 def plane_stress_matrix(youngs_modulus: float, poisson_ratio: float) -> NDArray[np.float64]:
@@ -212,6 +214,16 @@ class FactorisedStiffness:
         internal = self.stiffness @ u
         residual = np.linalg.norm(internal[self.free] - loads[self.free], axis=0)
         scale = np.linalg.norm(loads[self.free], axis=0) + np.linalg.norm(internal[self.free], axis=0)
+        for _ in range(REFINEMENT_STEPS):
+            # A simplicial LDL^T leaves some ill-conditioned columns just above the tolerance: a step of
+            # iterative refinement on those columns alone brings them down to rounding.
+            above = np.flatnonzero(residual > SOLVE_TOLERANCE * scale)
+            if not len(above):
+                break
+            u[np.ix_(self.free, above)] += solve_columns(self.lu, (loads[:, above] - internal[:, above])[self.free])
+            internal[:, above] = self.stiffness @ u[:, above]
+            residual[above] = np.linalg.norm(internal[self.free][:, above] - loads[self.free][:, above], axis=0)
+            scale[above] = np.linalg.norm(loads[self.free][:, above], axis=0) + np.linalg.norm(internal[self.free][:, above], axis=0)
         if not np.isfinite(u).all() or (residual > SOLVE_TOLERANCE * scale).any():
             worst = float(
                 np.max(np.divide(residual, scale, out=np.full_like(residual, np.inf), where=scale > 0))
