@@ -21,6 +21,7 @@ from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
 from linkstress.geometry.members import Member, link_members
 from linkstress.loads import hole_at
+from linkstress.model_choice import DEFAULT_ACCURACY, FEA_PEAKS, ModelChoice, choose_models
 from linkstress.scene import Scene
 from linkstress.threads import blas_alone
 
@@ -35,7 +36,10 @@ class Plan:
     """The stages to run: ``forces``; section stresses for ``stresses`` (link names) at ``stations``
     per link, with the body-load term near holes too when ``body_load_near_holes``; FEA for
     ``validate``; FEA peaks over the sweep, by superposition of unit loads, and fatigue for ``peaks``
-    (judged by ``fatigue_criterion``); ``notes`` say why a stage or link is left out."""
+    (judged by ``fatigue_criterion``); ``notes`` say why a stage or link is left out. Each stressed
+    link's stress model is chosen for the governing stress within ``accuracy``
+    (``linkstress.model_choice``); ``analyze`` runs the FEA peaks of the links chosen for them
+    unless ``beam_only``, and of every stressed link when ``peaks`` names them (``with_peaks``)."""
 
     forces: bool
     stresses: tuple[str, ...]
@@ -45,10 +49,21 @@ class Plan:
     body_load_near_holes: bool = False
     peaks: tuple[str, ...] = ()
     fatigue_criterion: str = "goodman"
+    accuracy: float = DEFAULT_ACCURACY
+    beam_only: bool = False
 
     def with_peaks(self) -> Plan:
         """The same plan with FEA peaks for every stressed link."""
         return replace(self, peaks=self.stresses)
+
+    def fea_links(self, models: dict[str, ModelChoice]) -> tuple[str, ...]:
+        """The links whose FEA peaks ``analyze`` computes: none when ``beam_only``, ``peaks`` when
+        asked for, else those whose chosen model (``models``) is "fea-peaks"."""
+        if self.beam_only:
+            return ()
+        if self.peaks:
+            return self.peaks
+        return tuple(name for name in self.stresses if name in models and models[name].model == FEA_PEAKS)
 
     def describe(self) -> str:
         lines = ["plan:", "  kinematics: every position"]
@@ -59,6 +74,12 @@ class Plan:
             + (", body-load term near holes too" if self.stresses and self.body_load_near_holes else "")
         )
         lines.append(f"  FEA check: {', '.join(self.validate) if self.validate else 'none'}")
+        if self.stresses and not self.peaks:
+            lines.append(
+                "  FEA peaks: none (--beam-only)" if self.beam_only else
+                f"  FEA peaks over the sweep: the links whose governing stress beam theory and the Kt tables cannot "
+                f"answer within {100 * self.accuracy:g} % (the model of each is chosen after the section stresses)"
+            )
         if self.peaks:
             lines.append(
                 f"  FEA peaks over the sweep (superposed unit loads) and fatigue ({self.fatigue_criterion}): "
@@ -124,7 +145,8 @@ def plan_for(scene: Scene) -> Plan:
     body_load_near_holes = asked is not None and asked.body_load_near_holes
     peaks = stresses if asked is not None and asked.peaks else ()
     criterion = asked.fatigue_criterion if asked is not None else "goodman"
-    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes, peaks, criterion)
+    accuracy = asked.accuracy if asked is not None and asked.accuracy is not None else DEFAULT_ACCURACY
+    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes, peaks, criterion, accuracy)
 
 
 @dataclass(frozen=True)
@@ -133,7 +155,8 @@ class AnalysisResult:
     that ran could compute, ``reasons`` why not elsewhere; ``seconds`` per stage.
     ``stresses`` keep per-position reductions, per member; ``stresses[name].members[k].at(positions)``
     recomputes the arrays along a member. ``peaks``: per link of ``plan.peaks``, its FEA peaks over
-    the sweep and fatigue (``linkstress.validation.peaks_scene.LinkPeaks``)."""
+    the sweep and fatigue (``linkstress.validation.peaks_scene.LinkPeaks``). ``models``: per
+    stressed link, its stress model and why (``linkstress.model_choice``)."""
 
     scene: Scene
     plan: Plan
@@ -142,6 +165,7 @@ class AnalysisResult:
     stresses: dict[str, StressSummary]
     seconds: dict[str, float] = field(default_factory=dict)
     peaks: dict[str, object] = field(default_factory=dict)
+    models: dict[str, ModelChoice] = field(default_factory=dict)
 
     def curved(self, name: str) -> bool:
         """Whether link ``name`` has a curved member: one sectioned normal to its curved centreline
@@ -174,13 +198,16 @@ class AnalysisResult:
         return origin + np.column_stack([c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1]])
 
 
-def run_analysis(scene: Scene, plan: Plan | None = None) -> AnalysisResult:
-    """Run ``plan`` (default: the scene's) on ``scene`` (BLAS on one thread: ``linkstress.threads``)."""
+def run_analysis(scene: Scene, plan: Plan | None = None, peaks: bool = True) -> AnalysisResult:
+    """Run ``plan`` (default: the scene's) on ``scene`` (BLAS on one thread: ``linkstress.threads``):
+    kinematics, forces, section stresses, each stressed link's model, and the FEA peaks of
+    ``plan.peaks`` here unless ``peaks`` is False (the caller computes them: ``analyze`` does, for
+    the links the plan and the models name, here or on a cluster)."""
     with blas_alone():
-        return _run(scene, plan or plan_for(scene))
+        return _run(scene, plan or plan_for(scene), peaks)
 
 
-def _run(scene: Scene, plan: Plan) -> AnalysisResult:
+def _run(scene: Scene, plan: Plan, fea: bool) -> AnalysisResult:
     seconds = {}
     start = time.perf_counter()
     kinematics = solve_machine(scene.machine, scene.motion)
@@ -199,15 +226,34 @@ def _run(scene: Scene, plan: Plan) -> AnalysisResult:
             jobs.append((profile, loads, members, plan.stations))
         stresses = dict(zip(plan.stresses, links_section_stresses(jobs, plan.body_load_near_holes)))
         seconds["stresses"] = time.perf_counter() - start
-    peaks = {}
-    if plan.peaks and forces is not None:
+    result = AnalysisResult(scene, plan, kinematics, forces, stresses, seconds)
+    result = replace(result, models=models_of(result))
+    if fea and plan.peaks and forces is not None and not plan.beam_only:
         # The FEA stack (gmsh, scikit-fem) loads only when peaks are asked for.
         from linkstress.validation.peaks_scene import scene_peaks
 
         start = time.perf_counter()
         peaks = scene_peaks(scene, plan, forces)
-        seconds["peaks"] = time.perf_counter() - start
-    return AnalysisResult(scene, plan, kinematics, forces, stresses, seconds, peaks)
+        result = replace(result, peaks=peaks, seconds={**seconds, "peaks": time.perf_counter() - start})
+    return result
+
+
+ASKED = "FEA peaks asked for every stressed link (--peaks or [analysis] peaks = true)"
+
+
+def models_of(result: AnalysisResult) -> dict[str, ModelChoice]:
+    """Each stressed link's model for the plan's accuracy; "fea-peaks" for the links whose peaks the
+    plan asks for, its reason saying so and what the choice alone would have been."""
+    start = time.perf_counter()
+    models = choose_models(result, result.plan.accuracy)
+    result.seconds["model choice"] = time.perf_counter() - start
+    for name in result.plan.peaks if not result.plan.beam_only else ():
+        chosen = models[name]
+        if chosen.model != FEA_PEAKS:
+            models[name] = replace(chosen, model=FEA_PEAKS, reason=f"{ASKED}; by itself {chosen.model}: {chosen.reason}")
+        else:
+            models[name] = replace(chosen, reason=f"{ASKED}; by itself too: {chosen.reason}")
+    return models
 
 
 def used_joints(scene: Scene, name: str) -> tuple[int, ...]:

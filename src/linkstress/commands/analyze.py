@@ -1,5 +1,7 @@
-"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--peaks] [--details] [--explain]``:
-motion, joint forces and section stresses of a scene's machine at every input position.
+"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--accuracy F] [--peaks | --beam-only]
+[--details] [--explain]``: motion, joint forces and section stresses of a scene's machine at every
+input position, and the FEA peaks of the links whose governing stress beam theory and the Kt tables
+cannot answer within the accuracy (``linkstress.model_choice``).
 
 stdout: the verdict first (``linkstress.report.verdict``: per link the stress that governs it, where,
 its safety factors and how far to trust it), the scene's warnings, each mechanism's class (Grashof,
@@ -12,6 +14,7 @@ section stresses position by position. ``--json`` writes docs/design.md's ``anal
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +24,7 @@ from linkstress.commands import HelpFormatter, examples
 from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.errors import InputError
 from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_choice
+from linkstress.model_choice import DEFAULT_ACCURACY, accuracy_problem
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.peak_records import peak_summaries
 from linkstress.report.records import stream_position_records, summary_record
@@ -59,6 +63,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
         epilog=examples(
             "linkstress analyze validation/cases/six_bar/scene.toml --html six.html",
+            "linkstress analyze validation/cases/seed_ansys_fourbar/scene.toml --accuracy 0.02",
+            "linkstress analyze validation/cases/bell_crank/scene.toml --beam-only",
             "linkstress analyze validation/cases/bell_crank/scene.toml --peaks",
             "linkstress analyze validation/cases/bell_crank/scene.toml --peaks --scheduler tcp://10.0.0.5:8786",
         ),
@@ -72,16 +78,28 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--html", type=Path, metavar="OUT", help="also write a self-contained HTML report to OUT")
     parser.add_argument(
+        "--accuracy", type=float, metavar="FRACTION",
+        help="the governing stress of every link within this fraction (default: [analysis] accuracy, else "
+        f"{DEFAULT_ACCURACY:g}, i.e. {100 * DEFAULT_ACCURACY:g} %%): each link takes beam sections, with the pin-hole "
+        "Kt estimates where they answer within it, and the FEA peaks where they do not (a pin hole outside the Kt "
+        "tables, a couple through a pin, a junction, a bend, a fillet); the report says which model and why",
+    )
+    fea = parser.add_mutually_exclusive_group()
+    fea.add_argument(
         "--peaks", action="store_true",
-        help="also the FEA peak stress of every stressed link at every position (unit load cases superposed, "
-        "one mesh and factorisation per link) and, where its material gives endurance_limit and ultimate_strength, "
-        "its fatigue safety factor over the sweep; as [analysis] peaks = true",
+        help="the FEA peak stress of every stressed link at every position, whatever its model (unit load cases "
+        "superposed, one mesh and factorisation per link) and, where its material gives endurance_limit and "
+        "ultimate_strength, its fatigue safety factor over the sweep; as [analysis] peaks = true",
+    )
+    fea.add_argument(
+        "--beam-only", action="store_true",
+        help="no FEA at all: beam sections and pin-hole estimates only, fast; the verdict says what they do not cover",
     )
     parser.add_argument(
         "--scheduler", metavar="ADDRESS",
         help="compute the FEA peaks on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT), a task per "
         f"link; local: a cluster of this machine's cores for this run; default: the {SCHEDULER_VARIABLE} variable "
-        "(ignored when no peaks are computed). Needs --peaks or [analysis] peaks = true, and "
+        "(ignored when no peaks are computed). Not with --beam-only; needs "
         'pip install "linkstress[cluster]" (docs/cluster.md)',
     )
     add_cache_options(parser)
@@ -99,30 +117,29 @@ def run(args: argparse.Namespace) -> int:
     check_outputs(outputs, [args.scene])
     scene = load_scene(args.scene)
     check_outputs(outputs, scene_sketches(scene))
-    plan = plan_for(scene)
-    if args.peaks:
-        plan = plan.with_peaks()
+    plan = command_plan(scene, args)
     if plan.peaks or args.peaks:
         check_peaks(scene, plan)
-    if args.scheduler is not None and not plan.peaks:
+    if args.scheduler is not None and (plan.beam_only or not plan.stresses):
         raise InputError(
-            f"{OPTION}: only the FEA peaks run on a cluster and this run computes none: add --peaks (or "
-            "[analysis] peaks = true), or leave out --scheduler"
+            f"{OPTION}: only the FEA peaks run on a cluster and this run computes none"
+            + (" (--beam-only): leave out one of them" if plan.beam_only else
+               ": add --peaks (or [analysis] peaks = true), or leave out --scheduler")
         )
     check_work(scene, plan)
     if args.explain:
         print(plan.describe())
         return 0
-    # The variable alone is ignored without peaks: set for a shell, it must not stop a plain analyze.
-    scheduler, source = scheduler_choice(args.scheduler) if plan.peaks else (None, "")
-    cache = fea_choices(args) if plan.peaks else None
     retried: list[Retry] = []
     # Overflow is reported by refuse_non_finite, naming the keys, rather than as numpy warnings.
     with np.errstate(all="ignore"):
-        if not plan.peaks:
-            result = run_analysis(scene, plan)
-        else:
-            result, retried = analysis_with_peaks(scene, plan, scheduler, source, cache)
+        result = run_analysis(scene, plan, peaks=False)
+        links = fea_ready(result)
+        scheduler = None
+        if links:
+            # The variable alone is ignored without peaks: set for a shell, it must not stop a plain analyze.
+            scheduler, source = scheduler_choice(args.scheduler)
+            result, retried = analysis_with_peaks(result, links, scheduler, source, fea_choices(args))
     refuse_non_finite(result)
     # Every output is staged before any is renamed into place, so a failure leaves none half-done; the
     # JSON is encoded into its staged file as its records are made, a block of positions at a time.
@@ -146,24 +163,56 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def command_plan(scene: Scene, args: argparse.Namespace) -> Plan:
+    """The scene's plan with the command line's --accuracy, --peaks and --beam-only."""
+    plan = plan_for(scene)
+    if args.accuracy is not None:
+        if (problem := accuracy_problem(args.accuracy)) is not None:
+            raise InputError(f"--accuracy: {problem}")
+        plan = replace(plan, accuracy=args.accuracy)
+    if args.peaks:
+        plan = plan.with_peaks()
+    if args.beam_only:
+        plan = replace(plan, peaks=(), beam_only=True)
+    return plan
+
+
+def fea_ready(result: AnalysisResult) -> tuple[str, ...]:
+    """The links whose FEA peaks this run computes (``Plan.fea_links``): those asked for (checked
+    before the run), and those whose model is "fea-peaks" and that the FEA can take (elastic
+    constants, a mesh this machine can carry). Where it cannot, the link's model reason says why and
+    the link keeps its beam values (the verdict says what they do not cover)."""
+    plan = result.plan
+    links = plan.fea_links(result.models)
+    if plan.peaks or result.forces is None:
+        return links if result.forces is not None else ()
+    ready = []
+    for name in links:
+        try:
+            check_peaks(result.scene, replace(plan, peaks=(name,)))
+        except InputError as error:
+            chosen = result.models[name]
+            result.models[name] = replace(chosen, reason=f"{chosen.reason}; no FEA: {error}")
+            continue
+        ready.append(name)
+    return tuple(ready)
+
+
 def analysis_with_peaks(
-    scene: Scene, plan: Plan, scheduler: str | None, source: str, cache=None
+    result: AnalysisResult, links: tuple[str, ...], scheduler: str | None, source: str, cache=None
 ) -> tuple[AnalysisResult, list[Retry]]:
-    """``run_analysis`` with the FEA peaks' links as tasks here (``scheduler`` None) or on the Dask
-    cluster at ``scheduler`` (named by ``source`` in messages), connected to before anything is
-    computed, each using the disk ``cache`` (``CacheSettings``; None: none); the tasks it ran again."""
+    """``result`` with the FEA peaks of ``links`` computed as tasks here (``scheduler`` None) or on
+    the Dask cluster at ``scheduler`` (named by ``source`` in messages), each using the disk
+    ``cache`` (``CacheSettings``; None: none); the tasks it ran again."""
     import time
-    from dataclasses import replace
 
     from linkstress.executors import executor
     from linkstress.validation.peaks_scene import scene_peaks
 
+    plan = replace(result.plan, peaks=links)
     with executor(scheduler, source) as where:
-        result = run_analysis(scene, replace(plan, peaks=()))
-        if result.forces is None:
-            return replace(result, plan=plan), []
         start = time.perf_counter()
-        peaks = scene_peaks(scene, plan, result.forces, where, cache)
+        peaks = scene_peaks(result.scene, plan, result.forces, where, cache)
         seconds = {**result.seconds, "peaks": time.perf_counter() - start}
     return replace(result, plan=plan, peaks=peaks, seconds=seconds), where.retried
 

@@ -126,7 +126,9 @@ class HoleOutline:
     """What a pin force sees at one hole, per force direction k (angle 2 pi k / DIRECTIONS [rad],
     member frame): ``width`` H, ``end_distance`` e and ``shank`` w (K,) [m], ``shape`` (K,) codes
     SQUARE / ROUND / OTHER / OPEN, ``kt`` (K,) from the tables (clamped to their edges where outside),
-    ``outside`` (K,) and ``reason`` (K,) object array: why Kt is outside the tables, None inside."""
+    ``outside`` (K,) and ``reason`` (K,) object array: why Kt is outside the tables, None inside;
+    ``tilt`` (K,) [deg]: the force's angle to the axis of the shank behind the hole (inf where there
+    is no shank), which the tables' accuracy depends on (``linkstress.model_choice``)."""
 
     width: NDArray[np.float64]
     end_distance: NDArray[np.float64]
@@ -135,6 +137,7 @@ class HoleOutline:
     kt: NDArray[np.float64]
     outside: NDArray[np.bool_]
     reason: NDArray[np.object_]
+    tilt: NDArray[np.float64]
 
 
 @dataclass(frozen=True)
@@ -145,7 +148,9 @@ class PinHoleEstimate:
     ``nominal`` [Pa] of the pin force, ``kts`` and ``estimate`` = Kt x nominal [Pa], and ``outside``:
     True where the geometry the force sees is outside the Kt tables (``reasons`` says why; Kt there is
     the nearest table edge's, not to be trusted, and kept out of safety factors). ``kt`` is the Kt of
-    the largest estimate inside the tables, None where no position is inside."""
+    the largest estimate inside the tables, None where no position is inside. ``tilt`` (P,) [deg]:
+    the force's angle to the shank's axis, the larger of the two directions it is read from (inf
+    where either has no shank; what the tables' accuracy depends on, ``linkstress.model_choice``)."""
 
     joint: int
     diameter: float
@@ -161,6 +166,7 @@ class PinHoleEstimate:
     reason_code: NDArray[np.int8]
     reason_texts: tuple[str | None, ...]
     source: str = SOURCE
+    tilt: NDArray[np.float64] | None = None
 
     @property
     def shape(self) -> tuple[str, ...]:
@@ -188,6 +194,7 @@ class PinHoleEstimate:
             shape_code=self.shape_code[positions], nominal=self.nominal[positions], kts=self.kts[positions],
             estimate=self.estimate[positions], outside=self.outside[positions],
             reason_code=self.reason_code[positions],
+            tilt=None if self.tilt is None else self.tilt[positions],
         )
 
     def largest(self, positions) -> float | None:
@@ -254,7 +261,7 @@ def hole_outline(boundary: Boundary, centre: NDArray[np.float64], diameter: floa
                                             w_over_h.tolist(), offset.tolist(), misfit.tolist(), tilt.tolist())
     ], dtype=object)
     return HoleOutline(width, end, shank, shape, table_kt(shape, d_over_h, e_over_h, w_over_h),
-                       np.not_equal(reason, None), reason)
+                       np.not_equal(reason, None), reason, tilt)
 
 
 def turned(values: NDArray[np.float64], steps) -> NDArray[np.float64]:
@@ -453,8 +460,9 @@ def _estimate(joint: int, diameter: float, depth: float, outline: HoleOutline, f
     if outside.any():
         source += (f"; OUTSIDE the Kt tables at {int(outside.sum())} of {len(outside)} positions "
                    "(kt_outside_table, kt_outside_reason): no estimate there and none in the safety factors")
+    tilt = np.maximum(outline.tilt[below], outline.tilt[above])
     return PinHoleEstimate(joint, diameter, depth, kt, width, end, shape, nominal, kts, estimate,
-                           outside.astype(bool), codes, texts, source)
+                           outside.astype(bool), codes, texts, source, tilt)
 
 
 def _borne_forces(link: LinkProfile, loads: LinkLoadCase) -> dict[int, NDArray[np.float64]]:

@@ -13,7 +13,9 @@ exists), ``stations`` (>= 2), ``validate`` (link names with profiles), ``mesh_si
 ``element_order`` (1 or 2, default 2), ``body_load_near_holes`` (boolean, default false: sections
 within a depth of a hole get nominal beam values, without the body-load term), ``peaks`` (boolean,
 default false: FEA peaks over the sweep by superposition of unit loads, and fatigue),
-``fatigue_criterion`` ("goodman", "gerber" or "asme-elliptic"; default "goodman").
+``fatigue_criterion`` ("goodman", "gerber" or "asme-elliptic"; default "goodman"), ``accuracy``
+(0.001-0.5, default 0.05: the governing stress within 5 %, which picks each stressed link's stress
+model, ``linkstress.model_choice``).
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from linkstress.fatigue import CRITERIA
 from linkstress.kinematics.linkage.graph import LinkageGraph
 from linkstress.kinematics.machine import Machine
 from linkstress.messages import capped
+from linkstress.model_choice import accuracy_problem
 from linkstress.loads import distance_outside
 from linkstress.scene.keys import MAX_STATIONS, Table, shown_value
 from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, SceneLink
@@ -32,7 +35,7 @@ from linkstress.scene.model import Analysis, CoupleLoad, Loads, PointLoad, Scene
 LOAD_KEYS = ("gravity_m_s2", "couples", "forces", "friction")
 ANALYSIS_KEYS = (
     "kinematics", "forces", "stresses", "stations", "validate", "mesh_size_m", "element_order", "body_load_near_holes",
-    "peaks", "fatigue_criterion",
+    "peaks", "fatigue_criterion", "accuracy",
 )
 COUPLE_KEYS = ("value", "at_joint")
 """The keys of a couple given as an inline table: ``LINK = {value = 2.0, at_joint = 1}``."""
@@ -98,6 +101,9 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
             if links[name].profile is None:
                 raise table.error("validate", f"link {name!r} has bare joints; only links drawn in a sketch can be checked by FEA")
         validate = tuple(raw)
+    accuracy = table.number("accuracy")
+    if accuracy is not None and (problem := accuracy_problem(accuracy)) is not None:
+        raise table.error("accuracy", problem)
     order = table.integer("element_order", 2)
     if order not in (1, 2):
         raise table.error("element_order", f"must be 1 (linear) or 2 (quadratic triangles), got {order}")
@@ -112,6 +118,7 @@ def read_analysis(table: Table | None, links: dict[str, SceneLink]) -> Analysis 
         body_load_near_holes=table.boolean("body_load_near_holes", False),
         peaks=table.boolean("peaks", False),
         fatigue_criterion=table.string("fatigue_criterion", "goodman", CRITERIA),
+        accuracy=accuracy,
     )
 
 

@@ -127,7 +127,8 @@ class Analysis:
     body_load_near_holes: the body-load term on sections near holes too (default: nominal values there);
     peaks: FEA peak stresses over the sweep by superposition of unit loads, and fatigue, for every
     stressed link; fatigue_criterion: the criterion of ``fatigue_safety_factor`` ("goodman",
-    "gerber" or "asme-elliptic").
+    "gerber" or "asme-elliptic"); accuracy: the governing stress within this fraction, which picks
+    each link's stress model (``linkstress.model_choice``; None: its default, 0.05).
     """
 
     kinematics: bool = False
@@ -140,6 +141,7 @@ class Analysis:
     body_load_near_holes: bool = False
     peaks: bool = False
     fatigue_criterion: str = "goodman"
+    accuracy: float | None = None
 
 
 @dataclass(frozen=True)
