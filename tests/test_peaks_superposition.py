@@ -89,9 +89,12 @@ def test_superposition_is_the_direct_fea_exactly_when_every_bearing_force_lies_o
     np.testing.assert_allclose(reactions, direct.reactions, rtol=0, atol=1e-9 * np.abs(direct.reactions).max())
     ratio = sweep_peaks(cases, loads).reaction_ratio
     assert (ratio > 1e-3).all() and (ratio <= direct.reaction_ratio * (1 + 1e-9)).all()
-    # 2 pins x 36 directions, 2 couples, a point force in material (2), one in a hole (36 + its couple), 4 body terms
-    assert cases.count == 72 + 2 + 2 + 37 + 4
-    assert cases.labels[:2] == ("pin 0: unit bearing force at 0 deg", "pin 0: unit bearing force at 10 deg")
+    # per pin and per force in a hole, the directions its forces fall between; 2 couples, a point force
+    # in material (2), the couple of the one in a hole, 4 body terms
+    bearings = [b for _, b in cases.pins] + [b for _, b, _ in cases.point_forces if b is not None]
+    assert cases.count == sum(len(b.indices) for b in bearings) + 2 + 2 + 1 + 4
+    first = np.rad2deg(cases.directions[bearings[0].indices[0]])
+    assert cases.labels[0] == f"pin 0: unit bearing force at {first:g} deg"
     assert cases.labels[-4:] == tuple(f"body: unit {t}" for t in ("(g - a_O)_x", "(g - a_O)_y", "alpha", "omega^2"))
 
 
@@ -119,7 +122,12 @@ def test_only_the_loads_a_sweep_has_get_unit_cases_and_others_are_refused():
     zero = np.zeros(n)
     loads = LinkLoadCase((0, 1), pins, np.zeros((n, 2)), zero, zero, np.zeros((n, 2)), np.zeros((n, 2)))
     cases = unit_load_cases(link, loads, MESH)
-    assert cases.count == 2 * 36 + 4  # two pins and the body terms; no couple anywhere
+    # each pin pulled along one line: one or two bearing directions (not all 36), the body terms, no couple
+    assert [len(b.indices) <= 2 for _, b in cases.pins] == [True, True]
+    assert cases.count == sum(len(b.indices) for _, b in cases.pins) + 4
+    across = LinkLoadCase((0, 1), pins[:, :, ::-1].copy(), np.zeros((n, 2)), zero, zero, np.zeros((n, 2)), np.zeros((n, 2)))
+    with pytest.raises(FEAError, match=r"link 'bar': a pin force along \d+ deg, a bearing direction its unit load cases"):
+        cases.weights(across)
     turned = LinkLoadCase((0, 1), pins, np.column_stack([np.ones(n), zero]), zero, zero, np.zeros((n, 2)), np.zeros((n, 2)))
     with pytest.raises(FEAError, match=r"link 'bar': joint 0 carries a couple its unit load cases were not made for"):
         cases.weights(turned)
@@ -178,3 +186,35 @@ def test_the_superposed_peak_is_within_1_percent_of_the_direct_fea_at_validates_
         field = superposed_stress(cases, cases.weights(loads.at(chosen)))
         assert field_error(field, direct.nodal_stress).max() <= 0.005, name
         assert sweep_result.reaction_ratio.max() <= 1e-4, name  # the kinetics' loads stay in equilibrium
+
+
+def test_a_cached_entry_serves_every_sweep_whose_forces_fall_between_its_directions(tmp_path):
+    """The unit-load entry is keyed without the bearing directions and holds those it was solved
+    for: a sweep inside them reads it; one that needs others solves the union once and keeps it, and
+    every superposed field equals the one solved without the cache."""
+    from linkstress.validation.fea.cache import CacheSettings, open_cache
+
+    cache = open_cache(CacheSettings(tmp_path))
+    link = bar()
+    n = 3
+
+    def pulled(angles_deg) -> LinkLoadCase:
+        a = np.deg2rad(np.asarray(angles_deg, float))
+        pins = np.zeros((n, 2, 2))
+        pins[:, 1] = 400.0 * np.column_stack([np.cos(a), np.sin(a)])
+        pins[:, 0] = -pins[:, 1]
+        zero = np.zeros(n)
+        return LinkLoadCase((0, 1), pins, np.zeros((n, 2)), zero, zero, np.zeros((n, 2)), np.zeros((n, 2)))
+
+    narrow, inside, wide = pulled([2.0, 5.0, 8.0]), pulled([3.0, 4.0, 7.0]), pulled([2.0, 25.0, 48.0])
+    first = unit_load_cases(link, narrow, MESH, cache=cache)
+    again = unit_load_cases(link, inside, MESH, cache=cache)
+    assert not first.cached and again.cached and again.count == first.count
+    widened = unit_load_cases(link, wide, MESH, cache=cache)
+    assert not widened.cached and widened.count > first.count
+    assert unit_load_cases(link, narrow, MESH, cache=cache).cached  # the union serves the first sweep too
+    for loads, cases in ((inside, again), (wide, widened)):
+        fresh = unit_load_cases(link, loads, MESH)
+        np.testing.assert_allclose(superposed_stress(cases, cases.weights(loads)),
+                                   superposed_stress(fresh, fresh.weights(loads)), rtol=0,
+                                   atol=1e-9 * np.abs(fresh.stress).max() * 400)

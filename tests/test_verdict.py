@@ -116,7 +116,9 @@ def test_without_fea_the_larger_of_the_beam_and_every_estimate_governs(case):
         uncovered = [h for h in stress.pin_holes if ((h.nominal > 0) & h.outside)[ok].any()]
         assert len(row.uncovered) == len(uncovered)
         if uncovered:
-            assert row.link in verdict.next_step and "--peaks" in verdict.next_step
+            # its model is "fea-peaks", which this run (the beam alone) did not compute: analyze does
+            assert result.models[row.link].model == "fea-peaks" and "needs the FEA peaks" in row.reason
+            assert row.link in verdict.next_step and f"linkstress analyze {scene.path}" in verdict.next_step
             assert row.trust == ("Kt estimate" if row.stress.governing == ESTIMATE else "beam only")
 
 
@@ -175,8 +177,11 @@ def test_the_scenes_warnings_follow_the_verdict_in_text_html_and_json(command, t
     assert main([command, str(SEED), "--json", str(out), "--html", str(page), *extra]) == 0
     text = capsys.readouterr().out
     heading, warning = verdict_and_warnings_in(text)
-    table_end = text.splitlines().index("", heading)
-    assert warning == table_end + 1  # right after the verdict and its next step
+    lines = text.splitlines()
+    table_end = lines.index("", heading)
+    if lines[table_end + 1].startswith("models:"):  # each link's model and why: the verdict's last part
+        table_end = lines.index("", table_end + 1)
+    assert warning == table_end + 1  # right after the verdict, its next step and the models
     assert f"warning: {WARNINGS[1]}" == text.splitlines()[warning + 1]
     assert json.loads(out.read_text())["warnings"] == list(WARNINGS)
     html = page.read_text()

@@ -40,6 +40,9 @@ if TYPE_CHECKING:
 
 BEAM, BEAM_KT, FEA_PEAKS = "beam", "beam+Kt", "fea-peaks"
 MODELS = (BEAM, BEAM_KT, FEA_PEAKS)
+NO_FEA = "; no FEA: "
+"""What a model reason adds, with why, when its link needs FEA the run cannot do (no elastic
+constants, a mesh too large)."""
 DEFAULT_ACCURACY = 0.05
 """The governing stress within 5 % unless the scene ([analysis] accuracy) or --accuracy says otherwise."""
 ACCURACY_RANGE = (0.001, 0.5)

@@ -20,7 +20,10 @@ only the bearing pressure's shape between basis directions differs from the dire
 (measured by ``linkstress bench`` and the tests).
 
 Only the loads a sweep has are modelled: a pin that never carries force, a joint without a couple,
-get no unit cases.
+get no unit cases, and a pin gets the bearing directions its forces fall between, not all K (a
+two-force bar's pins take a few either side of its axis). The disk cache keeps a link's solutions
+under a key without the directions (``unit_cases_key``), with the directions each pin has: a later
+run whose forces fall between those reads them, one that needs others solves the union and keeps it.
 """
 
 from __future__ import annotations
@@ -58,12 +61,31 @@ UNIT_LOADS = "unit-loads"
 
 @dataclass(frozen=True)
 class Bearing:
-    """A pin's K bearing cases, in the columns from ``first``: on hole ``hole`` (the outline's
-    interior index) about ``centre`` (2,) [m, member frame]."""
+    """A pin's bearing cases, in the columns from ``first``, one per basis direction of ``indices``
+    (into the K directions, ascending): on hole ``hole`` (the outline's interior index) about
+    ``centre`` (2,) [m, member frame]."""
 
     first: int
     hole: int
     centre: NDArray[np.float64]
+    indices: NDArray[np.intp]
+
+    def weights(self, forces: NDArray[np.float64], directions: NDArray[np.float64], name: str) -> NDArray[np.float64]:
+        """(len(indices), P): the weights of its cases for ``forces`` (P, 2) [N]; FEAError naming
+        link ``name`` when a force falls between directions it has no case for."""
+        w = bearing_weights(forces, directions)
+        missing = np.setdiff1d(np.flatnonzero((w != 0).any(axis=0)), self.indices)
+        if len(missing):
+            raise FEAError(
+                f"link {name!r}: a pin force along {np.rad2deg(directions[missing[0]]):g} deg, a bearing direction its "
+                "unit load cases were not made for"
+            )
+        return w[:, self.indices].T
+
+
+def used_directions(forces: NDArray[np.float64], directions: NDArray[np.float64]) -> NDArray[np.intp]:
+    """The indices (ascending) of the basis ``directions`` that ``forces`` (P, 2) [N] fall between."""
+    return np.flatnonzero((bearing_weights(forces, directions) != 0).any(axis=0))
 
 
 @dataclass(frozen=True)
@@ -112,9 +134,10 @@ class UnitLoadCases:
         same load terms: a term the unit cases lack must be zero in ``loads``, else FEAError)."""
         check_same_terms(self, loads)
         w = np.zeros((self.count, loads.n_positions))
-        k = len(self.directions)
+        name = self.link.name
         for joint, bearing in self.pins:
-            w[bearing.first:bearing.first + k] = bearing_weights(loads.pin_forces[:, joint], self.directions).T
+            w[bearing.first:bearing.first + len(bearing.indices)] = bearing.weights(
+                loads.pin_forces[:, joint], self.directions, name)
         for joint, column in self.couples:
             w[column] = loads.joint_couples[:, joint]
         for index, bearing, column in self.point_forces:
@@ -123,7 +146,7 @@ class UnitLoadCases:
             if bearing is None:
                 w[column:column + 2] = force.T
                 continue
-            w[bearing.first:bearing.first + k] = bearing_weights(force, self.directions).T
+            w[bearing.first:bearing.first + len(bearing.indices)] = bearing.weights(force, self.directions, name)
             offset = np.asarray(point.at, float) - bearing.centre
             w[column] = offset[0] * force[:, 1] - offset[1] * force[:, 0]
         free = loads.gravity - loads.origin_acceleration
@@ -153,17 +176,21 @@ def bearing_weights(forces: NDArray[np.float64], directions: NDArray[np.float64]
 
 @dataclass(frozen=True)
 class UnitCaseGroup:
-    """Consecutive unit cases of one kind: ``bearing`` (one per direction, on ``hole`` about
-    ``centre``), ``couple`` (a unit couple on ``hole`` about ``centre``), ``patch`` (unit x and y
-    point forces at ``centre``, in material) or ``body`` (the four body-load terms); their ``labels``."""
+    """Consecutive unit cases of one kind: ``bearing`` (one per direction of ``indices``, on ``hole``
+    about ``centre``), ``couple`` (a unit couple on ``hole`` about ``centre``), ``patch`` (unit x and
+    y point forces at ``centre``, in material) or ``body`` (the four body-load terms); their ``labels``."""
 
     kind: str
     hole: int | None
     centre: tuple[float, float] | None
     labels: tuple[str, ...]
+    indices: tuple[int, ...] = ()
 
     def key(self) -> dict:
-        return {"kind": self.kind, "hole": self.hole, "centre": self.centre, "cases": len(self.labels)}
+        """What determines the group's solutions but its bearing directions (which the cache entry
+        holds: a pin's entry serves every subset of the directions it has)."""
+        cases = "directions" if self.kind == "bearing" else len(self.labels)
+        return {"kind": self.kind, "hole": self.hole, "centre": self.centre, "cases": cases}
 
 
 @dataclass(frozen=True)
@@ -184,8 +211,11 @@ class UnitCaseLayout:
         return tuple(label for group in self.groups for label in group.labels)
 
 
-def unit_case_layout(link: LinkProfile, loads: LinkLoadCase, step_deg: float = DIRECTION_STEP_DEG) -> UnitCaseLayout:
-    """The unit cases of the load terms ``loads`` has over its sweep (see the module's docstring).
+def unit_case_layout(link: LinkProfile, loads: LinkLoadCase, step_deg: float = DIRECTION_STEP_DEG,
+                     wider: dict[int, NDArray[np.intp]] | None = None) -> UnitCaseLayout:
+    """The unit cases of the load terms ``loads`` has over its sweep (see the module's docstring):
+    each pin's bearing directions those its forces fall between, and those of ``wider`` (per
+    bearing group, in order: the directions a cache entry has).
 
     Raises FEAError naming the link for a loaded joint without a hole.
     """
@@ -193,15 +223,19 @@ def unit_case_layout(link: LinkProfile, loads: LinkLoadCase, step_deg: float = D
     directions = np.deg2rad(np.arange(0.0, 360.0, step_deg))
     groups: list[UnitCaseGroup] = []
 
-    def add(kind: str, hole: int | None, centre, labels: list[str]) -> int:
+    def add(kind: str, hole: int | None, centre, labels: list[str], indices=()) -> int:
         first = sum(len(g.labels) for g in groups)
         point = None if centre is None else (float(centre[0]), float(centre[1]))
-        groups.append(UnitCaseGroup(kind, hole, point, tuple(labels)))
+        groups.append(UnitCaseGroup(kind, hole, point, tuple(labels), tuple(int(k) for k in indices)))
         return first
 
-    def bearing(label: str, hole: int, centre: NDArray[np.float64]) -> Bearing:
-        names = [f"{label}: unit bearing force at {np.rad2deg(d):g} deg" for d in directions]
-        return Bearing(add("bearing", hole, centre, names), hole, np.asarray(centre, float))
+    def bearing(label: str, hole: int, centre: NDArray[np.float64], forces: NDArray[np.float64]) -> Bearing:
+        indices = used_directions(forces, directions)
+        extra = (wider or {}).get(sum(g.kind == "bearing" for g in groups))
+        if extra is not None:
+            indices = np.union1d(indices, extra)
+        names = [f"{label}: unit bearing force at {np.rad2deg(directions[k]):g} deg" for k in indices]
+        return Bearing(add("bearing", hole, centre, names, indices), hole, np.asarray(centre, float), indices)
 
     pins, couples = [], []
     for j, hole in enumerate(link.joint_holes):
@@ -213,7 +247,7 @@ def unit_case_layout(link: LinkProfile, loads: LinkLoadCase, step_deg: float = D
                 "joint loads on a pin hole: draw the hole (a circle centred on the joint)"
             )
         if loaded:
-            pins.append((j, bearing(f"pin {j}", hole, joints[j])))
+            pins.append((j, bearing(f"pin {j}", hole, joints[j], pin)))
         if turned:
             couples.append((j, add("couple", hole, joints[j], [f"pin {j}: unit couple"])))
     points = []
@@ -224,7 +258,7 @@ def unit_case_layout(link: LinkProfile, loads: LinkLoadCase, step_deg: float = D
             points.append((index, None, add("patch", None, point.at, [f"{label}: unit x", f"{label}: unit y"])))
             continue
         hole, centre = pin
-        cases = bearing(label, hole, centre)
+        cases = bearing(label, hole, centre, np.asarray(point.force, float))
         points.append((index, cases, add("couple", hole, centre, [f"{label}: unit couple"])))
     body = add("body", None, None, [f"body: unit {t}" for t in BODY_TERMS])
     return UnitCaseLayout(directions, tuple(groups), tuple(pins), tuple(couples), tuple(points), body)
@@ -251,7 +285,12 @@ def unit_load_cases(
         key = unit_cases_key(link, loads.frame_joints, region, layout)
         stored = cache.load(UNIT_LOADS, key)
         if stored is not None:
-            return _from_entry(link, loads, mesh, layout, stored, time.perf_counter() - start)
+            held = stored_directions(stored)
+            wider = unit_case_layout(link, loads, step_deg, held)
+            if all(np.array_equal(g.indices, w.indices) for g, w in zip(wider.groups, _held_layout(wider, held))):
+                return _from_entry(link, loads, mesh, wider, stored, time.perf_counter() - start)
+            # The entry lacks directions this sweep needs: solve those it has and these, and keep them all.
+            layout = wider
     model = link_model(link, loads, mesh, cache)
     meshed = time.perf_counter()
     forces = np.hstack([group_loads(model, group, layout.directions, link.density, loads.frame_joints, mesh)
@@ -279,9 +318,29 @@ def unit_load_cases(
         seconds={"mesh": meshed - start, "solve": time.perf_counter() - meshed},
     )
     if cache is not None:
+        directions = {f"bearing {k}": np.asarray(g.indices, np.intp)
+                      for k, g in enumerate(g for g in layout.groups if g.kind == "bearing")}
         cache.store(UNIT_LOADS, key, {**model.plane.arrays(), "stress": cases.stress, "reactions": cases.reactions,
-                                       "applied": cases.applied})
+                                       "applied": cases.applied, **directions})
     return cases
+
+
+def stored_directions(stored: dict[str, NDArray]) -> dict[int, NDArray[np.intp]]:
+    """Per bearing group (in order), the directions a cache entry holds solutions for."""
+    return {int(key.split()[1]): np.asarray(value, np.intp) for key, value in stored.items() if key.startswith("bearing ")}
+
+
+def _held_layout(layout: UnitCaseLayout, held: dict[int, NDArray[np.intp]]) -> list[UnitCaseGroup]:
+    """``layout``'s groups with each bearing group's directions those the entry ``held`` has."""
+    out, k = [], 0
+    for group in layout.groups:
+        if group.kind == "bearing":
+            out.append(UnitCaseGroup(group.kind, group.hole, group.centre, group.labels,
+                                     tuple(int(i) for i in held.get(k, ()))))
+            k += 1
+        else:
+            out.append(group)
+    return out
 
 
 def unit_cases_key(link: LinkProfile, frame_joints: tuple[int, int], region: tuple, layout: UnitCaseLayout) -> str:
@@ -331,7 +390,8 @@ def group_loads(model: PlaneStressModel, group: UnitCaseGroup, directions: NDArr
     """The nodal forces (dofs, cases) of one group of unit cases."""
     holes = model.plane.holes
     if group.kind == "bearing":
-        unit = np.column_stack([np.cos(directions), np.sin(directions)])
+        chosen = directions[list(group.indices)]
+        unit = np.column_stack([np.cos(chosen), np.sin(chosen)])
         return bearing_loads(model, holes[group.hole], np.asarray(group.centre), unit)
     if group.kind == "couple":
         return shaft_couple_loads(model, holes[group.hole], np.asarray(group.centre), np.ones(1))

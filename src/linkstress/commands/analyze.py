@@ -24,10 +24,9 @@ from linkstress.commands import HelpFormatter, examples
 from linkstress.commands.fea_options import add_cache_options, fea_choices
 from linkstress.errors import InputError
 from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_choice
-from linkstress.model_choice import DEFAULT_ACCURACY, accuracy_problem
+from linkstress.model_choice import DEFAULT_ACCURACY, NO_FEA, accuracy_problem
 from linkstress.output import check_outputs, json_stream, write_all
-from linkstress.report.peak_records import peak_summaries
-from linkstress.report.records import stream_position_records, summary_record
+from linkstress.report.records import links_record, stream_position_records, summary_record
 from linkstress.report.text import report
 from linkstress.report.verdict import analysis_verdict
 from linkstress.scene import Scene, load_scene
@@ -150,8 +149,8 @@ def run(args: argparse.Namespace) -> int:
         cluster = {} if scheduler is None else {"scheduler": scheduler, "retried": [r.record() for r in retried]}
 
         def after() -> dict[str, object]:
-            peaks = {"links": peak_summaries(result)} if result.peaks else {}
-            return {**peaks, **summary_record(result, verdict), **cluster}
+            links = {"links": links_record(result)} if result.stresses else {}
+            return {**links, **summary_record(result, verdict), **cluster}
 
         files.append((args.json, json_stream("positions", records, "--json", after)))
     if args.html is not None:
@@ -192,7 +191,7 @@ def fea_ready(result: AnalysisResult) -> tuple[str, ...]:
             check_peaks(result.scene, replace(plan, peaks=(name,)))
         except InputError as error:
             chosen = result.models[name]
-            result.models[name] = replace(chosen, reason=f"{chosen.reason}; no FEA: {error}")
+            result.models[name] = replace(chosen, reason=f"{chosen.reason}{NO_FEA}{error}")
             continue
         ready.append(name)
     return tuple(ready)

@@ -162,6 +162,9 @@ def verdict_html(verdict: Verdict) -> list[str]:
                 table_html(VERDICT_HEADERS, rows)]
     if verdict.next_step:
         sections.append(f"<p><b>Next:</b> {html.escape(verdict.next_step)}</p>")
+    if verdict.models:
+        items = "".join(f"<li>{html.escape(line)}</li>" for line in verdict.models_lines())
+        sections.append(f'<p class="note">{html.escape(verdict.models_heading())}:</p><ul>{items}</ul>')
     return sections
 
 

@@ -25,8 +25,10 @@ link's joint order) and per mechanism ``pins`` (each pin's ``joints``, ``at_m`` 
 force it puts on each joint's link), ``sliders`` (``point``, ``on``, ``stroke_m``,
 ``normal_force_n``, ``couple_nm``, ``friction_force_n``, ``pin_force_n``) and ``driving_torque_nm``
 or ``driving_force_n``; a linkage driven by a slider's stroke gives ``input_stroke_m`` in place of
-``input_angle_deg``. After the positions, ``summary_record``: the verdict, the scene's warnings
-and the joint forces' names.
+``input_angle_deg``. After the positions, ``links_record``: the top-level ``links`` table, per
+stressed link its ``model`` and ``model_reason`` (``linkstress.model_choice``) and, for a link whose
+FEA peaks ran, their summary (``report.peak_records``); then ``summary_record``: the verdict, the
+scene's warnings and the joint forces' names.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 The records are made a block of positions at a time (``stream_position_records``), for
 ``output.write_json_stream`` to write as they come.
@@ -43,7 +45,7 @@ from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
 from linkstress.dynamics.section_stress import StressSummary
-from linkstress.report.peak_records import peak_columns
+from linkstress.report.peak_records import peak_columns, peak_summaries
 from linkstress.report.places import force_names
 from linkstress.report.verdict import Verdict
 from linkstress.safety import finite_or_none, link_safety_factors
@@ -76,6 +78,14 @@ def link_columns(result: AnalysisResult) -> dict[str, LinkColumns]:
         acc_g = None if com is None else motion.point(com)[2]
         columns[name] = LinkColumns(degrees_360(motion.angle), motion.omega, motion.alpha, acc_g)
     return columns
+
+
+def links_record(result: AnalysisResult) -> dict[str, dict[str, object]]:
+    """The top-level ``links`` table: per stressed link (in the analysis's order) its ``model`` and
+    ``model_reason``, with the FEA peaks' summary keys where they ran; empty without stresses."""
+    summaries = peak_summaries(result) if result.peaks else {}
+    return {name: {**result.models[name].record(), **summaries.get(name, {})} for name in result.stresses
+            if name in result.models}
 
 
 def summary_record(result: AnalysisResult, verdict: Verdict) -> dict[str, object]:

@@ -19,8 +19,11 @@ what it covers ("sections only"). Where a stress the run computed is higher than
 the reason says which and why it does not govern.
 
 ``model`` names the stress model the row comes from: "beam" (beam sections alone), "beam+Kt" (with
-pin-hole estimates), "fea-peaks" (``analyze --peaks``), "fea" (``validate``'s FEA at its compared
-positions).
+pin-hole estimates), "fea-peaks" (the FEA peaks ``analyze`` ran for the link), "fea" (``validate``'s
+FEA at its compared positions). Under the table, each link's chosen model and why
+(``linkstress.model_choice``); a link whose model is "fea-peaks" but whose FEA did not run
+(``--beam-only``, or the FEA cannot take it) keeps its beam row, trusted "beam only", and the next
+step says what to run.
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
+from linkstress.model_choice import FEA_PEAKS, NO_FEA
 from linkstress.report.cells import mpa, significant, text_table
 from linkstress.report.peak_records import peak_summaries
 from linkstress.report.places import LinkPlaces, joint_names, link_places
@@ -112,12 +116,22 @@ class VerdictRow:
 @dataclass(frozen=True)
 class Verdict:
     """Every stressed link's ``rows``, and the ``next_step`` when something is not covered ("" when
-    everything is)."""
+    everything is); ``models`` (link, model, reason) per stressed link and the ``accuracy`` [-] they
+    were chosen for (an analysis's; none for a validation)."""
 
     rows: tuple[VerdictRow, ...]
     next_step: str = ""
     positions: str = ""
     """Over which positions, in words ("361 feasible positions")."""
+    models: tuple[tuple[str, str, str], ...] = ()
+    accuracy: float | None = None
+
+    def models_heading(self) -> str:
+        return f"models: each link's, for its governing stress within {100 * self.accuracy:g} %, and why"
+
+    def models_lines(self) -> list[str]:
+        """"crank: fea-peaks: pin hole O2 outside the Kt tables (...)", one per stressed link."""
+        return [f"{link}: {model}: {reason}" for link, model, reason in self.models]
 
     def record(self) -> dict[str, object]:
         return {"rows": [row.record() for row in self.rows], "next_step": self.next_step or None}
@@ -135,6 +149,8 @@ class Verdict:
         lines = [self.heading(), text_table(HEADERS, [row.cells() for row in self.rows])]
         if self.next_step:
             lines.append(f"next: {self.next_step}")
+        if self.models:
+            lines += ["", self.models_heading(), *(f"  {line}" for line in self.models_lines())]
         return "\n".join(lines)
 
 
@@ -229,7 +245,8 @@ def analysis_verdict(result: AnalysisResult) -> Verdict:
             rows.append(_peak_row(result, name, places, beam, covers, summaries[name]))
         else:
             rows.append(_section_row(result, name, beam, covers))
-    return Verdict(tuple(rows), analysis_next_step(result, tuple(rows)), positions)
+    models = tuple((name, m.model, m.reason) for name, m in result.models.items())
+    return Verdict(tuple(rows), analysis_next_step(result, tuple(rows)), positions, models, result.plan.accuracy)
 
 
 def beam_stress(result: AnalysisResult, name: str, places: LinkPlaces, positions: NDArray[np.intp] | NDArray[np.bool_]) -> Stress:
@@ -248,37 +265,59 @@ def largest_estimate(covers: list[HoleCover]) -> Stress | None:
 
 
 def _section_row(result: AnalysisResult, name: str, beam: Stress, covers: list[HoleCover]) -> VerdictRow:
-    """The row of a link without FEA: the larger of its beam maximum and its pin-hole estimates."""
+    """The row of a link without FEA: the larger of its beam maximum and its pin-hole estimates. A
+    link whose chosen model is "fea-peaks" (its FEA not run) says that it needs them."""
     material = result.scene.links[name].material
     estimate = largest_estimate(covers)
-    fatigue = Factor(None, "run --peaks" if material.fatigue_strength is not None else "")
-    model = "beam+Kt" if covers else "beam"
+    fatigue = Factor(None, "needs the FEA peaks" if material.fatigue_strength is not None else "")
+    chosen = result.models.get(name)
+    unanswered = chosen is not None and chosen.model == FEA_PEAKS
+    model = chosen.model if chosen is not None and not unanswered else "beam+Kt" if covers else "beam"
+    pending = _pending(result, chosen) if unanswered else ""
     if estimate is not None and estimate.value > beam.value:
-        return _estimate_row(name, model, estimate, covers, material.yield_strength, fatigue)
+        return _estimate_row(name, model, estimate, covers, material.yield_strength, fatigue,
+                             pending or _within(result), bool(pending))
     missing = [c for c in covers if not c.covered]
-    if missing:
-        trust, note, reason = "beam only", "sections only", f"{holes_words(missing)} outside the Kt tables, run --peaks"
+    if unanswered:
+        trust, note, reason = "beam only", "sections only", pending
+    elif missing:
+        trust, note, reason = "beam only", "sections only", f"{holes_words(missing)} outside the Kt tables, needs the FEA peaks"
     elif covers:
-        trust, note, reason = "beam + Kt", "", "every pin hole's Kt estimate is below it"
+        trust, note, reason = "beam + Kt", "", f"every pin hole's Kt estimate is below it{_within(result)}"
     else:
-        trust, note, reason = "beam", "", "no pin holes"
+        trust, note, reason = "beam", "", f"no pin holes{_within(result)}"
     curved = any(m.theory == "curved" for m in result.stresses[name].members)
     reason = "; ".join(filter(None, ["curved beam (Winkler-Bach)" if curved else "", reason]))
     return VerdictRow(name, model, beam, yield_factor(material.yield_strength, beam.value, note), fatigue, trust, reason,
                       tuple(c.name for c in missing))
 
 
+def _pending(result: AnalysisResult, chosen) -> str:
+    """"needs the FEA peaks (--beam-only): see its model": a link whose model is "fea-peaks" without them."""
+    why = (" (--beam-only)" if result.plan.beam_only else " (the FEA cannot take it)" if NO_FEA in chosen.reason
+           else ", not run")
+    return f"needs the FEA peaks{why}: see its model"
+
+
+def _within(result: AnalysisResult) -> str:
+    """", within 5 %": the accuracy the link's model was chosen for."""
+    return f", within {100 * result.plan.accuracy:g} %"
+
+
 def _estimate_row(name: str, model: str, estimate: Stress, covers: list[HoleCover], strength: float | None,
-                  fatigue: Factor) -> VerdictRow:
+                  fatigue: Factor, after: str = "", pending: bool = False) -> VerdictRow:
     """The row of a link whose largest stress is a pin-hole estimate: over how many positions it
-    exists, and which other holes nothing covers."""
+    exists, and which other holes nothing covers; ``after`` ends the reason (the accuracy, or what
+    is pending when ``pending``: the link's FEA peaks)."""
     cover = next(c for c in covers if c.largest is estimate)
     missing = [c for c in covers if not c.covered]
     others = [c for c in missing if c is not cover]
     share = "" if cover.covered else f"at {cover.inside} of {cover.loaded} positions"
     reason = "; ".join(filter(None, [
-        f"inside the Kt tables {share}".strip(), others and f"{holes_words(others)} outside the Kt tables",
-    ])) + (", run --peaks" if missing else "")
+        f"inside the Kt tables {share}".strip() + ("" if missing or pending else after),
+        others and f"{holes_words(others)} outside the Kt tables",
+        after if pending else "needs the FEA peaks" if missing else "",
+    ]))
     note = ", ".join(filter(None, [share, f"{', '.join(c.label for c in others)} not covered" if others else ""]))
     return VerdictRow(name, model, estimate, yield_factor(strength, estimate.value, note), fatigue, "Kt estimate", reason,
                       tuple(c.name for c in missing))
@@ -329,7 +368,16 @@ def analysis_next_step(result: AnalysisResult, rows: tuple[VerdictRow, ...]) -> 
     """What to run when some link is not covered: the FEA peaks for the pin holes, or a finer mesh
     for a peak that did not converge; "" when every link is covered."""
     parts = []
-    uncovered = [row.link for row in rows if row.uncovered and row.model != "fea-peaks"]
+    needing = [row.link for row in rows if row.trust == "beam only" and row.link in result.models
+               and result.models[row.link].model == FEA_PEAKS]
+    unable = [name for name in needing if NO_FEA in result.models[name].reason]
+    runnable = [name for name in needing if name not in unable]
+    if runnable:
+        parts.append(f"run `linkstress analyze {result.scene.path}`{' without --beam-only' if result.plan.beam_only else ''} "
+                     f"for the FEA peaks of {', '.join(runnable)}")
+    if unable:
+        parts.append(f"the FEA cannot take {', '.join(unable)}: see their model's reason")
+    uncovered = [row.link for row in rows if row.uncovered and row.model != "fea-peaks" and row.link not in needing]
     if uncovered:
         parts.append(f"run `linkstress analyze {result.scene.path} --peaks` for the pin holes of {', '.join(uncovered)}")
     unsettled = [row.link for row in rows if row.trust == "NOT converged"]
