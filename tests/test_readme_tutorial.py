@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 
 from linkstress.cli import main
+from linkstress.validation.bench.tutorial import edit_scene
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -43,37 +44,6 @@ def regress_step() -> list[str]:
     """Step 6's shell commands, as written."""
     step = tutorial().split("**6.", 1)[1]
     return re.findall(r"```sh\n(.+?)\n```", step, re.S)
-
-
-def edit_scene(text: str, edits: str) -> str:
-    """``text`` with each ``key = value`` of ``edits`` set in its table: the line replaced where the
-    key is (commented or not), else added at the table's end; a table ``text`` lacks is appended."""
-    lines = text.splitlines()
-    headers = [line.split("#", 1)[0].strip() for line in lines]
-    table = None
-    for line in edits.splitlines():
-        if not line.strip():
-            continue
-        if line.startswith("["):
-            table = line
-            if table not in headers:
-                lines += ["", table]
-                headers += ["", table]
-            continue
-        key = line.split("=", 1)[0].strip()
-        start = headers.index(table) + 1
-        end = next((k for k in range(start, len(lines)) if lines[k].startswith("[")), len(lines))
-        at = [k for k in range(start, end) if re.match(rf"#?\s*{re.escape(key)}\s*=", lines[k])]
-        for k in at[1:]:
-            lines[k] = ""
-        if at:
-            lines[at[0]] = line
-        else:
-            while end > start and not lines[end - 1].strip():
-                end -= 1
-            lines.insert(end, line)
-            headers.insert(end, line)
-    return "\n".join(lines) + "\n"
 
 
 @pytest.fixture(scope="module")

@@ -30,7 +30,7 @@ def edit_reference(folder: Path, change) -> None:
 def test_the_shipped_cases_pass(capsys):
     assert main(["regress"]) == 0
     out = capsys.readouterr().out
-    assert "14 of 14 cases passed" in out
+    assert "15 of 15 cases passed" in out
 
 
 def test_a_tolerance_tightened_below_the_current_error_fails(seed_copy, capsys):

@@ -134,7 +134,9 @@ def _from_bounds(holes: tuple[PinHoleEstimate, ...], ok: NDArray[np.bool_], labe
     estimate = max(h.largest(ok & (h.nominal > 0)) or 0.0 for h in loaded)
     governing = max(beam_max, estimate)
     error = float(kt_error(np.array([tilt]))[0])
-    tables = f"the Kt tables within {100 * error:.2g} % of FEA at the pin force's {tilt:.2g} deg to the shank"
+    tables = f"the Kt tables within {100 * error:.2g} % of FEA" + (
+        f" at the pin force's {tilt:.2g} deg to the shank" if tilt > 0 else " (pin forces along the shank, or holes far "
+        "from the edges)")
     holes = ", ".join(labels[h.joint] for h in loaded)
     if bound <= beam_max:
         return ModelChoice(BEAM, f"beam sections govern; pin holes {holes} inside the Kt tables, below them even "
@@ -154,6 +156,7 @@ def _kt_bound(holes: tuple[PinHoleEstimate, ...], ok: NDArray[np.bool_]) -> tupl
         inside = ok & (hole.nominal > 0) & ~hole.outside
         if not inside.any():
             continue
+        # The open plate's Kt is the larger of a pulled and a pushed pin's: the force's direction is no matter.
         tilt = np.where(hole.shape_code[inside] == OPEN, 0.0, hole.tilt[inside])
         raised = hole.estimate[inside] * (1 + kt_error(tilt))
         k = int(np.argmax(raised))

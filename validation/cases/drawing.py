@@ -41,6 +41,17 @@ def straight_link(msp, layer: str, joints: list[tuple[float, float]], width: flo
     _pins(msp, layer, joints, hole)
 
 
+def plate_link(msp, layer: str, joints: list[tuple[float, float]], depth: float, end: float, hole: float) -> None:
+    """A rectangle ``depth`` deep along the x axis through ``joints`` (all at y = joints[0][1]), its
+    square ends ``end`` past the first and last joint, a pin hole of diameter ``hole`` and a POINT
+    at every joint."""
+    xs = sorted(x for x, _ in joints)
+    y, h = joints[0][1], depth / 2
+    corners = [(xs[0] - end, y - h), (xs[-1] + end, y - h), (xs[-1] + end, y + h), (xs[0] - end, y + h)]
+    msp.add_lwpolyline(corners, close=True, dxfattribs={"layer": layer})
+    _pins(msp, layer, joints, hole)
+
+
 def curved_link(msp, layer: str, start: tuple[float, float], length: float, sag: float, width: float, hole: float) -> None:
     """A banana: the centre line is a circular arc from ``start`` to ``start + (length, 0)`` bulging
     up by ``sag``; the edges are concentric arcs ``width`` apart, the ends semicircles on the joints."""
