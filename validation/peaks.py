@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,40 +35,10 @@ from linkstress.validation.fea.cache import DiskCache, cache_key
 from linkstress.validation.fea.link import link_region, reaction_ratio, region_length, solve_link
 from linkstress.validation.fea.mesh import MeshSettings, mesh_key_parts
 from linkstress.validation.fea.unit_loads import UnitLoadCases
+from linkstress.validation.peak_results import PeakCheck, SweepPeaks
 
 BLOCK_VALUES = 2_000_000
 """Stress values (nodes x 3 x positions) superposed at once: 16 MB, whatever the mesh or sweep."""
-
-
-@dataclass(frozen=True)
-class SweepPeaks:
-    """One link's superposed FEA over the positions ``positions`` (Pe,) (indices into the sweep).
-
-    ``peak`` (Pe,) [Pa]: the largest recovered von Mises over the nodes, at node ``peak_node`` (Pe,);
-    ``envelope`` (nodes,) [Pa]: each node's largest von Mises over the positions; ``largest`` and
-    ``smallest`` (nodes,) [Pa]: each node's extremes of the signed equivalent stress;
-    ``reaction_ratio`` (Pe,) [-]: the superposed support reactions (exact, the direct FEA's) over
-    the unit cases' gross loads weighted by |weight| (at least the combined load's gross load, so
-    the ratio is at most the direct FEA's; ~0 for loads in equilibrium); ``worst`` the index into ``positions`` of the largest peak and
-    ``worst_stress`` (nodes, 3) [Pa] the field there; ``seconds`` of the superposition.
-    """
-
-    cases: UnitLoadCases
-    positions: NDArray[np.intp]
-    peak: NDArray[np.float64]
-    peak_node: NDArray[np.intp]
-    envelope: NDArray[np.float64]
-    largest: NDArray[np.float64]
-    smallest: NDArray[np.float64]
-    reaction_ratio: NDArray[np.float64]
-    worst: int
-    worst_stress: NDArray[np.float64]
-    seconds: float
-
-    @property
-    def peak_at(self) -> NDArray[np.float64]:
-        """Where (Pe, 2) [m, member frame] each position's peak is."""
-        return self.cases.nodes[self.peak_node]
 
 
 def superposed_stress(cases: UnitLoadCases, weights: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -131,33 +101,6 @@ def peak_mesh(
     return replace(base.refined(REFINEMENT_RATIO ** (levels - 1)), stations=(), cuts=())
 
 
-@dataclass(frozen=True)
-class PeakCheck:
-    """The peak at the sweep's worst position on three meshes, each REFINEMENT_RATIO finer than the
-    last: ``coarsest`` and ``coarser`` [Pa] by direct FEA, ``finer`` [Pa] the superposed peak on the
-    peak mesh. As validate judges its peak: both changes within ``limit`` of the finer value (a
-    singular corner can move little over one refinement and much over the one before)."""
-
-    finer: float
-    coarser: float
-    coarsest: float
-    limit: float = PEAK_CONVERGED_CHANGE
-
-    @property
-    def change(self) -> float:
-        """[-]: the change over the last refinement, relative to the finer peak."""
-        return abs(self.finer - self.coarser) / self.finer if self.finer > 0 else 0.0
-
-    @property
-    def previous_change(self) -> float:
-        """[-]: the change over the refinement before, relative to the coarser peak."""
-        return abs(self.coarser - self.coarsest) / self.coarser if self.coarser > 0 else 0.0
-
-    @property
-    def converged(self) -> bool:
-        return self.change <= self.limit and self.previous_change <= self.limit
-
-
 def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings, cache: DiskCache | None = None) -> PeakCheck:
     """The peak's changes over the last two refinements at the sweep's worst position: the direct
     FEA on ``mesh`` (the peak mesh) made REFINEMENT_RATIO and REFINEMENT_RATIO^2 coarser (each
@@ -165,7 +108,7 @@ def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings, cac
     worst = loads.at(peaks.positions[peaks.worst : peaks.worst + 1])
     link = peaks.cases.link
     coarser, coarsest = (direct_peak(link, worst, mesh.refined(REFINEMENT_RATIO ** -k), cache) for k in (1, 2))
-    return PeakCheck(float(peaks.peak[peaks.worst]), coarser, coarsest)
+    return PeakCheck(float(peaks.peak[peaks.worst]), coarser, coarsest, PEAK_CONVERGED_CHANGE)
 
 
 DIRECT_PEAK = "direct-peak"

@@ -6,6 +6,11 @@ refinement at the worst position (``peaks.coarser_peak``), and, where the materi
 ``endurance_limit`` and ``ultimate_strength``, the fatigue safety factor of every node from the
 extremes of its signed equivalent stress over the sweep (``linkstress.fatigue``).
 
+A link's whole result (the superposed peaks, the node extremes fatigue reads, the check) is a
+function of its task's data and the code alone: the disk cache keeps it under a key of exactly
+those (``sweep_key``), so that running the same scene again reads it without loading gmsh or
+scikit-fem, meshing, solving or superposing anything.
+
 A fatigue factor is the cycle's only when the sweep is one: a whole turn of the input, every
 position feasible. Otherwise it is still given, with a note that says what it covers. A peak that
 moved more than the limit over the last refinement gives no safety factor, yield or fatigue: the
@@ -14,6 +19,8 @@ note says so and why.
 
 from __future__ import annotations
 
+import importlib.util
+import os
 import time
 from dataclasses import dataclass
 
@@ -24,14 +31,11 @@ from linkstress.analysis import Plan, used_joints
 from linkstress.dynamics.machine_forces import MachineForces
 from linkstress.executors import DaskExecutor, LocalExecutor
 from linkstress.fatigue import NodeFatigue, criteria_available, node_fatigue
-from linkstress.geometry.members import link_members
 from linkstress.loads import LinkLoadCase
 from linkstress.scene import Scene, SceneLink
 from linkstress.threads import blas_alone
-from linkstress.validation.fea.cache import CacheSettings, open_cache
-from linkstress.validation.fea.mesh import MeshSettings
-from linkstress.validation.peaks import PeakCheck, SweepPeaks, coarser_peak, peak_mesh, sweep_peaks
-from linkstress.validation.fea.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
+from linkstress.validation.fea.cache import CacheSettings, DiskCache, key_of, open_cache
+from linkstress.validation.peak_results import MeshSizes, PeakCheck, StoredCases, SweepPeaks
 
 FULL_TURN_DEG = 360.0
 
@@ -51,7 +55,7 @@ class LinkPeaks:
     n_positions: int
     sweep: SweepPeaks
     check: PeakCheck
-    mesh: MeshSettings
+    mesh: MeshSizes
     fatigue: NodeFatigue | None
     fatigue_criterion: str
     fatigue_note: str
@@ -112,19 +116,36 @@ def scene_peaks(
     after another), its unit-load solutions, meshes and peak check from and into the disk cache of
     ``cache`` when given (the settings travel with the task). Raises FEAError (an InputError) naming
     a link that cannot be meshed or solved."""
+    tasks = peaks_tasks(scene, plan, forces, cache)
+    if not tasks:
+        return {}
+    where = executor or LocalExecutor()
+    return dict(zip(plan.peaks, where.map(link_peaks, tasks, [f"link {name}" for name in plan.peaks])))
+
+
+def stored_links(scene: Scene, plan: Plan, forces: MachineForces, cache: CacheSettings | None) -> set[str]:
+    """The links of ``plan.peaks`` whose very result the disk cache holds (``sweep_key``): they need
+    neither the mesh checks nor the FEA stack."""
+    store = open_cache(cache)
+    if store is None:
+        return set()
+    return {task.name for task in peaks_tasks(scene, plan, forces, cache)
+            if store.path(SWEEP_PEAKS, sweep_key(task)).exists()}
+
+
+def peaks_tasks(scene: Scene, plan: Plan, forces: MachineForces, cache: CacheSettings | None) -> list["PeaksTask"]:
+    """A task per link of ``plan.peaks``; none where no position is feasible."""
     feasible = np.flatnonzero(forces.feasible)
     if not len(feasible):
-        return {}
+        return []
     size = scene.analysis.mesh_size if scene.analysis is not None else None
     order = scene.analysis.element_order if scene.analysis is not None else 2
     note = cycle_note(scene.motion.angle_deg, forces.feasible)
-    tasks = [
+    return [
         PeaksTask(name, scene.links[name], forces.link_loads[name], feasible, len(forces.feasible), size, order, note,
                   plan.fatigue_criterion, used_joints(scene, name), cache)
         for name in plan.peaks
     ]
-    where = executor or LocalExecutor()
-    return dict(zip(plan.peaks, where.map(link_peaks, tasks, [f"link {name}" for name in plan.peaks])))
 
 
 @dataclass(frozen=True)
@@ -150,18 +171,19 @@ class PeaksTask:
 
 def link_peaks(task: PeaksTask) -> LinkPeaks:
     """One link's peaks over the sweep and its fatigue (a task: runs wherever the executor sends it,
-    with BLAS on one thread as in ``run_analysis``)."""
+    with BLAS on one thread as in ``run_analysis``): from the disk cache when it holds this very
+    task's result, else computed (and kept there)."""
+    link = task.link
     with blas_alone():
-        link, loads, feasible = task.link, task.loads, task.feasible
-        profile = link.profile
-        members = link_members(profile, loads.frame_joints, link.members, task.used_joints)
-        mesh = peak_mesh(profile, loads.frame_joints, members, task.size, task.order)
         cache = open_cache(task.cache)
-        cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG, cache)
-        sweep = sweep_peaks(cases, loads, feasible)
-        start = time.perf_counter()
-        check = coarser_peak(sweep, loads, mesh, cache)
-        check_seconds = time.perf_counter() - start
+        key = sweep_key(task) if cache is not None else ""
+        stored = cache.load(SWEEP_PEAKS, key) if cache is not None else None
+        if stored is not None:
+            sweep, check, mesh, check_seconds = _from_stored(stored, time.perf_counter())
+        else:
+            sweep, check, mesh, check_seconds = _computed(task, cache)
+            if cache is not None:
+                cache.store(SWEEP_PEAKS, key, _to_store(sweep, check, mesh))
     fatigue, fatigue_note = None, task.cycle_note
     strength = link.material.fatigue_strength
     if strength is None:
@@ -171,6 +193,81 @@ def link_peaks(task: PeaksTask) -> LinkPeaks:
     else:
         fatigue = node_fatigue(sweep.largest, sweep.smallest, strength, task.criterion)
     return LinkPeaks(task.name, task.n_positions, sweep, check, mesh, fatigue, task.criterion, fatigue_note, check_seconds)
+
+
+def _computed(task: PeaksTask, cache: DiskCache | None) -> tuple[SweepPeaks, PeakCheck, MeshSizes, float]:
+    """Mesh, solve the unit cases, superpose and check (the FEA stack loads here, and only here)."""
+    from linkstress.geometry.members import link_members
+    from linkstress.validation.fea.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
+    from linkstress.validation.peaks import coarser_peak, peak_mesh, sweep_peaks
+
+    link, loads, feasible = task.link, task.loads, task.feasible
+    profile = link.profile
+    members = link_members(profile, loads.frame_joints, link.members, task.used_joints)
+    mesh = peak_mesh(profile, loads.frame_joints, members, task.size, task.order)
+    cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG, cache)
+    sweep = sweep_peaks(cases, loads, feasible)
+    start = time.perf_counter()
+    check = coarser_peak(sweep, loads, mesh, cache)
+    return sweep, check, MeshSizes(mesh.size, mesh.hole_size, mesh.order), time.perf_counter() - start
+
+
+SWEEP_PEAKS = "sweep-peaks"
+"""The cache's kind for a link's whole peaks result over one sweep (``link_peaks``)."""
+
+
+def sweep_key(task: PeaksTask) -> str:
+    """The cache key of ``task``'s result: everything it is computed from (the link's outline and
+    holes, joints, thickness, material, members and the joints the scene uses, its loads at every
+    feasible position, the sweep's length, the mesh size and order) and, as every key, the code and
+    library versions and the sparse solver (named without loading it: ``LINKSTRESS_SOLVER``, else
+    CHOLMOD where scikit-sparse is installed)."""
+    link, loads = task.link, task.loads.at(task.feasible)
+    profile = link.profile
+    material = profile.material
+    parts = {
+        "outline": [np.asarray(profile.outline.exterior.coords)] + [np.asarray(r.coords) for r in profile.outline.interiors],
+        "joints": np.asarray(profile.joints, float),
+        "thickness": profile.thickness, "density": profile.density,
+        "youngs_modulus": material.youngs_modulus, "poisson_ratio": material.poisson_ratio,
+        "members": [list(pair) for pair in link.members or ()],
+        "used_joints": None if task.used_joints is None else list(task.used_joints),
+        "frame_joints": list(loads.frame_joints),
+        "pin_forces": loads.pin_forces, "joint_couples": loads.joint_couples, "omega": loads.omega,
+        "alpha": loads.alpha, "origin_acceleration": loads.origin_acceleration, "gravity": loads.gravity,
+        "point_forces": [{"at": np.asarray(p.at, float), "force": np.asarray(p.force, float)} for p in loads.point_forces],
+        "feasible": np.asarray(task.feasible, np.int64), "n_positions": task.n_positions,
+        "size": task.size, "order": task.order,
+    }
+    solver = os.environ.get("LINKSTRESS_SOLVER", "").strip().lower() or (
+        "cholmod" if importlib.util.find_spec("sksparse") is not None else "superlu")
+    return key_of(SWEEP_PEAKS, parts, solver)
+
+
+def _to_store(sweep: SweepPeaks, check: PeakCheck, mesh: MeshSizes) -> dict[str, NDArray]:
+    cases = sweep.cases
+    return {
+        "positions": sweep.positions, "peak": sweep.peak, "peak_node": sweep.peak_node, "envelope": sweep.envelope,
+        "largest": sweep.largest, "smallest": sweep.smallest, "reaction_ratio": sweep.reaction_ratio,
+        "worst": np.array([sweep.worst]), "worst_stress": sweep.worst_stress,
+        "nodes": cases.nodes, "element_dofs": cases.element_dofs, "directions": cases.directions,
+        "counts": np.array([cases.dofs, cases.count]), "frame_joints": np.array(cases.frame_joints),
+        "check": np.array([check.finer, check.coarser, check.coarsest, check.limit]),
+        "mesh": np.array([mesh.size, mesh.hole_size, mesh.order]),
+    }
+
+
+def _from_stored(stored: dict[str, NDArray], start: float) -> tuple[SweepPeaks, PeakCheck, MeshSizes, float]:
+    dofs, count = (int(v) for v in stored["counts"])
+    cases = StoredCases(stored["nodes"], stored["element_dofs"], dofs, count, stored["directions"],
+                        tuple(int(j) for j in stored["frame_joints"]),
+                        {"mesh": 0.0, "solve": 0.0, "cache": time.perf_counter() - start})
+    sweep = SweepPeaks(cases, stored["positions"], stored["peak"], stored["peak_node"], stored["envelope"],
+                       stored["largest"], stored["smallest"], stored["reaction_ratio"], int(stored["worst"][0]),
+                       stored["worst_stress"], 0.0)
+    check = PeakCheck(*(float(v) for v in stored["check"]))
+    size, hole_size, order = stored["mesh"]
+    return sweep, check, MeshSizes(float(size), float(hole_size), int(order)), 0.0
 
 
 def cycle_note(angles_deg: NDArray[np.float64], feasible: NDArray[np.bool_]) -> str:

@@ -194,7 +194,13 @@ def cache_key(kind: str, parts: dict) -> str:
     programming error (TypeError): no object is pickled into a key."""
     from linkstress.validation.fea.plane_stress import spd_solver  # it imports the mesh, which imports this
 
-    document = {"kind": kind, "format": FORMAT, "code": code_fingerprint(), "solver": spd_solver(), "parts": parts}
+    return key_of(kind, parts, spd_solver())
+
+
+def key_of(kind: str, parts: dict, solver: str) -> str:
+    """``cache_key`` with the sparse ``solver`` named by the caller: for a key made before the FEA
+    stack is imported (``linkstress.validation.peaks_scene``'s stored sweeps)."""
+    document = {"kind": kind, "format": FORMAT, "code": code_fingerprint(), "solver": solver, "parts": parts}
     text = json.dumps(_canonical(document), sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()
 

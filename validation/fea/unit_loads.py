@@ -129,6 +129,11 @@ class UnitLoadCases:
     def dofs(self) -> int:
         return self.model.n_dofs
 
+    @property
+    def element_dofs(self) -> NDArray[np.intp]:
+        """(nodes per element, elements): the nodes of each element, for drawing the field."""
+        return self.model.scalar.element_dofs
+
     def weights(self, loads: LinkLoadCase) -> NDArray[np.float64]:
         """(U, P): the weight of each unit case at each position of ``loads`` (the same link, the
         same load terms: a term the unit cases lack must be zero in ``loads``, else FEAError)."""

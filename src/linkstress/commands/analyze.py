@@ -133,12 +133,17 @@ def run(args: argparse.Namespace) -> int:
     # Overflow is reported by refuse_non_finite, naming the keys, rather than as numpy warnings.
     with np.errstate(all="ignore"):
         result = run_analysis(scene, plan, peaks=False)
-        links = fea_ready(result)
+        links = plan.fea_links(result.models) if result.forces is not None else ()
         scheduler = None
+        if links:
+            from linkstress.validation.peaks_scene import stored_links
+
+            cache = fea_choices(args)
+            links = fea_ready(result, links, stored_links(scene, replace(plan, peaks=links), result.forces, cache))
         if links:
             # The variable alone is ignored without peaks: set for a shell, it must not stop a plain analyze.
             scheduler, source = scheduler_choice(args.scheduler)
-            result, retried = analysis_with_peaks(result, links, scheduler, source, fea_choices(args))
+            result, retried = analysis_with_peaks(result, links, scheduler, source, cache)
     refuse_non_finite(result)
     # Every output is staged before any is renamed into place, so a failure leaves none half-done; the
     # JSON is encoded into its staged file as its records are made, a block of positions at a time.
@@ -176,19 +181,19 @@ def command_plan(scene: Scene, args: argparse.Namespace) -> Plan:
     return plan
 
 
-def fea_ready(result: AnalysisResult) -> tuple[str, ...]:
-    """The links whose FEA peaks this run computes (``Plan.fea_links``): those asked for (checked
-    before the run), and those whose model is "fea-peaks" and that the FEA can take (elastic
-    constants, a mesh this machine can carry). Where it cannot, the link's model reason says why and
-    the link keeps its beam values (the verdict says what they do not cover)."""
-    plan = result.plan
-    links = plan.fea_links(result.models)
-    if plan.peaks or result.forces is None:
-        return links if result.forces is not None else ()
+def fea_ready(result: AnalysisResult, links: tuple[str, ...], stored: set[str]) -> tuple[str, ...]:
+    """Of ``links`` (``Plan.fea_links``), those whose FEA peaks this run computes: those asked for
+    (checked before the run), those whose result the cache holds (``stored``: checked when first
+    computed), and those whose model is "fea-peaks" and that the FEA can take (elastic constants, a
+    mesh this machine can carry). Where it cannot, the link's model reason says why and the link
+    keeps its beam values (the verdict says what they do not cover)."""
+    if result.plan.peaks:
+        return links
     ready = []
     for name in links:
         try:
-            check_peaks(result.scene, replace(plan, peaks=(name,)))
+            if name not in stored:
+                check_peaks(result.scene, replace(result.plan, peaks=(name,)))
         except InputError as error:
             chosen = result.models[name]
             result.models[name] = replace(chosen, reason=f"{chosen.reason}{NO_FEA}{error}")

@@ -5,6 +5,7 @@ docs/fea.md, "The cache"), and the ``LINKSTRESS_SOLVER`` variable, checked befor
 from __future__ import annotations
 
 import argparse
+import os
 
 CACHE_HELP = (
     "keep the FEA's meshes and unit-load solutions in DIR and reuse them in later runs (default: the "
@@ -26,7 +27,10 @@ def fea_choices(args: argparse.Namespace):
     size or a solver that is not one (a command that reports a link's FEA failure as a failed check
     would otherwise report bad input so)."""
     from linkstress.validation.fea.cache import cache_settings  # the FEA side: only when FEA runs
-    from linkstress.validation.fea.plane_stress import spd_solver
 
-    spd_solver()
+    if os.environ.get("LINKSTRESS_SOLVER", "").strip():
+        # Checking the variable loads the solvers (SciPy, scikit-fem): only when it is set.
+        from linkstress.validation.fea.plane_stress import spd_solver
+
+        spd_solver()
     return cache_settings(args.cache, args.no_cache)

@@ -172,7 +172,7 @@ def peak_field_figure(result: AnalysisResult, name: str) -> Figure:
     # A peak concentrated at a hole would leave the rest of the link one colour on a linear scale.
     scale = field_scale(stress)
     fig, ax = plt.subplots(figsize=FIGURE_SIZE, layout="constrained")
-    field = ax.tripcolor(xy[:, 0], xy[:, 1], linear_triangles(cases.model.scalar.element_dofs), stress,
+    field = ax.tripcolor(xy[:, 0], xy[:, 1], linear_triangles(cases.element_dofs), stress,
                          shading="gouraud", cmap="viridis", norm=scale.norm)
     field_colour_bar(fig, ax, field, scale.label)
     peak_at = ground(peaks.sweep.peak_at[peaks.sweep.worst:peaks.sweep.worst + 1])[0]
