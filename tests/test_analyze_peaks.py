@@ -82,7 +82,8 @@ def test_the_sweeps_summary_gives_the_worst_peak_the_check_and_the_fatigue_at_th
         assert summary["beam_max_von_mises_pa"] == max(r["links"][name]["max_von_mises_pa"] for r in data["positions"])
         assert summary["peak_converged"] is True and summary["peak_change_pct"] < 5 and summary["peak_previous_change_pct"] < 5
         assert summary["peak_yield_safety_factor"] == pytest.approx(250e6 / max(peaks), rel=1e-12)
-        assert summary["peak_mesh"]["unit_load_cases"] >= 2 * 36 + 4 and summary["peak_mesh"]["direction_step_deg"] == 10
+        # every loaded pin: the bearing directions its forces fall between (at least one), and 4 body terms
+        assert summary["peak_mesh"]["unit_load_cases"] >= 2 + 4 and summary["peak_mesh"]["direction_step_deg"] == 10
         # fatigue: Goodman at the critical point, from its own alternating and mean stress, S_e = 0.8 x 200 MPa
         strength = FatigueStrength(200e6, 400e6, 250e6, surface_factor=0.8)
         assert summary["fatigue_endurance_limit_pa"] == pytest.approx(160e6, rel=1e-15)

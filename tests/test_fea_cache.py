@@ -286,7 +286,7 @@ def test_two_analyze_runs_at_once_share_one_cache_and_a_third_reads_it(tmp_path)
     for name in ("run0", "run1", "warm"):
         assert without_timing(json.loads((tmp_path / f"{name}.json").read_text())) == plain, name
     kinds = {p.parent.name for p in folder.glob("*/*.npz")}
-    assert kinds == {"mesh", UNIT_LOADS, "direct-peak"} and not list(folder.glob("*/*.tmp"))
+    assert kinds == {"mesh", UNIT_LOADS, "direct-peak", "sweep-peaks"} and not list(folder.glob("*/*.tmp"))
 
 
 def test_no_cache_writes_nothing_and_a_cache_folder_that_is_a_file_is_refused(tmp_path, monkeypatch, capsys):

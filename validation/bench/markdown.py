@@ -170,6 +170,20 @@ def stability_rows(figures: dict) -> list[tuple]:
     ]
 
 
+def analyze_runs_section(figures: dict) -> list[str]:
+    """``analyze`` of the README tutorial's scene and the seed: first run, cached run, models."""
+    runs = figures.get("analyze_runs", [])
+    rows = [(r["case"], r["positions"], ", ".join(f"{k} {v}" for k, v in r["models"].items()), r["first_seconds"],
+             r["cached_seconds"]) for r in runs]
+    repeat = runs[0]["repeat"] if runs else 0
+    return [
+        "Each stressed link takes the model that answers its governing stress within the default 5 % (beam, beam+Kt "
+        "or the FEA peaks; docs/numbers.md); the first run has an empty disk cache, the cached run is the same command "
+        f"again. Whole processes, bytecode compiled, best of {repeat}, alternated.", "",
+        table(("scene", "positions", "models", "first run [s]", "cached run [s]"), rows),
+    ]
+
+
 def bench_markdown(figures: dict) -> str:
     """The benchmarks page from one run's ``bench_json`` figures."""
     lines = [GENERATED, "", "# Speed against error, and the benchmarks", "", machine_line(figures), "",
@@ -196,6 +210,7 @@ def bench_markdown(figures: dict) -> str:
               table(("case", "link", "input [deg]", "feasible", "transmission [deg]", "nominal [%]", "near holes [%]",
                      "resultants [%]", "flags"), stability_rows(figures)), "",
               "## FEA peaks by superposition", "", *superposition_section(figures), "",
+              "## analyze as a whole process", "", *analyze_runs_section(figures), "",
               "## Checks", "",
               "Errors only, never times: " + ("all passed." if not figures["failures"]
                                               else "FAILED: " + "; ".join(figures["failures"]) + "."), "",
@@ -212,6 +227,13 @@ def readme_summary(figures: dict) -> str:
     rates = {(r["case"], r["stage"]): r for r in figures["throughput"]}
     kinematics, whole = rates[("seed_ansys_fourbar", "kinematics")], rates[("seed_ansys_fourbar", "whole analysis")]
     speed = figures["superposition"]["speed"]
+    runs = {r["case"]: r for r in figures.get("analyze_runs", [])}
+    tutorial = runs.get("tutorial")
+    analyze = "" if tutorial is None else (
+        f" The tutorial's `analyze` ({tutorial['positions']} positions, FEA peaks where the model choice puts them: "
+        f"{', '.join(k for k, v in tutorial['models'].items() if v == 'fea-peaks') or 'none'}) takes "
+        f"{tutorial['first_seconds']:.2g} s the first time and {tutorial['cached_seconds']:.2g} s again with its cache warm."
+    )
     machine = figures["machine"]
     load = next((value for key, value in machine.items() if key.startswith("load")), "not measured")
     return (
@@ -219,7 +241,7 @@ def readme_summary(figures: dict) -> str:
         f"converged FEA, in {1e3 * must['beam_seconds']:.2g} ms for three links: {must['speedup']:,.0f} x faster than one "
         f"solve on validate's converged mesh. On the curved couplers and the bell crank the worst member is "
         f"{max(others):.2g} % off. A whole turn of {speed['sweep_positions']} positions with FEA peaks takes "
-        f"{speed['ratio']:.2g} x the time of one `validate` at one position. Over a sweep of "
+        f"{speed['ratio']:.2g} x the time of one `validate` at one position.{analyze} Over a sweep of "
         f"{kinematics['positions']:,} positions of the seed, kinematics runs at {kinematics['positions_per_second']:,.0f} "
         f"positions per second and the whole analysis (kinematics, forces, stresses of three links) at "
         f"{whole['positions_per_second']:,.0f}. Measured on {machine['cpu']}, {machine['cores']} cores shared with "

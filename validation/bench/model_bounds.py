@@ -90,6 +90,55 @@ def tutorial_times(folder: Path, python: str, before: str | None, repeat: int) -
     return TutorialTimes(min(firsts), min(warms), min(befores) if befores else None, models)
 
 
+@dataclass(frozen=True)
+class AnalyzeRun:
+    """``analyze`` of one scene as a whole process: its ``first`` run (an empty disk cache) and its
+    ``cached`` second run [s], best of ``repeat``; the ``models`` it chose per stressed link."""
+
+    case: str
+    positions: int
+    first: float
+    cached: float
+    repeat: int
+    models: dict[str, str]
+
+    def record(self) -> dict[str, object]:
+        return {"case": self.case, "positions": self.positions, "first_seconds": self.first,
+                "cached_seconds": self.cached, "repeat": self.repeat, "models": self.models}
+
+
+def analyze_run(case: str, scene: Path, folder: Path, python: str, repeat: int) -> AnalyzeRun:
+    """Time ``analyze`` of ``scene``: a first run on an empty cache and a second on the same cache,
+    alternated ``repeat`` times (bytecode compiled first)."""
+    env = _environment(str(folder / "pycache"))
+    subprocess.run([python, "-m", "compileall", "-q", str(Path(__file__).resolve().parents[2])], env=env,
+                   stdout=subprocess.DEVNULL, check=False)
+    firsts, cached = [], []
+    for k in range(repeat):
+        cache = folder / f"cache-{case}-{k}"
+        analyze = [python, "-m", "linkstress", "analyze", str(scene), "--cache", str(cache)]
+        firsts.append(timed(analyze, env, scene.parent))
+        cached.append(timed(analyze, env, scene.parent))
+        if k < repeat - 1:
+            shutil.rmtree(cache, ignore_errors=True)
+    out = folder / f"{case}.json"
+    subprocess.run([python, "-m", "linkstress", "analyze", str(scene), "--cache", str(cache), "--json", str(out)],
+                   env=env, check=True, stdout=subprocess.DEVNULL)
+    shutil.rmtree(cache, ignore_errors=True)
+    data = json.loads(out.read_text())
+    models = {name: link["model"] for name, link in data.get("links", {}).items()}
+    return AnalyzeRun(case, len(data["positions"]), min(firsts), min(cached), repeat, models)
+
+
+def analyze_runs(repeat: int) -> list[AnalyzeRun]:
+    """The README tutorial's scene and the seed: ``analyze``'s first and cached runs (``linkstress bench``)."""
+    with tempfile.TemporaryDirectory(prefix="linkstress-bench-") as name:
+        folder = Path(name)
+        tutorial = tutorial_scene(folder / "tutorial")
+        return [analyze_run("tutorial", tutorial, folder, sys.executable, repeat),
+                analyze_run("seed_ansys_fourbar", SEED, folder, sys.executable, repeat)]
+
+
 def seed_crank(folder: Path, python: str) -> tuple[float, float, str]:
     """[Pa]: the seed crank's governing stress from ``analyze`` and validate's converged FEA peak; its model."""
     env = _environment(str(folder / "pycache"))

@@ -185,9 +185,17 @@ def bench_text(result: BenchResult) -> str:
         lines += [f"  {case.name}: {flag}" for flag in case.flags]
     lines += ["", "superposed FEA peaks against direct FEA", *superposition_lines(result),
               format_table(SUPERPOSITION_HEADERS, superposition_rows(result))]
+    lines += ["", "analyze as a whole process (first run: an empty disk cache; cached: the same command again)",
+              format_table(*analyze_runs_table(result))]
     failures = result.failures()
     lines += ["", "checks (errors only): " + ("passed" if not failures else "FAILED\n  " + "\n  ".join(failures))]
     return "\n".join(lines)
+
+
+def analyze_runs_table(result: BenchResult):
+    rows = [(r.case, r.positions, ", ".join(f"{k} {v}" for k, v in r.models.items()), r.first, r.cached)
+            for r in result.analyze_runs]
+    return ("scene", "positions", "models", "first run [s]", "cached run [s]"), rows
 
 
 def strip_mass_table(result: BenchResult):
@@ -264,6 +272,7 @@ def bench_json(result: BenchResult) -> dict:
         "checks": [c.__dict__ for c in result.checks],
         "failures": result.failures(),
         "superposition": superposition_json(result),
+        "analyze_runs": [r.record() for r in result.analyze_runs],
     }
 
 

@@ -21,7 +21,9 @@ superposition of unit loads against direct FEA on the seed, the banana coupler a
 The must-show figures are ratios of times, reported with whether they meet their target, not
 checked: the beam's speed-up over the converged FEA at nominal error under NOMINAL_BOUND, and the
 seed's 360-position sweep with FEA peaks against one validate at one position (RATIO_TARGET), its
-superposition per link and position within SUPERPOSITION_TARGET.
+superposition per link and position within SUPERPOSITION_TARGET. ``analyze`` of the README
+tutorial's scene and of the seed runs as a whole process, first on an empty disk cache and again on
+the warm one, with the models it chose (``model_bounds``).
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from linkstress.analysis import DEFAULT_STATIONS
+from linkstress.validation.bench.model_bounds import AnalyzeRun, analyze_runs
 from linkstress.validation.bench.peaks import FIELD_BOUND, PEAK_BOUND, PeaksSpeed, PeaksStudy, peaks_speed, peaks_study
 from linkstress.validation.bench.speed_error import RATIO, VALIDATE_LEVELS, CaseStudy, StudySettings, case_study
 from linkstress.validation.bench.stability import HardCaseResult, hard_cases
@@ -80,7 +83,8 @@ class BenchSettings:
     levels ``memory_levels`` (k, order) and the hard cases at level ``stability_level``; the
     speed/error ``cases``, the seed first (the must-show is measured on it); the superposed FEA
     peaks against direct FEA at ``peak_positions`` of each sweep, on the seed's whole turn (timed
-    against one validate, best of ``peak_repeat``) and on the scenes ``peak_cases``."""
+    against one validate, best of ``peak_repeat``) and on the scenes ``peak_cases``; ``analyze`` of the
+    README tutorial's scene and the seed as whole processes, best of ``analyze_repeat``."""
 
     name: str
     study: StudySettings
@@ -93,6 +97,7 @@ class BenchSettings:
     peak_positions: int
     peak_repeat: int
     peak_cases: tuple[Path, ...]
+    analyze_repeat: int = 1
 
 
 SEED_CASE = BenchCase(SEED)
@@ -115,7 +120,7 @@ FULL = BenchSettings(
     (SEED_CASE, BANANA_CASE, ARC_CASE, replace(BELL_CRANK_CASE, study=replace(FULL_STUDY, p2_levels=FULL_STUDY.p2_levels[1:]))),
     sweep_positions=3600, sweep_repeat=5, fea_sweep_positions=360,
     memory_levels=((2, 2), (4, 2), (5, 1)), stability_level=2,
-    peak_positions=36, peak_repeat=3, peak_cases=(CURVED_CASE, BELL_CRANK),
+    peak_positions=36, peak_repeat=3, peak_cases=(CURVED_CASE, BELL_CRANK), analyze_repeat=3,
 )
 # CI's run keeps within about a minute: the two new cases study only the link they were shipped for,
 # without P1 (measured on the other two); the superposed peaks only on the seed, at 6 positions.
@@ -182,6 +187,8 @@ class BenchResult:
     checks: tuple[Check, ...]
     seconds: float
     notes: tuple[str, ...] = field(default_factory=tuple)
+    analyze_runs: tuple[AnalyzeRun, ...] = ()
+    """``analyze`` of the README tutorial's scene and of the seed as whole processes: first and cached runs."""
 
     def failures(self) -> list[str]:
         return [c.name for c in self.checks if not c.passed]
@@ -224,10 +231,13 @@ def run_bench(settings: BenchSettings, progress=lambda message: None) -> BenchRe
     memory = [memory_use(SEED, "crank", RATIO**k, order) for k, order in settings.memory_levels]
     progress("hard cases")
     stability = hard_cases(settings.stability_level)
+    progress("analyze as a whole process: the tutorial and the seed, first and cached runs")
+    runs = analyze_runs(settings.analyze_repeat)
     must_show = _must_show(cases[0])
     return BenchResult(
         settings, info, tuple(cases), tuple(rates), tuple(memory), tuple(stability), must_show, tuple(peaks), speed,
         tuple(_checks(settings.cases, cases, stability, must_show) + _peak_checks(peaks)), time.perf_counter() - start,
+        analyze_runs=tuple(runs),
     )
 
 

@@ -6,9 +6,9 @@ turn at 100 rad/s of 6 mm steel plate, 5 N m on the rocker). The benches time ``
 
 from __future__ import annotations
 
-import contextlib
-import io
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
@@ -53,16 +53,14 @@ def edit_scene(text: str, edits: str) -> str:
 
 
 def tutorial_scene(folder: Path) -> Path:
-    """Write the tutorial's edited scene ``fourbar.toml`` (and its drawing) into ``folder``."""
-    from linkstress.cli import main
-
+    """Write the tutorial's edited scene ``fourbar.toml`` (and its drawing) into ``folder``: the
+    tutorial's ``linkstress import`` as a command of its own (this interpreter's)."""
     folder.mkdir(parents=True, exist_ok=True)
     drawing = folder / DRAWING.name
     drawing.write_bytes(DRAWING.read_bytes())
     scene = folder / "fourbar.toml"
-    with contextlib.redirect_stdout(io.StringIO()):
-        if main(["import", str(drawing), "--scene", str(scene)]) != 0:
-            raise RuntimeError(f"the tutorial's import of {drawing} failed")
+    subprocess.run([sys.executable, "-m", "linkstress", "import", str(drawing), "--scene", str(scene)], check=True,
+                   stdout=subprocess.DEVNULL)
     edits = re.findall(r"```toml\n(.+?)\n```", tutorial_text(), re.S)[0]
     scene.write_text(edit_scene(scene.read_text(), edits))
     return scene
