@@ -368,7 +368,7 @@ def analysis_next_step(result: AnalysisResult, rows: tuple[VerdictRow, ...]) -> 
     """What to run when some link is not covered: the FEA peaks for the pin holes, or a finer mesh
     for a peak that did not converge; "" when every link is covered."""
     parts = []
-    needing = [row.link for row in rows if row.trust == "beam only" and row.link in result.models
+    needing = [row.link for row in rows if row.link not in result.peaks and row.link in result.models
                and result.models[row.link].model == FEA_PEAKS]
     unable = [name for name in needing if NO_FEA in result.models[name].reason]
     runnable = [name for name in needing if name not in unable]
