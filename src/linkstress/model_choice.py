@@ -157,7 +157,9 @@ def _kt_bound(holes: tuple[PinHoleEstimate, ...], ok: NDArray[np.bool_]) -> tupl
         if not inside.any():
             continue
         # The open plate's Kt is the larger of a pulled and a pushed pin's: the force's direction is no matter.
-        tilt = np.where(hole.shape_code[inside] == OPEN, 0.0, hole.tilt[inside])
+        # An estimate that does not know its tilt takes the tables' largest, 10 deg.
+        tilts = hole.tilt[inside] if hole.tilt is not None else np.full(int(inside.sum()), KT_ERROR_BY_TILT[-1][0])
+        tilt = np.where(hole.shape_code[inside] == OPEN, 0.0, tilts)
         raised = hole.estimate[inside] * (1 + kt_error(tilt))
         k = int(np.argmax(raised))
         if raised[k] > bound:
