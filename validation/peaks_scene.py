@@ -46,7 +46,7 @@ class LinkPeaks:
 
     ``sweep``: the superposed peaks at the feasible positions ``sweep.positions``; ``check``: the
     peak's change over the last refinement at the worst position; ``mesh``: the peak mesh's
-    settings; ``fatigue``: per node factors and the critical node (None without fatigue data, then
+    settings (``fea.mesh.MeshSettings``; read from the cache, its ``MeshSizes``); ``fatigue``: per node factors and the critical node (None without fatigue data, then
     ``fatigue_note`` says why); ``fatigue_note``: what the factor covers when not one whole cycle,
     or why there is none.
     """
@@ -55,7 +55,7 @@ class LinkPeaks:
     n_positions: int
     sweep: SweepPeaks
     check: PeakCheck
-    mesh: MeshSizes
+    mesh: object
     fatigue: NodeFatigue | None
     fatigue_criterion: str
     fatigue_note: str
@@ -195,8 +195,9 @@ def link_peaks(task: PeaksTask) -> LinkPeaks:
     return LinkPeaks(task.name, task.n_positions, sweep, check, mesh, fatigue, task.criterion, fatigue_note, check_seconds)
 
 
-def _computed(task: PeaksTask, cache: DiskCache | None) -> tuple[SweepPeaks, PeakCheck, MeshSizes, float]:
-    """Mesh, solve the unit cases, superpose and check (the FEA stack loads here, and only here)."""
+def _computed(task: PeaksTask, cache: DiskCache | None) -> tuple[SweepPeaks, PeakCheck, object, float]:
+    """Mesh, solve the unit cases, superpose and check (the FEA stack loads here, and only here); the
+    peak mesh's ``MeshSettings``."""
     from linkstress.geometry.members import link_members
     from linkstress.validation.fea.unit_loads import DIRECTION_STEP_DEG, unit_load_cases
     from linkstress.validation.peaks import coarser_peak, peak_mesh, sweep_peaks
@@ -209,7 +210,7 @@ def _computed(task: PeaksTask, cache: DiskCache | None) -> tuple[SweepPeaks, Pea
     sweep = sweep_peaks(cases, loads, feasible)
     start = time.perf_counter()
     check = coarser_peak(sweep, loads, mesh, cache)
-    return sweep, check, MeshSizes(mesh.size, mesh.hole_size, mesh.order), time.perf_counter() - start
+    return sweep, check, mesh, time.perf_counter() - start
 
 
 SWEEP_PEAKS = "sweep-peaks"
