@@ -113,6 +113,8 @@ def read_links(table: Table, materials: dict[str, Material], units: str | None,
 
 
 def _unit_warnings(links: dict[str, LinkSource], sketches) -> tuple[str, ...]:
+    if not sketches:
+        return ()  # bare joints: the sketch readers stay unloaded
     from linkstress.importers import unit_warnings
 
     found: list[str] = []
