@@ -133,17 +133,13 @@ def _refuse(sketch, message: str, json_path: str | None) -> None:
 def _scene(sketch, out: Path, units: str | None, hole_layers: tuple[str, ...]) -> tuple[bytes, list[str]]:
     """The scene of the mechanism drawn in ``sketch``, checked by reading it back as file ``out`` and
     solving it at the drawn angle, and a line per mechanism found."""
-    from linkstress.importers.assembly import check_pose, find_assembly
-    from linkstress.importers.scene_writer import scene_text
-    from linkstress.scene.reader import scene_from_text
+    from linkstress.importers.drawn_mechanism import mechanism_scene
 
     try:
-        assembly = find_assembly(sketch)
-        text = scene_text(assembly, _relative(sketch.path, out), sketch.path.name, units, hole_layers)
-        check_pose(scene_from_text(text, out), sketch.gap_tolerance_m)
+        text, found = mechanism_scene(sketch, out, _relative(sketch.path, out), units, hole_layers)
     except InputError as error:
         raise InputError(f"{sketch.path.name}: --scene: {error}") from None
-    return text.encode("utf-8"), assembly.summary()
+    return text.encode("utf-8"), found
 
 
 def _relative(sketch: Path, out: Path) -> str:
