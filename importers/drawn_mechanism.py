@@ -2,7 +2,8 @@
 
 A drawing that is exactly four-bar loops and slider-cranks, chained as ``assembly`` chains them,
 is written in their form (``type = "four-bar"``, ``"slider-crank"``); any other one-DOF
-mechanism of pins and sliders as one ``type = "linkage"`` (``linkage_assembly``). The scene
+mechanism of pins and sliders as one ``type = "linkage"`` (``linkage_assembly``), unless the
+drawing has problems (a part left out may be a link of it). The scene
 written is read back and solved at the drawn input: every drawn joint must come back
 (``assembly.check_pose``).
 """
@@ -16,6 +17,7 @@ from linkstress.importers.assembly import Assembly, NotLoops, check_pose, find_a
 from linkstress.importers.linkage_assembly import LinkageAssembly, find_linkage
 from linkstress.importers.linkage_writer import linkage_text
 from linkstress.importers.pins import shared_joints
+from linkstress.importers.problems import listed
 from linkstress.importers.scene_writer import scene_text
 from linkstress.importers.sketch import Sketch
 from linkstress.scene.reader import scene_from_text
@@ -30,6 +32,13 @@ def find_mechanism(sketch: Sketch) -> Assembly | LinkageAssembly:
         joints = shared_joints(sketch.links, sketch.gap_tolerance_m)
         if not any(len({name for name, _ in joint.ends}) > 1 for joint in joints):
             raise
+        if sketch.problems:
+            # A linkage may hold any of the links: what a problem left out may be one of them.
+            raise SketchError(
+                f"{loops}; nor is it read as a linkage of pins and sliders while the drawing has problems, which "
+                f"leave parts out that may be links of it: {listed(sketch.problems)}; fix them, or leave their layers "
+                "out with --exclude-layers"
+            ) from None
         try:
             return find_linkage(sketch)
         except SketchError as linkage:
