@@ -232,7 +232,9 @@ def test_a_stephenson_six_bar_of_random_lengths_imports_as_a_linkage_that_moves_
     drawing.plate("coupler", [at["A"], at["B"], at["P"]])
     drawing.plate("rocker", [at["O4"], at["B"]])
     drawing.plate("link", [at["P"], at["Q"]])
-    drawing.plate("lever", [at["O6"], at["Q"]])
+    # The lever's tool end T, a POINT in its material: no pin, and no fixed pivot of a ground not drawn.
+    tool = at["O6"] + 1.4 * (at["Q"] - at["O6"])
+    drawing.plate("lever", [at["O6"], at["Q"], tool], in_material=1)
     if ground:
         drawing.plate(ground, [at["O2"], at["O4"], at["O6"]])
     out, written, printed = import_scene(drawing.save(tmp_path / "stephenson.dxf"), capsys)
@@ -254,9 +256,10 @@ def test_a_stephenson_six_bar_of_random_lengths_imports_as_a_linkage_that_moves_
             return None
         p = p_on(moved["A"], moved["B"])
         q = meet(p, l5, at["O6"], l6, at["Q"] if last is None else last["Q"])
-        return None if q is None else {**moved, "P": p, "Q": q}
+        return None if q is None else {**moved, "P": p, "Q": q, "T": at["O6"] + 1.4 * (q - at["O6"])}
 
-    named = {"A": ("crank", at["A"]), "B": ("rocker", at["B"]), "P": ("link", at["P"]), "Q": ("lever", at["Q"])}
+    named = {"A": ("crank", at["A"]), "B": ("rocker", at["B"]), "P": ("link", at["P"]), "Q": ("lever", at["Q"]),
+             "T": ("lever", tool)}
     targets = [at["theta"] + d for d in (-40.0, -15.0, 10.0, 35.0)]
     assert agree(out, at["theta"], targets, pose, named) >= 2
 
@@ -504,3 +507,36 @@ def test_a_drawing_with_a_problem_is_not_read_as_a_linkage_without_the_part_left
     assert "nor is it read as a linkage of pins and sliders while the drawing has problems" in err
     assert "layer 'lever'" in err and err.count("\n") == 1
     assert not out.exists()
+
+
+def test_an_input_that_rocks_gets_a_commented_sweep_between_the_samples_next_to_its_toggles(tmp_path, capsys):
+    # The double rocker of test_import_assembly (crank 0.8 m at 45 deg from O2 (0, 0), coupler 0.4,
+    # output 0.7, O4 (1, 0)), its coupler's midpoint P carrying a dyad P -> Q -> O6 that closes over
+    # its whole range. |A O4|^2 = 0.64 + 1 - 1.6 cos(phi) reaches b + c = 1.1 and |b - c| = 0.3 m at
+    # phi = acos(1.55 / 1.6) = 14.3615 deg and acos(0.43 / 1.6) = 74.4101 deg: the samples 0.5 deg
+    # apart from the drawn 45 deg that assemble run from 14.5 to 74.0 deg.
+    o2, o4 = np.zeros(2), np.array([1.0, 0.0])
+    a = 0.8 * e(45.0)
+    b = meet(a, 0.4, o4, 0.7, a + rotate(o4 - a, 90.0))
+    p = (a + b) / 2
+    q = p + np.array([0.0, 0.9])
+    o6 = q + np.array([0.9, 0.0])
+    drawing = Drawing()
+    for layer, pins in {"crank": [o2, a], "coupler": [a, p, b], "rocker": [o4, b], "link": [p, q],
+                        "lever": [o6, q], "frame": [o2, o4, o6]}.items():
+        drawing.plate(layer, pins)
+    out, written, _ = import_scene(drawing.save(tmp_path / "rocks.dxf"), capsys)
+    low, high = math.degrees(math.acos(1.55 / 1.6)), math.degrees(math.acos(0.43 / 1.6))
+    assert (math.ceil(2 * low) / 2, math.floor(2 * high) / 2) == (14.5, 74.0)
+    assert "# input_angle_deg = {start = 14.5, stop = 74.0, num = 201}  # a sweep: the input rocks" in out.read_text()
+    assert written["motion"]["input_angle_deg"] == 45.0
+
+
+def test_a_cylinders_commented_sweep_spans_its_rods_length_each_way_where_the_boom_reaches(tmp_path, capsys):
+    # Drawn at 0.9 m with a 0.5 m rod: 0.4 to 1.4 m, inside the strokes the boom reaches,
+    # |0.8 - |P0 Q0|| = 0.129 m to 0.8 + |P0 Q0| = 1.471 m (|P0 Q0| = sqrt(0.3^2 + 0.6^2) m).
+    out, _, _ = import_scene(lift_drawing(tmp_path / "lift.dxf", "cylinder", "rod", 0.9), capsys)
+    reach = math.hypot(*(Q0 - P0))
+    assert BOOM - reach < 0.4 and 1.4 < BOOM + reach
+    text = out.read_text()
+    assert "# input_stroke_m = {start = 0.4, stop = 1.4, num = 101}" in text
