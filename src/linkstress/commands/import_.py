@@ -24,8 +24,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "out; the rest imports (exit 0) unless --strict. The problems print first, grouped by kind. What is no "
             "part (a page frame, text glyphs, drill marks, layers named for annotation) is skipped and listed. "
             "With --scene, a mechanism drawn assembled (each "
-            "link on its own layer, pin centres meeting) also becomes a scene to edit and analyze; the shipped "
-            "cases' sketches draw their links apart, so --scene refuses them."
+            "link on its own layer, pin centres meeting) also becomes a scene to edit and analyze: four-bar loops "
+            "and slider-cranks, or any other one-DOF linkage of pins, slots and sliding blocks (docs/importing.md); "
+            "a sheet of links drawn apart has none."
         ),
         epilog=examples(
             "linkstress import validation/cases/six_bar/six_bar.dxf --plot six_bar.png",
@@ -56,7 +57,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--scene", metavar="OUT.toml",
         help="write a scene of the mechanism drawn assembled (each link on its own layer, pinned where pin centres "
-             "meet): four-bar loops, ground, crank, the drawn angle and branch; edit thickness, material, motion, loads",
+             "meet): four-bar and slider-crank loops, or a linkage of pins and sliders, with its ground, input and "
+             "the drawn pose; edit thickness, material, motion, loads",
     )
     parser.set_defaults(run=run)
 
