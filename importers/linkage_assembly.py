@@ -44,9 +44,13 @@ from linkstress.kinematics.solve import solve_machine
 NAME = "main"
 """The written linkage's mechanism name."""
 SWEEP_STEP_DEG = 0.5
-"""The step [deg] at which one turn each way from the drawn angle is solved to find where it assembles."""
+"""The step [deg] to which the range where a crank's linkage assembles is found, each way from the
+drawn angle."""
 STROKE_SAMPLES = 200
-"""Steps each way from the drawn stroke, over the slider's length, to find where it assembles."""
+"""The steps each way from the drawn stroke, over the slider's length, to which the range where it
+assembles is found."""
+SWEEP_FINE = 10
+"""Fine steps in a coarse one: the range is first solved at ten times those steps (5 deg)."""
 STROKE_DIGITS = 12
 """Decimals of the drawn stroke written [m]."""
 
@@ -118,7 +122,7 @@ def find_linkage(sketch: Sketch) -> LinkageAssembly:
     else:
         d = drawn[chosen.link][chosen.to] - drawn[chosen.link][chosen.pivot]
         value = round(math.degrees(math.atan2(d[1], d[0])), ANGLE_DIGITS)
-    sweep, turns = _sweep(graph, value, slides[chosen.slider].length if chosen.is_stroke else None)
+    sweep, turns = _sweep(graph, value, _strokes(graph, slides[chosen.slider], chosen.slider) if chosen.is_stroke else None)
     ground_joints = drawn[name] if ground is None else None
     return LinkageAssembly(links, name, ground_joints, graph, tuple(slides), value, sweep, turns, ground_rule, input_rule)
 
@@ -217,24 +221,50 @@ def _without_key(message: str) -> str:
     return re.sub(rf"^mechanisms\.{NAME}[^:\s]*: ", "", message)
 
 
-def _sweep(graph: LinkageGraph, value: float, length: float | None) -> tuple[tuple[float, float], bool]:
-    """The input's range about the drawn ``value`` where the linkage assembles: one turn each way at
-    ``SWEEP_STEP_DEG`` for a crank (a full turn when every step assembles), the slider's ``length``
-    [m] each way for a stroke; ends at the last sample that assembles."""
-    if length is None:
-        count = round(360.0 / SWEEP_STEP_DEG)
-        offsets = np.linspace(0.0, 360.0, count + 1)
-        motion = angle_motion
-    else:
-        count = STROKE_SAMPLES
-        offsets = np.linspace(0.0, length, count + 1)
-        motion = stroke_motion
-    ends = []
-    for sign in (1.0, -1.0):
-        values = value + sign * offsets
-        feasible = solve_machine(graph, motion(values)).feasible
-        run = count if feasible.all() else int(np.argmin(feasible)) - 1
-        ends.append(float(values[max(run, 0)]))
-        if length is None and run == count:
+def _strokes(graph: LinkageGraph, slide: Slide, k: int) -> tuple[float, float]:
+    """The strokes' change (low, high) [m] from the drawn one over the input slider's ``travel``:
+    the stroke runs along its line from joint i toward j, the travel along the slide's direction."""
+    i, j = graph.sliders[k].line
+    drawn = graph.links[graph.sliders[k].on]
+    sign = 1.0 if float((drawn[j] - drawn[i]) @ slide.direction) > 0 else -1.0
+    low, high = sorted(sign * x for x in slide.travel)
+    return low, high
+
+
+def _sweep(graph: LinkageGraph, value: float, travel: tuple[float, float] | None) -> tuple[tuple[float, float], bool]:
+    """The input's range about the drawn ``value`` where the linkage assembles, each way to its last
+    fine step that does (``_reach``): one turn each way for a crank (a full turn when it assembles
+    all round); for a stroke, within its ``travel`` (low, high) [m] from the drawn one."""
+    if travel is None:
+        coarse = round(360.0 / (SWEEP_FINE * SWEEP_STEP_DEG))
+        ahead, whole = _reach(graph, value, 360.0, coarse, angle_motion)
+        if whole:
             return (value, value + 360.0), True
-    return (ends[1], ends[0]), False
+        behind, _ = _reach(graph, value, -360.0, coarse, angle_motion)
+        return (behind, ahead), False
+    coarse = STROKE_SAMPLES // SWEEP_FINE
+    strokes = value + np.linspace(travel[0], travel[1], 2 * coarse + 1)
+    if solve_machine(graph, stroke_motion(strokes)).feasible.all():
+        return (float(strokes[0]), float(strokes[-1])), False
+    ahead, _ = _reach(graph, value, travel[1], coarse, stroke_motion)
+    behind, _ = _reach(graph, value, travel[0], coarse, stroke_motion)
+    return (behind, ahead), False
+
+
+def _reach(graph: LinkageGraph, value: float, span: float, coarse: int, motion) -> tuple[float, bool]:
+    """How far from ``value`` toward ``value + span`` the linkage assembles: solved at ``coarse``
+    steps, then at ``SWEEP_FINE`` finer ones within the coarse step where it stops assembling (the
+    path through the coarse steps before it, so that it follows the drawn assembly). The last fine
+    step that assembles, and whether the whole span does. A Newton group refines every step where
+    it cannot close, so the steps past the end are kept few."""
+    steps = value + np.linspace(0.0, span, coarse + 1)
+    feasible = solve_machine(graph, motion(steps)).feasible
+    if feasible.all():
+        return float(steps[-1]), True
+    k = int(np.argmin(feasible))
+    if k == 0:
+        return value, False
+    fine = np.linspace(steps[k - 1], steps[k], SWEEP_FINE + 1)[1:-1]
+    ok = solve_machine(graph, motion(np.concatenate([steps[:k], fine]))).feasible[k:]
+    run = len(fine) if ok.all() else int(np.argmin(ok))
+    return float(fine[run - 1]) if run else float(steps[k - 1]), False

@@ -74,7 +74,8 @@ def _motion(assembly: LinkageAssembly) -> list[str]:
             f"input_stroke_m = {number(assembly.input_value)}  # as drawn: {slider.point} from joint {slider.line[0]} of "
             f"{_comment(slider.on)} along its line",
             f"# input_stroke_m = {{start = {number(start)}, stop = {number(stop)}, num = 101}}  # a sweep: where the "
-            "linkage assembles within the slider's length each way; edit to the actuator's stroke",
+            "block stays in its guide (a block on the ground: its length each way) and the linkage assembles; edit "
+            "to the actuator's stroke",
             f"input_speed_m_s = {number(SPEED_M_S)}  # a default: edit",
         ]
     if assembly.turns:

@@ -54,7 +54,10 @@ class Slide:
     sketch's pins (``pins.shared_joints``); ``point``: the link and joint index that slides;
     ``on``: the guide (None: the ground); ``block``: the one-joint link riding on the line, or None;
     ``direction`` (2,) unit: the slot's axis or the block's longer side; ``length`` [m]: the slot's
-    or the block's length along it; ``how``: what the drawing shows, for the reader."""
+    or the block's length along it; ``travel`` (low, high) [m]: how far the pin may move along
+    ``direction`` from where it is drawn with its block (or the pin itself) still in its guide: in
+    the slot, or its end inside the guide's outline (a rod's piston end in its barrel), or, on the
+    ground, a block's length each way; ``how``: what the drawing shows, for the reader."""
 
     pin: int
     point: tuple[str, int]
@@ -62,6 +65,7 @@ class Slide:
     block: str | None
     direction: NDArray[np.float64]
     length: float
+    travel: tuple[float, float]
     how: str
 
 
@@ -72,6 +76,7 @@ class _Slot:
     centre: NDArray[np.float64]
     direction: NDArray[np.float64]
     length: float
+    width: float
 
 
 def find_slides(links: dict[str, ImportedLink], joints: list[Joint], ground: str | None,
@@ -91,7 +96,7 @@ def find_slides(links: dict[str, ImportedLink], joints: list[Joint], ground: str
                 f"{', '.join(repr(s.link) for s in holding)} at once; a pin runs in one slot: check the drawing"
             )
         if holding:
-            found.append(_in_slot(k, joint, holding[0], singles))
+            found.append(_in_slot(k, joint, holding[0], links, singles))
             taken |= {found[-1].block} - {None}
     guides = _guides(links, joints, singles - taken, ground)
     blocks = sorted(singles - taken - set(guides.values()), key=lambda name: _pin_of(name, joints))
@@ -102,8 +107,14 @@ def find_slides(links: dict[str, ImportedLink], joints: list[Joint], ground: str
             continue  # pinned to nothing: the graph's check names it as not connected
         guide = guides.get(block)
         u = slider_direction(links[block], np.array([1.0, 0.0]))
-        how = f"block {block!r} in the outline of {guide!r}" if guide else f"block {block!r} on the ground"
-        found.append(Slide(k, others[0], guide, block, u, _extent(links[block].outline, u), how))
+        at = joints[k].at
+        ends = _span(links[block].outline, u, at)
+        length = ends[1] - ends[0]
+        if guide is None:
+            how, travel = f"block {block!r} on the ground", (-length, length)
+        else:
+            how, travel = f"block {block!r} in the outline of {guide!r}", _inside(ends, _span(links[guide].outline, u, at))
+        found.append(Slide(k, others[0], guide, block, u, length, travel, how))
     return sorted(found, key=lambda s: s.pin)
 
 
@@ -120,7 +131,7 @@ def _slots(link: ImportedLink) -> list[_Slot]:
             continue
         u = sides[int(np.argmax(lengths))] / lengths.max()
         centre = np.asarray(hole.minimum_rotated_rectangle.centroid.coords[0])
-        found.append(_Slot(link.name, hole, centre, u, float(lengths.max())))
+        found.append(_Slot(link.name, hole, centre, u, float(lengths.max()), float(lengths.min())))
     return found
 
 
@@ -130,7 +141,7 @@ def _on_axis(slot: _Slot, at: NDArray[np.float64], tolerance: float) -> bool:
     return slot.hole.contains(Point(at)) and abs(float(r[0] * slot.direction[1] - r[1] * slot.direction[0])) <= tolerance
 
 
-def _in_slot(k: int, joint: Joint, slot: _Slot, singles: set[str]) -> Slide:
+def _in_slot(k: int, joint: Joint, slot: _Slot, links: dict[str, ImportedLink], singles: set[str]) -> Slide:
     blocks = [name for name, _ in joint.ends if name in singles]
     if len(blocks) > 1:
         raise SketchError(
@@ -145,7 +156,12 @@ def _in_slot(k: int, joint: Joint, slot: _Slot, singles: set[str]) -> Slide:
             f"{joint.at[1]:.6g}) m: a block in a slot carries a pin of another link (a crank's pin in a collar)"
         )
     how = f"the pin of {points[0][0]!r} in the slot of {slot.link!r}" + (f", in block {block!r}" if block else "")
-    return Slide(k, points[0], slot.link, block, slot.direction, slot.length, how)
+    room = _span(slot.hole, slot.direction, joint.at)
+    if block is None:
+        travel = (room[0] + slot.width / 2, room[1] - slot.width / 2)  # the pin's round end in the slot's
+    else:
+        travel = _inside(_span(links[block].outline, slot.direction, joint.at), room)
+    return Slide(k, points[0], slot.link, block, slot.direction, slot.length, travel, how)
 
 
 def _pin_of(block: str, joints: list[Joint]) -> int:
@@ -170,10 +186,20 @@ def _guides(links: dict[str, ImportedLink], joints: list[Joint], singles: set[st
     return guides
 
 
-def _extent(outline: Polygon, u: NDArray[np.float64]) -> float:
-    """The length [m] of ``outline`` along ``u``."""
-    along = np.asarray(outline.exterior.coords) @ u
-    return float(along.max() - along.min())
+def _span(outline: Polygon, u: NDArray[np.float64], at: NDArray[np.float64]) -> tuple[float, float]:
+    """(low, high) [m]: where ``outline`` reaches along ``u``, from ``at``."""
+    along = (np.asarray(outline.exterior.coords) - at) @ u
+    return float(along.min()), float(along.max())
+
+
+def _inside(block: tuple[float, float], guide: tuple[float, float]) -> tuple[float, float]:
+    """How far a block reaching ``block`` (low, high) [m] may move with the ends of it that lie in
+    ``guide`` (low, high) staying there: a block inside moves until either end leaves, a rod with
+    its back end inside until that end reaches either end of the guide; (0, 0) when no end is in."""
+    inside = [end for end in block if guide[0] <= end <= guide[1]]
+    if not inside:
+        return 0.0, 0.0
+    return guide[0] - min(inside), guide[1] - max(inside)
 
 
 def line_joints(slide: Slide, guide: str, drawn: NDArray[np.float64], pinned: set[int],

@@ -23,6 +23,9 @@ import pytest
 from shapely.geometry import MultiPoint
 
 from linkstress.cli import main
+from linkstress.importers import read_sketch
+from linkstress.importers.pins import shared_joints
+from linkstress.importers.slides import find_slides
 from linkstress.kinematics.motion import angle_motion, stroke_motion
 from linkstress.kinematics.solve import solve_machine
 from linkstress.scene.reader import load_scene
@@ -347,6 +350,25 @@ def test_a_crank_pin_in_a_slot_of_a_moving_lever_slides_on_the_slots_axis(tmp_pa
     assert agree(out, theta, targets, lever_pose, named) == 4
 
 
+@pytest.mark.parametrize("collar", [True, False], ids=["a collar block in the slot", "the pin alone in the slot"])
+def test_a_pin_in_a_slot_travels_until_it_or_its_collar_meets_the_slots_end(tmp_path, collar):
+    # The slot runs 0.15 to 0.45 m along the lever, 30 mm wide: its round ends reach 0.135 and
+    # 0.465 m. The crank pin at 35 deg is |A - O4| along; a pin alone stops where its centre meets an
+    # end circle's (0.15, 0.45 m), a 50 mm collar where its end meets the slot's (0.025 m short of it).
+    theta = 35.0
+    drawing = Drawing()
+    slotted_lever(drawing, theta, collar)
+    drawing.plate("frame", [O2, O4])
+    sketch = read_sketch(drawing.save(tmp_path / "slotted.dxf"))
+    links = {link.name: link for link in sketch.links}
+    (slide,) = find_slides(links, shared_joints(sketch.links, sketch.gap_tolerance_m), "frame", sketch.gap_tolerance_m)
+    along = math.hypot(*quick_return(theta)["A"])
+    room = (0.135 + 0.025, 0.465 - 0.025) if collar else (0.15, 0.45)
+    assert (slide.on, slide.block, slide.point) == ("lever", "collar" if collar else None, ("crank", 1))
+    assert slide.direction @ quick_return(theta)["u"] == pytest.approx(1.0, abs=1e-12)
+    assert slide.travel == pytest.approx((room[0] - along, room[1] - along), abs=1e-9)
+
+
 def test_a_slot_whose_axis_misses_the_levers_joints_is_refused_naming_the_lever(tmp_path, capsys):
     theta = 35.0
     drawing = Drawing()
@@ -532,11 +554,14 @@ def test_an_input_that_rocks_gets_a_commented_sweep_between_the_samples_next_to_
     assert written["motion"]["input_angle_deg"] == 45.0
 
 
-def test_a_cylinders_commented_sweep_spans_its_rods_length_each_way_where_the_boom_reaches(tmp_path, capsys):
-    # Drawn at 0.9 m with a 0.5 m rod: 0.4 to 1.4 m, inside the strokes the boom reaches,
-    # |0.8 - |P0 Q0|| = 0.129 m to 0.8 + |P0 Q0| = 1.471 m (|P0 Q0| = sqrt(0.3^2 + 0.6^2) m).
+def test_a_cylinders_commented_sweep_is_the_strokes_that_keep_the_rods_end_in_its_barrel(tmp_path, capsys):
+    # Drawn at 0.9 m: the barrel reaches from 0.02 m behind its base pin Q0 (its round end) to 0.62 m
+    # along its axis, the rod's back end lies 0.47 m behind K, 0.43 m along from Q0. That end stays in
+    # the barrel from 0.45 m less to 0.19 m more stroke: 0.45 to 1.09 m, where the boom reaches
+    # (|0.8 - |P0 Q0|| = 0.129 m to 0.8 + |P0 Q0| = 1.471 m, |P0 Q0| = sqrt(0.3^2 + 0.6^2) m).
     out, _, _ = import_scene(lift_drawing(tmp_path / "lift.dxf", "cylinder", "rod", 0.9), capsys)
     reach = math.hypot(*(Q0 - P0))
-    assert BOOM - reach < 0.4 and 1.4 < BOOM + reach
-    text = out.read_text()
-    assert "# input_stroke_m = {start = 0.4, stop = 1.4, num = 101}" in text
+    assert BOOM - reach < 0.45 and 1.09 < BOOM + reach
+    sweep = re.search(r"# input_stroke_m = \{start = (\S+), stop = (\S+), num = 101\}  # a sweep: where the block "
+                      r"stays in its guide", out.read_text())
+    assert (float(sweep[1]), float(sweep[2])) == pytest.approx((0.45, 1.09), abs=1e-12)
