@@ -18,8 +18,10 @@ import numpy as np
 import pytest
 
 from linkstress.cli import main
+from linkstress.errors import SketchError
+from linkstress.importers.assembly import check_pose
 from linkstress.kinematics.solve import solve_machine
-from linkstress.scene.reader import load_scene
+from linkstress.scene.reader import load_scene, scene_from_text
 
 CASES = Path(__file__).resolve().parents[1] / "validation" / "cases"
 LINKAGES = {
@@ -97,3 +99,12 @@ def test_the_drawn_input_of_each_linkage_case_is_its_motion_and_solves_to_the_dr
         for name, link in scene.links.items():
             moved = at.links[name].point(link.to_member(link.joints))[0][0]
             assert np.abs(moved - link.joints).max() < 1e-9, (case, name)
+
+
+def test_a_linkage_scene_solved_off_its_drawn_input_is_refused_naming_a_joint_that_moved(tmp_path, capsys):
+    out, _ = imported("stephenson3_press", tmp_path, capsys)
+    # The crank a degree past its drawn 60 deg: its pin A (30, 51.96) mm moves by 60 mm x 1 deg = 1.05 mm.
+    turned = scene_from_text(out.read_text().replace("input_angle_deg = 60.0 ", "input_angle_deg = 61.0 "), out)
+    with pytest.raises(SketchError, match=r"link 'crank', joint 1 drawn at \(0\.03, 0\.0519615\) m: the linkage solved "
+                                          r"at the drawn input puts it at \(0\.0290\d*, 0\.0524\d*\) m, 0\.00105 m away"):
+        check_pose(turned, 1e-6, "the linkage solved at the drawn input")
