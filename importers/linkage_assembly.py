@@ -122,7 +122,10 @@ def find_linkage(sketch: Sketch) -> LinkageAssembly:
     else:
         d = drawn[chosen.link][chosen.to] - drawn[chosen.link][chosen.pivot]
         value = round(math.degrees(math.atan2(d[1], d[0])), ANGLE_DIGITS)
-    sweep, turns = _sweep(graph, value, _strokes(graph, slides[chosen.slider], chosen.slider) if chosen.is_stroke else None)
+    try:
+        sweep, turns = _sweep(graph, value, _strokes(graph, slides[chosen.slider], chosen.slider) if chosen.is_stroke else None)
+    except LinkageError as error:  # a group drawn at a toggle, found as it is solved
+        raise SketchError(_without_key(str(error))) from None
     ground_joints = drawn[name] if ground is None else None
     return LinkageAssembly(links, name, ground_joints, graph, tuple(slides), value, sweep, turns, ground_rule, input_rule)
 

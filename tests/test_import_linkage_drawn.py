@@ -267,6 +267,21 @@ def test_a_stephenson_six_bar_of_random_lengths_imports_as_a_linkage_that_moves_
     assert agree(out, at["theta"], targets, pose, named) == 4
 
 
+def test_a_six_bar_drawn_with_its_dyad_in_line_is_refused_at_its_toggle(tmp_path, capsys):
+    at = stephenson3(np.random.default_rng(1))
+    # O6 on the line P -> Q, 0.7 m beyond Q: the link and the lever drawn in line, neither assembly drawn.
+    at["O6"] = at["Q"] + 0.7 * (at["Q"] - at["P"]) / math.hypot(*(at["Q"] - at["P"]))
+    drawing = Drawing()
+    for layer, pins in {"crank": ["O2", "A"], "coupler": ["A", "B", "P"], "rocker": ["O4", "B"], "link": ["P", "Q"],
+                        "lever": ["O6", "Q"], "frame": ["O2", "O4", "O6"]}.items():
+        drawing.plate(layer, [at[k] for k in pins])
+    out = tmp_path / "toggle.toml"
+    assert main(["import", str(drawing.save(tmp_path / "toggle.dxf")), "--scene", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "the mechanism as drawn does not assemble at the drawn input: toggle of the RRR dyad" in err
+    assert "lever" in err and "link" in err and not out.exists()
+
+
 @pytest.mark.parametrize("seed", [4, 5, 6])
 def test_a_watt_i_six_bar_of_random_lengths_imports_as_a_linkage_that_moves_as_its_dyads_do(tmp_path, capsys, seed):
     at = watt1(np.random.default_rng(seed))
