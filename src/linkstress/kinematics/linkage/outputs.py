@@ -1,0 +1,104 @@
+"""A linkage's link motions at the sweep's samples, written a block of path positions at a time.
+
+Every moving link gets its angle, angular velocity and acceleration (P,) and its origin's (its
+joint 0's) position, velocity and acceleration (P, 2). Links whose joints 0 share a pin share those
+three arrays (the point is one), and an origin pinned to the ground is a constant (read-only
+views of one value each, as the ground's are): nothing is written twice. Rows where the mechanism
+cannot close hold finite filler (0).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkstress.kinematics.blocks import empty_arrays
+from linkstress.kinematics.linkage.graph import Joint, LinkageGraph
+from linkstress.kinematics.linkage.placing import Block
+from linkstress.kinematics.results import LinkMotion, fixed_link
+
+FloatArray = NDArray[np.float64]
+
+
+def pin_keys(graph: LinkageGraph) -> dict[Joint, object]:
+    """Every joint's point key: its pin's index in ``graph.all_pins``, or the joint itself when no
+    pin holds it (the joints of a pin are at one point)."""
+    keys: dict[Joint, object] = {Joint(name, k): Joint(name, k) for name, joints in graph.links.items()
+                                 for k in range(len(joints))}
+    for k, pin in enumerate(graph.all_pins):
+        for joint in pin:
+            keys[joint] = k
+    return keys
+
+
+class Outputs:
+    """The arrays of every link's motion over ``n`` samples."""
+
+    def __init__(self, graph: LinkageGraph, pin_of: dict[Joint, object], n: int) -> None:
+        self.graph, self.n = graph, n
+        moving = graph.moving
+        self.origin_of: dict[str, object] = {}
+        self.fixed: dict[object, FloatArray] = {}
+        self.joint_of: dict[object, Joint] = {}
+        for name in moving:
+            key = pin_of[Joint(name, 0)]
+            self.origin_of[name] = key
+            ground = [j for j in graph.all_pins[key] if j.link == graph.ground] if isinstance(key, int) else []
+            if ground:
+                self.fixed[key] = graph.drawn(ground[0])
+            else:
+                self.joint_of.setdefault(key, Joint(name, 0))
+        vectors, pairs = empty_arrays(n, 3 * len(moving), 3 * len(self.joint_of))
+        self.angles = {name: vectors[3 * k:3 * k + 3] for k, name in enumerate(moving)}
+        self.points = {key: pairs[3 * k:3 * k + 3] for k, key in enumerate(self.joint_of)}
+
+    def write(self, block: Block, samples: slice, local, scale=None, bad: NDArray[np.bool_] | None = None) -> None:
+        """The block's link motions at path positions ``local`` (a slice or indices into the block)
+        as the samples ``samples``. ``scale``: the input's speed and acceleration at those samples,
+        when the block's rates are per unit input (chain rule: q. = q' x., q.. = q'' x.^2 + q' x..);
+        ``bad`` (per sample): rows to fill with 0."""
+        for name, (angle, w, al) in self.angles.items():
+            track = block.track(name)
+            _put(angle, samples, track.angle, local)
+            _put(w, samples, track.w, local)
+            _put(al, samples, track.al, local)
+            if scale is not None:
+                _chain(w[samples], al[samples], *scale)
+        for key, (p, v, a) in self.points.items():
+            point = block.joint(self.joint_of[key])
+            for k, (x, x1, x2) in enumerate(((point.x, point.x1, point.x2), (point.y, point.y1, point.y2))):
+                _put(p[:, k], samples, x, local)
+                _put(v[:, k], samples, x1, local)
+                _put(a[:, k], samples, x2, local)
+                if scale is not None:
+                    _chain(v[samples, k], a[samples, k], *scale)
+        if bad is not None and bad.any():
+            rows = np.arange(samples.start, samples.stop)[bad]
+            for arrays in (*self.angles.values(), *self.points.values()):
+                for array in arrays:
+                    array[rows] = 0.0
+
+    def motions(self) -> dict[str, LinkMotion]:
+        """Every link's motion (the ground's: at rest)."""
+        g, n = self.graph, self.n
+        links = {g.ground: fixed_link(g.frames[g.ground], g.drawn_angles[g.ground], g.links[g.ground][0], n)}
+        for name in g.moving:
+            key = self.origin_of[name]
+            if key in self.fixed:
+                zero2 = np.broadcast_to(0.0, (n, 2))
+                origin = (np.broadcast_to(self.fixed[key], (n, 2)), zero2, zero2)
+            else:
+                origin = self.points[key]
+            links[name] = LinkMotion(g.frames[name], *self.angles[name], *origin)
+        return {name: links[name] for name in g.links}
+
+
+def _put(out: FloatArray, samples: slice, value, local) -> None:
+    out[samples] = value if np.ndim(value) == 0 else value[local]
+
+
+def _chain(first: FloatArray, second: FloatArray, speed: FloatArray, acceleration: FloatArray) -> None:
+    """In place: (q', q'') per unit input -> (q', q'') per unit time."""
+    second *= speed * speed
+    second += first * acceleration
+    first *= speed
