@@ -46,11 +46,11 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class RRR:
-    """An RRR dyad solved over a block: its free joint C; C - A and C - B (x, y apart); the
-    angular rates and accelerations of the link A-C (w1, al1) and of B-C (w2, al2); the
-    clearance h^2 (B,) [m^2]; and det = (C - A) x (C - B) (B,) [m^2]."""
+    """An RRR dyad solved over a block: the known A; C - A and C - B (x, y apart); the angular
+    rates and accelerations of the link A-C (w1, al1) and of B-C (w2, al2); the clearance h^2 (B,)
+    [m^2]; and det = (C - A) x (C - B) (B,) [m^2]."""
 
-    c: Point
+    a: Point
     cax: FloatArray
     cay: FloatArray
     cbx: FloatArray
@@ -62,16 +62,25 @@ class RRR:
     clearance: FloatArray
     det: FloatArray
 
+    def c(self) -> Point:
+        """The free joint C: C = A + (C - A), C' = A' + w1 k x (C - A),
+        C'' = A'' + al1 k x (C - A) - w1^2 (C - A)."""
+        a, cax, cay, w, al = self.a, self.cax, self.cay, self.w1, self.al1
+        ww = w * w
+        return Point(a.x + cax, a.y + cay, a.x1 - w * cay, a.y1 + w * cax,
+                     a.x2 - al * cay - ww * cax, a.y2 + al * cax - ww * cay)
+
 
 def rrr(a: Point, b: Point, r1: float, r2: float, sign: float) -> RRR:
-    """C at distance ``r1`` [m] from A and ``r2`` from B, on the side ``sign``, with its rates."""
+    """C at distance ``r1`` [m] from A and ``r2`` from B, on the side ``sign``, with the rates of
+    its links (nan where it cannot close)."""
     dx, dy = b.x - a.x, b.y - a.y
     d2 = dx * dx + dy * dy
     with np.errstate(divide="ignore", invalid="ignore"):
         inv = 1.0 / d2
         along = 0.5 * (r1 * r1 - r2 * r2) * inv + 0.5
         h2 = r1 * r1 * inv - along * along
-        height = sign * np.sqrt(np.maximum(h2, 0.0))
+        height = sign * np.sqrt(h2)
         cax, cay = along * dx - height * dy, along * dy + height * dx
         cbx, cby = cax - dx, cay - dy
         det = height * d2
@@ -86,9 +95,7 @@ def rrr(a: Point, b: Point, r1: float, r2: float, sign: float) -> RRR:
         ey = b.y2 - a.y2 + ww1 * cay - ww2 * cby
         al1 = (ex * cbx + ey * cby) * inv_det
         al2 = (ex * cax + ey * cay) * inv_det
-    c = Point(a.x + cax, a.y + cay, a.x1 - w1 * cay, a.y1 + w1 * cax,
-              a.x2 - al1 * cay - ww1 * cax, a.y2 + al1 * cax - ww1 * cay)
-    return RRR(c, cax, cay, cbx, cby, w1, al1, w2, al2, h2 * d2, det)
+    return RRR(a, cax, cay, cbx, cby, w1, al1, w2, al2, h2 * d2, det)
 
 
 def rrr_sign(a: FloatArray, b: FloatArray, c: FloatArray) -> float:

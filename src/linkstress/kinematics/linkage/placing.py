@@ -35,7 +35,7 @@ class Block:
                  seed2: Values, tracks: dict[str, Track], load: Callable[[str], Track] | None = None) -> None:
         self.graph, self.pin_of, self.x, self.seed1, self.seed2 = graph, pin_of, x, seed1, seed2
         self.tracks, self.load = tracks, load
-        self.points: dict[object, Point] = {}
+        self.points: dict[object, Point | Callable[[], Point]] = {}
 
     def track(self, name: str) -> Track:
         """A known link's track."""
@@ -46,12 +46,16 @@ class Block:
     def joint(self, joint: Joint) -> Point:
         """Where a joint of a known link is, with its rates."""
         key = self.pin_of[joint]
-        if key not in self.points:
-            self.points[key] = self.track(joint.link).point(self.graph.local[joint.link][joint.index])
-        return self.points[key]
+        point = self.points.get(key)
+        if point is None:
+            point = self.track(joint.link).point(self.graph.local[joint.link][joint.index])
+        elif callable(point):
+            point = point()
+        self.points[key] = point
+        return point
 
-    def found(self, joint: Joint, point: Point) -> None:
-        """A group solved ``joint`` at ``point``."""
+    def found(self, joint: Joint, point: Point | Callable[[], Point]) -> None:
+        """A group solved ``joint`` at ``point`` (or a function that makes it, when first asked for)."""
         self.points[self.pin_of[joint]] = point
 
     def line(self, k: int) -> tuple[Point, Values, Values, Track]:
@@ -135,7 +139,7 @@ class RRRPlacer(_Placer):
         a, b = block.joint(self.a_known), block.joint(self.b_known)
         s = dyads.rrr(a, b, self.r1, self.r2, self.side)
         first, second = self.c1.link, self.c2.link
-        block.found(self.c1, s.c)
+        block.found(self.c1, s.c)  # made only if a later group or the output reads it
         block.tracks[first] = through(local[first][self.a_joint.index], local[first][self.c1.index], a, s.cax, s.cay,
                                       s.w1, s.al1)
         block.tracks[second] = through(local[second][self.b_joint.index], local[second][self.c2.index], b, s.cbx,

@@ -43,7 +43,7 @@ FloatArray = NDArray[np.float64]
 
 MAX_STEP = (math.radians(2.0), 0.005)
 """The longest step of the path: 2 deg of a crank; for a stroke, this fraction of the mechanism's size."""
-BLOCK = 4096
+BLOCK = 16384
 """Path positions solved together: a block's few hundred temporaries stay in a core's cache."""
 
 
