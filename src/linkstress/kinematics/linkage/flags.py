@@ -54,27 +54,27 @@ class PathFlags:
             self.texts += [f"the {group.label} cannot close", f"toggle of the {group.label}: its rates are unbounded"]
         self.fails: dict[int, NDArray[np.bool_]] = {}
         self.toggles: dict[int, NDArray[np.bool_]] = {}
-        self.clearance: dict[int, FloatArray] = {}
+        self.clearance: dict[int, dict[int, float]] = {}
         self.minima: dict[int, list[NDArray[np.intp]]] = {}
-        self.edges: dict[int, list[tuple[int, int]]] = {}
         self._lock = threading.Lock()
 
     def expect(self, g: int) -> None:
         """Closed-form group g will be recorded block by block."""
-        self.clearance[g] = np.empty(self.n)
-        self.minima[g], self.edges[g] = [], []
+        self.clearance[g], self.minima[g] = {}, []
 
     def record(self, g: int, rows: slice, clearance, ratio, tiny: float) -> NDArray[np.bool_] | None:
         """Group g's clearance (B,) [m^2] and rate conditioning (B,) at path positions ``rows``: where
         it fails there (None: nowhere). A toggle: clearance below ``tiny`` [m^2] or conditioning
         below ``SINGULAR``."""
         count = rows.stop - rows.start
-        clearance = np.broadcast_to(clearance, (count,))
-        self.clearance[g][rows] = clearance
-        c = clearance
-        self.edges[g].append((rows.start, rows.stop - 1))
-        if count >= 3:
-            self.minima[g].append(rows.start + 1 + np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:])))
+        c = clearance = np.broadcast_to(clearance, (count,))
+        # kept: the clearance about the local minima inside the block and at its ends (the minima
+        # there are found once the neighbouring blocks' ends are known)
+        mid = 1 + np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:])) if count >= 3 else np.zeros(0, np.intp)
+        keep = np.unique(np.concatenate([(mid[:, None] + np.arange(-2, 3)).ravel(), np.arange(4), count - 4 + np.arange(4)]))
+        keep = keep[(keep >= 0) & (keep < count)]
+        self.clearance[g].update(zip((rows.start + keep).tolist(), c[keep].tolist()))
+        self.minima[g].append(rows.start + mid)
         if np.min(clearance) > tiny and np.min(ratio) > SINGULAR:  # also False where either is nan
             return None
         toggle = (np.abs(clearance) <= tiny) | ~(ratio > SINGULAR)
@@ -112,36 +112,33 @@ class PathFlags:
     def dyad_events(self, g: int, path) -> list[tuple[int, str]]:
         """(sample row, what) for steps passing a change point of closed-form group g, or inputs
         where it cannot close, between two samples where it closes."""
-        group, c = self.groups[g], self.clearance[g]
+        group = self.groups[g]
         fails = self.fails.get(g)
         events = []
         if fails is not None:
             for row in np.unique(path.step_of[_inside(path) & fails]).tolist():
                 events.append((row, "gap"))
-        n = len(c)
-        if n >= 5:
-            events += [(row, "change") for row in _v_dips(c, self._minima(g), fails, path)]
+        if self.n >= 5:
+            events += [(row, "change") for row in _v_dips(self.clearance[g], self._minima(g), fails, path)]
         return [(row, kind + "|" + group.label) for row, kind in events if row >= 0]
 
     def _minima(self, g: int) -> NDArray[np.intp]:
-        """The path positions f where group g's clearance has a local minimum, c[f] < c[f - 1] and
-        c[f] <= c[f + 1]: those found inside the blocks and those at the blocks' edges."""
-        c, n = self.clearance[g], len(self.clearance[g])
-        edges = np.array(self.edges[g], np.intp).reshape(-1)
-        edges = edges[(edges >= 1) & (edges <= n - 2)]
-        edges = edges[(c[edges] < c[edges - 1]) & (c[edges] <= c[edges + 1])]
-        return np.unique(np.concatenate(self.minima[g] + [edges]))
+        """The path positions f where group g's clearance c has a local minimum, c[f] < c[f - 1]
+        and c[f] <= c[f + 1]: those found inside the blocks and those at their ends."""
+        c = self.clearance[g]
+        ends = [f for f in c if 1 <= f <= self.n - 2 and f - 1 in c and f + 1 in c and c[f] < c[f - 1] and c[f] <= c[f + 1]]
+        return np.unique(np.concatenate(self.minima[g] + [np.array(ends, np.intp)]))
 
 
-def _v_dips(c: FloatArray, mid: NDArray[np.intp], fails, path) -> list[int]:
-    """The sample rows whose step holds a V-shaped dip of the height h = sqrt(clearance ``c``) to
-    zero, at the local minima ``mid``: the lines through the two points on either side meet within
-    ``V_DEPTH`` of a step's change of zero."""
-    mid = mid[(mid >= 2) & (mid <= len(c) - 3)]
+def _v_dips(c: dict[int, float], mid: NDArray[np.intp], fails, path) -> list[int]:
+    """The sample rows whose step holds a V-shaped dip of the height h = sqrt(clearance c) to
+    zero, at the local minima ``mid`` (c: the clearance at path positions about them): the lines
+    through the two points on either side meet within ``V_DEPTH`` of a step's change of zero."""
+    mid = mid[(mid >= 2) & (mid <= len(path.x) - 3)]
     if not len(mid):
         return []
     window = np.stack([mid - 2, mid - 1, mid, mid + 1, mid + 2])
-    h, x = np.sqrt(np.maximum(c[window], 0.0)), path.x[window]
+    h, x = np.sqrt(np.maximum([[c[f] for f in row] for row in window.tolist()], 0.0)), path.x[window]
     steps = np.sign(np.diff(x, axis=0))
     steady = (steps == steps[0]).all(axis=0) & (steps[0] != 0)
     if fails is not None:

@@ -2,9 +2,10 @@
 
 Every moving link gets its angle, angular velocity and acceleration (P,) and its origin's (its
 joint 0's) position, velocity and acceleration (P, 2). Links whose joints 0 share a pin share those
-three arrays (the point is one), and an origin pinned to the ground is a constant (read-only
-views of one value each, as the ground's are): nothing is written twice. Rows where the mechanism
-cannot close hold finite filler (0).
+three arrays (the point is one), an origin pinned to the ground is a constant (read-only views of
+one value each, as the ground's are), and the input crank turns as the input does (its angle
+plus the drawn offset, the input's speed and acceleration): nothing is written twice. Rows where
+the mechanism cannot close hold finite filler (0).
 """
 
 from __future__ import annotations
@@ -14,7 +15,8 @@ from numpy.typing import NDArray
 
 from linkstress.kinematics.blocks import empty_arrays
 from linkstress.kinematics.linkage.graph import Joint, LinkageGraph
-from linkstress.kinematics.linkage.placing import Block
+from linkstress.kinematics.linkage.placing import Block, crank_offset
+from linkstress.kinematics.motion import InputMotion
 from linkstress.kinematics.results import LinkMotion, fixed_link
 
 FloatArray = NDArray[np.float64]
@@ -36,6 +38,7 @@ class Outputs:
 
     def __init__(self, graph: LinkageGraph, pin_of: dict[Joint, object], n: int) -> None:
         self.graph, self.n = graph, n
+        self.crank = None if graph.input.is_stroke else graph.input.link
         moving = graph.moving
         self.origin_of: dict[str, object] = {}
         self.fixed: dict[object, FloatArray] = {}
@@ -48,8 +51,9 @@ class Outputs:
                 self.fixed[key] = graph.drawn(ground[0])
             else:
                 self.joint_of.setdefault(key, Joint(name, 0))
-        vectors, pairs = empty_arrays(n, 3 * len(moving), 3 * len(self.joint_of))
-        self.angles = {name: vectors[3 * k:3 * k + 3] for k, name in enumerate(moving)}
+        turning = [name for name in moving if name != self.crank]
+        vectors, pairs = empty_arrays(n, 3 * len(turning), 3 * len(self.joint_of))
+        self.angles = {name: vectors[3 * k:3 * k + 3] for k, name in enumerate(turning)}
         self.points = {key: pairs[3 * k:3 * k + 3] for k, key in enumerate(self.joint_of)}
 
     def write(self, block: Block, samples: slice, local, scale=None, bad: NDArray[np.bool_] | None = None) -> None:
@@ -78,10 +82,18 @@ class Outputs:
                 for array in arrays:
                     array[rows] = 0.0
 
-    def motions(self) -> dict[str, LinkMotion]:
-        """Every link's motion (the ground's: at rest)."""
+    def motions(self, motion: InputMotion, feasible: NDArray[np.bool_]) -> dict[str, LinkMotion]:
+        """Every link's motion (the ground's: at rest), the input crank's from ``motion`` where
+        ``feasible``."""
         g, n = self.graph, self.n
         links = {g.ground: fixed_link(g.frames[g.ground], g.drawn_angles[g.ground], g.links[g.ground][0], n)}
+        angles = dict(self.angles)
+        if self.crank is not None:
+            offset = crank_offset(g)
+            turn = (motion.angle + offset if offset else motion.angle, motion.speed, motion.acceleration)
+            if not feasible.all():
+                turn = tuple(np.where(feasible, value, 0.0) for value in turn)
+            angles[self.crank] = turn
         for name in g.moving:
             key = self.origin_of[name]
             if key in self.fixed:
@@ -89,7 +101,7 @@ class Outputs:
                 origin = (np.broadcast_to(self.fixed[key], (n, 2)), zero2, zero2)
             else:
                 origin = self.points[key]
-            links[name] = LinkMotion(g.frames[name], *self.angles[name], *origin)
+            links[name] = LinkMotion(g.frames[name], *angles[name], *origin)
         return {name: links[name] for name in g.links}
 
 

@@ -72,6 +72,13 @@ class Block:
         return self.joint(Joint(slider.on, i)), ux, uy, guide
 
 
+def crank_offset(graph: LinkageGraph) -> float:
+    """The input crank's frame angle less its input angle [rad] (both as drawn)."""
+    joints = graph.links[graph.input.link]
+    direction = joints[graph.input.to] - joints[graph.input.pivot]
+    return graph.drawn_angles[graph.input.link] - math.atan2(direction[1], direction[0])
+
+
 def placer(graph: LinkageGraph, group: Group):
     """The placer of a closed-form ``group``."""
     kinds = {"crank": CrankPlacer, "RRR": RRRPlacer, "RRP": RRPPlacer, "RPR": RPRPlacer}
@@ -108,15 +115,13 @@ class CrankPlacer(_Placer):
     def __init__(self, graph: LinkageGraph, group: Group) -> None:
         super().__init__(graph, group)
         (self.crank, self.ground), = group.pairs
-        g = graph
-        direction = g.links[self.crank.link][g.input.to] - g.links[self.crank.link][g.input.pivot]
-        self.offset = g.drawn_angles[self.crank.link] - math.atan2(direction[1], direction[0])
+        self.offset = crank_offset(graph)
 
     def place(self, block: Block) -> None:
         angle = block.x + self.offset
         local = self.graph.local[self.crank.link][self.crank.index]
-        block.tracks[self.crank.link] = Track(angle, np.cos(angle), np.sin(angle), block.seed1, block.seed2, local,
-                                              block.joint(self.ground))
+        block.tracks[self.crank.link] = Track(angle, block.seed1, block.seed2, local, block.joint(self.ground),
+                                              (np.cos(angle), np.sin(angle)))
         return None
 
 
@@ -196,11 +201,11 @@ class RPRPlacer(_Placer):
         a, b = block.joint(self.known), block.joint(self.point)
         angle, clearance = dyads.rpr(a, b, self.normal_angle, self.offset, self.side)
         cos, sin = np.cos(angle), np.sin(angle)
-        posed = Track(angle, cos, sin, 0.0, 0.0, local[self.pin.index], a)
+        posed = Track(angle, 0.0, 0.0, local[self.pin.index], a, (cos, sin))
         q = posed.point(local[self.i])
         ux, uy = cos * self.u_local[0] - sin * self.u_local[1], sin * self.u_local[0] + cos * self.u_local[1]
         w, al, ratio = dyads.rpr_rates(a, b, q, ux, uy)
-        block.tracks[link] = Track(angle, cos, sin, w, al, local[self.pin.index], a)
+        block.tracks[link] = Track(angle, w, al, local[self.pin.index], a, (cos, sin))
         return clearance, ratio
 
 
@@ -216,6 +221,9 @@ class Rider:
     def place(self, block: Block) -> None:
         guide = block.track(self.slider.on)
         turn, c, s = self.turn
-        cos, sin = guide.cos * c - guide.sin * s, guide.sin * c + guide.cos * s
-        block.tracks[self.name] = Track(guide.angle + turn, cos, sin, guide.w, guide.al, np.zeros(2),
-                                        block.joint(self.slider.point))
+
+        def rotation():
+            return guide.cos * c - guide.sin * s, guide.sin * c + guide.cos * s
+
+        block.tracks[self.name] = Track(guide.angle + turn, guide.w, guide.al, np.zeros(2), block.joint(self.slider.point),
+                                        rotation)

@@ -286,7 +286,7 @@ class _Sweep:
             reasons = ("",) * len(path.rows)
         else:
             reasons = tuple(np.asarray(self.flags.texts, dtype=object)[self.flags.status()[path.rows]].tolist())
-        links = self.outputs.motions()
+        links = self.outputs.motions(motion, feasible)
         return MachineMotion(
             motion.angle, motion.speed, motion.acceleration, motion.time, feasible, reasons, links, {},
             crossings, linkage=LinkageMotion(graph, self.groups, links),

@@ -13,6 +13,8 @@ pass over a strided column copies it.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,24 +43,36 @@ class Point:
         return cls(float(p[0]), float(p[1]), 0.0, 0.0, 0.0, 0.0, True)
 
 
-@dataclass(frozen=True)
 class Track:
-    """A link's pose over a block: the angle [rad] of its member frame's +x, its cosine and sine,
-    its angular rate ``w`` and acceleration ``al``; and one of its points, ``anchor``, at ``local``
-    (2,) [m, member frame], with that point's motion. ``fixed``: the ground."""
+    """A link's pose over a block: the angle [rad] of its member frame's +x, its angular rate ``w``
+    and acceleration ``al``; one of its points, ``anchor``, at ``local`` (2,) [m, member frame],
+    with that point's motion; and the rotation's cosine and sine (``turn``: the pair, or a
+    function that makes it when first needed). ``fixed``: the ground."""
 
-    angle: Values
-    cos: Values
-    sin: Values
-    w: Values
-    al: Values
-    local: FloatArray
-    anchor: Point
-    fixed: bool = False
+    __slots__ = ("angle", "w", "al", "local", "anchor", "fixed", "_turn")
+
+    def __init__(self, angle: Values, w: Values, al: Values, local: FloatArray, anchor: Point,
+                 turn: tuple[Values, Values] | Callable[[], tuple[Values, Values]], fixed: bool = False) -> None:
+        self.angle, self.w, self.al, self.local, self.anchor, self.fixed = angle, w, al, local, anchor, fixed
+        self._turn = turn
 
     @classmethod
     def ground(cls, angle: float, origin: FloatArray) -> Track:
-        return cls(angle, np.cos(angle), np.sin(angle), 0.0, 0.0, np.zeros(2), Point.at_rest(origin), True)
+        return cls(angle, 0.0, 0.0, np.zeros(2), Point.at_rest(origin), (math.cos(angle), math.sin(angle)), True)
+
+    @property
+    def cos(self) -> Values:
+        return self.turn[0]
+
+    @property
+    def sin(self) -> Values:
+        return self.turn[1]
+
+    @property
+    def turn(self) -> tuple[Values, Values]:
+        if callable(self._turn):
+            self._turn = self._turn()
+        return self._turn
 
     def point(self, local: FloatArray) -> Point:
         """The material point ``local`` (2,) [m, member frame]: p = a + r, r = R(local - anchor's),
@@ -66,7 +80,7 @@ class Track:
         lx, ly = float(local[0] - self.local[0]), float(local[1] - self.local[1])
         if lx == 0.0 and ly == 0.0:
             return self.anchor
-        c, s, a = self.cos, self.sin, self.anchor
+        (c, s), a = self.turn, self.anchor
         rx, ry = (c * lx, s * lx) if ly == 0.0 else (c * lx - s * ly, s * lx + c * ly)
         if self.fixed:
             return Point(a.x + rx, a.y + ry, 0.0, 0.0, 0.0, 0.0, True)
@@ -80,15 +94,15 @@ def through(local_a: FloatArray, local_c: FloatArray, a: Point, cax: FloatArray,
             w: Values, al: Values) -> Track:
     """The track of a link whose point ``local_a`` is at A and ``local_c`` at C = A + (cax, cay),
     turning at ``w``, ``al``: the rotation R taking l = local_c - local_a onto C - A is
-    cos = l.(C - A) / |l|^2, sin = l x (C - A) / |l|^2 (|C - A| = |l|: the link is rigid)."""
+    cos = l.(C - A) / |l|^2, sin = l x (C - A) / |l|^2 (|C - A| = |l|: the link is rigid). Where l
+    runs along the frame's +x (a link's joints 0 -> 1), the angle is C - A's own."""
     lx, ly = local_c - local_a
     scale = 1.0 / (lx * lx + ly * ly)
     p, q = lx * scale, ly * scale
-    if q == 0.0:
-        cos, sin = cax * p, cay * p
-    else:
-        cos, sin = cax * p + cay * q, cay * p - cax * q
-    return Track(np.arctan2(sin, cos), cos, sin, w, al, local_a, a)
+    if q == 0.0 and p > 0.0:
+        return Track(np.arctan2(cay, cax), w, al, local_a, a, lambda: (cax * p, cay * p))
+    cos, sin = cax * p + cay * q, cay * p - cax * q
+    return Track(np.arctan2(sin, cos), w, al, local_a, a, (cos, sin))
 
 
 class PathTracks:
@@ -109,7 +123,7 @@ class PathTracks:
             return self.ground_track
         a = self.arrays[name]
         origin = Point(*(a[f][rows] for f in ("x", "y", "x1", "y1", "x2", "y2")))
-        return Track(a["angle"][rows], a["cos"][rows], a["sin"][rows], a["w"][rows], a["al"][rows], np.zeros(2), origin)
+        return Track(a["angle"][rows], a["w"][rows], a["al"][rows], np.zeros(2), origin, (a["cos"][rows], a["sin"][rows]))
 
     def store(self, name: str, rows, track: Track, origin: Point) -> None:
         """Write link ``name``'s ``track`` with its ``origin`` at path positions ``rows``."""
