@@ -85,17 +85,37 @@ def rrr(a: Point, b: Point, r1: float, r2: float, sign: float) -> RRR:
         cbx, cby = cax - dx, cay - dy
         det = height * d2
         inv_det = 1.0 / det
-        # velocities: w1 k x (C - A) - w2 k x (C - B) = B' - A'
-        vx, vy = b.x1 - a.x1, b.y1 - a.y1
-        w1 = (vx * cbx + vy * cby) * inv_det
-        w2 = (vx * cax + vy * cay) * inv_det
+        # velocities: w1 k x (C - A) - w2 k x (C - B) = B' - A' = s (vx, vy)
+        vx, vy, s = _relative(b.x1, b.y1, a.x1, a.y1)
+        rate = inv_det if s > 0 else -inv_det
+        w1 = (vx * cbx + vy * cby) * rate
+        w2 = (vx * cax + vy * cay) * rate
         # accelerations: al1 k x (C - A) - al2 k x (C - B) = B'' - A'' + w1^2 (C - A) - w2^2 (C - B)
         ww1, ww2 = w1 * w1, w2 * w2
-        ex = b.x2 - a.x2 + ww1 * cax - ww2 * cbx
-        ey = b.y2 - a.y2 + ww1 * cay - ww2 * cby
+        ex = _shifted(ww1 * cax - ww2 * cbx, b.x2, a.x2)
+        ey = _shifted(ww1 * cay - ww2 * cby, b.y2, a.y2)
         al1 = (ex * cbx + ey * cby) * inv_det
         al2 = (ex * cax + ey * cay) * inv_det
     return RRR(a, cax, cay, cbx, cby, w1, al1, w2, al2, h2 * d2, det)
+
+
+def _relative(px: Values, py: Values, qx: Values, qy: Values) -> tuple[Values, Values, float]:
+    """P - Q as s (x, y): (x, y) = -Q and s = -1 where P is at rest (a float 0), no pass over the
+    arrays for it."""
+    if isinstance(px, float) and px == 0.0 and py == 0.0:
+        return qx, qy, -1.0
+    if isinstance(qx, float) and qx == 0.0 and qy == 0.0:
+        return px, py, 1.0
+    return px - qx, py - qy, 1.0
+
+
+def _shifted(v: FloatArray, p: Values, q: Values) -> FloatArray:
+    """v + p - q, in place, skipping a float 0."""
+    if not (isinstance(p, float) and p == 0.0):
+        v += p
+    if not (isinstance(q, float) and q == 0.0):
+        v -= q
+    return v
 
 
 def rrr_sign(a: FloatArray, b: FloatArray, c: FloatArray) -> float:

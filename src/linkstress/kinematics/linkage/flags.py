@@ -62,12 +62,12 @@ class PathFlags:
         """Closed-form group g will be recorded block by block."""
         self.clearance[g], self.minima[g] = {}, []
 
-    def record(self, g: int, rows: slice, clearance, ratio, tiny: float) -> NDArray[np.bool_] | None:
-        """Group g's clearance (B,) [m^2] and rate conditioning (B,) at path positions ``rows``: where
-        it fails there (None: nowhere). A toggle: clearance below ``tiny`` [m^2] or conditioning
-        below ``SINGULAR``."""
+    def record(self, g: int, rows: slice, closure, tiny: float) -> NDArray[np.bool_] | None:
+        """How group g closes at path positions ``rows`` (``placing.Closure``): where it fails there
+        (None: nowhere). A toggle: clearance below ``tiny`` [m^2] or conditioning below
+        ``SINGULAR``."""
         count = rows.stop - rows.start
-        c = clearance = np.broadcast_to(clearance, (count,))
+        c = clearance = np.broadcast_to(closure.clearance, (count,))
         # kept: the clearance about the local minima inside the block and at its ends (the minima
         # there are found once the neighbouring blocks' ends are known)
         mid = 1 + np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:])) if count >= 3 else np.zeros(0, np.intp)
@@ -75,9 +75,9 @@ class PathFlags:
         keep = keep[(keep >= 0) & (keep < count)]
         self.clearance[g].update(zip((rows.start + keep).tolist(), c[keep].tolist()))
         self.minima[g].append(rows.start + mid)
-        if np.min(clearance) > tiny and np.min(ratio) > SINGULAR:  # also False where either is nan
+        if np.min(clearance) > tiny and closure.least > SINGULAR:  # also False where either is nan
             return None
-        toggle = (np.abs(clearance) <= tiny) | ~(ratio > SINGULAR)
+        toggle = (np.abs(clearance) <= tiny) | ~(closure.conditioning() > SINGULAR)
         fails = toggle | ~(clearance >= 0)
         self.mark(g, rows, fails, toggle & (clearance >= 0))
         return fails

@@ -5,7 +5,7 @@ A placer is made once per group (its lengths and drawn assembly sign, checked ag
 drawing) and run on every block. It reads the known points and tracks of its block, adds its
 links' tracks and the joints it solved, and returns the group's clearance (B,) [m^2] (positive
 where it closes, zero at a toggle, negative where it cannot; ``dyads``) with the conditioning of
-its rate equations (B,), or None where it always closes.
+its rate equations (a ``Closure``), or None where it always closes.
 """
 
 from __future__ import annotations
@@ -23,6 +23,22 @@ from linkstress.kinematics.linkage.groups import Group
 from linkstress.kinematics.linkage.tracks import Point, Track, Values, through
 
 FloatArray = NDArray[np.float64]
+
+
+class Closure:
+    """How a group closes over a block: its clearance (B,) [m^2] and the conditioning of its rate
+    equations, |det| over the product of its rows' norms: its least value over the block (nan if
+    any is nan) and, when asked for, every value (B,)."""
+
+    def __init__(self, clearance: FloatArray, least: float, conditioning: Callable[[], FloatArray]) -> None:
+        self.clearance, self.least, self._conditioning = clearance, least, conditioning
+
+    @classmethod
+    def of(cls, clearance: FloatArray, conditioning: FloatArray) -> Closure:
+        return cls(clearance, np.min(conditioning), lambda: conditioning)
+
+    def conditioning(self) -> FloatArray:
+        return self._conditioning()
 
 
 class Block:
@@ -118,10 +134,10 @@ class CrankPlacer(_Placer):
         self.offset = crank_offset(graph)
 
     def place(self, block: Block) -> None:
-        angle = block.x + self.offset
+        angle = block.x + self.offset if self.offset else block.x
         local = self.graph.local[self.crank.link][self.crank.index]
         block.tracks[self.crank.link] = Track(angle, block.seed1, block.seed2, local, block.joint(self.ground),
-                                              (np.cos(angle), np.sin(angle)))
+                                              (np.cos(angle), np.sin(angle), 1.0))
         return None
 
 
@@ -139,7 +155,7 @@ class RRRPlacer(_Placer):
         self.side = self.sign(dyads.rrr_sign(graph.drawn(self.a_known), graph.drawn(self.b_known), graph.drawn(j1)))
         self.conditioning = self.side / (self.r1 * self.r2)
 
-    def place(self, block: Block) -> tuple[FloatArray, FloatArray]:
+    def place(self, block: Block) -> Closure:
         local = self.graph.local
         a, b = block.joint(self.a_known), block.joint(self.b_known)
         s = dyads.rrr(a, b, self.r1, self.r2, self.side)
@@ -149,7 +165,9 @@ class RRRPlacer(_Placer):
                                       s.w1, s.al1)
         block.tracks[second] = through(local[second][self.b_joint.index], local[second][self.c2.index], b, s.cbx,
                                        s.cby, s.w2, s.al2)
-        return s.clearance, s.det * self.conditioning
+        # |det| = sign det, so the least conditioning is det's least (or greatest) times 1 / (r1 r2)
+        least = (np.min(s.det) if self.side > 0 else np.max(s.det)) * self.conditioning
+        return Closure(s.clearance, least, lambda: s.det * self.conditioning)
 
 
 class RRPPlacer(_Placer):
@@ -164,7 +182,7 @@ class RRPPlacer(_Placer):
         self.side = self.sign(dyads.rrp_sign(graph.drawn(self.known), graph.drawn(self.point),
                                              graph.line_direction(graph.sliders[self.k])))
 
-    def place(self, block: Block) -> tuple[FloatArray, FloatArray]:
+    def place(self, block: Block) -> Closure:
         link, local = self.pin.link, self.graph.local[self.pin.link]
         a = block.joint(self.known)
         q, ux, uy, guide = block.line(self.k)
@@ -175,7 +193,7 @@ class RRPPlacer(_Placer):
         al = dyads.spin(bax, bay, b.x2 - a.x2, b.y2 - a.y2, r2)
         block.found(self.point, b)
         block.tracks[link] = through(local[self.pin.index], local[self.point.index], a, bax, bay, w, al)
-        return clearance, ratio
+        return Closure.of(clearance, ratio)
 
 
 class RPRPlacer(_Placer):
@@ -196,17 +214,17 @@ class RPRPlacer(_Placer):
         self.side = self.sign(dyads.rpr_sign(graph.line_direction(slider), graph.drawn(self.known),
                                              graph.drawn(self.point)))
 
-    def place(self, block: Block) -> tuple[FloatArray, FloatArray]:
+    def place(self, block: Block) -> Closure:
         link, local = self.pin.link, self.graph.local[self.pin.link]
         a, b = block.joint(self.known), block.joint(self.point)
         angle, clearance = dyads.rpr(a, b, self.normal_angle, self.offset, self.side)
         cos, sin = np.cos(angle), np.sin(angle)
-        posed = Track(angle, 0.0, 0.0, local[self.pin.index], a, (cos, sin))
+        posed = Track(angle, 0.0, 0.0, local[self.pin.index], a, (cos, sin, 1.0))
         q = posed.point(local[self.i])
         ux, uy = cos * self.u_local[0] - sin * self.u_local[1], sin * self.u_local[0] + cos * self.u_local[1]
         w, al, ratio = dyads.rpr_rates(a, b, q, ux, uy)
-        block.tracks[link] = Track(angle, w, al, local[self.pin.index], a, (cos, sin))
-        return clearance, ratio
+        block.tracks[link] = Track(angle, w, al, local[self.pin.index], a, (cos, sin, 1.0))
+        return Closure.of(clearance, ratio)
 
 
 class Rider:
@@ -221,9 +239,6 @@ class Rider:
     def place(self, block: Block) -> None:
         guide = block.track(self.slider.on)
         turn, c, s = self.turn
-
-        def rotation():
-            return guide.cos * c - guide.sin * s, guide.sin * c + guide.cos * s
-
+        ux, uy, k = guide.turn
         block.tracks[self.name] = Track(guide.angle + turn, guide.w, guide.al, np.zeros(2), block.joint(self.slider.point),
-                                        rotation)
+                                        (ux * c - uy * s, uy * c + ux * s, k))

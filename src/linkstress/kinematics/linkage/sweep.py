@@ -180,11 +180,11 @@ class _Sweep:
             block = self.block(rows, samples, local)
             bad = None
             for g, place, riders in steps:
-                result = place.place(block)
+                closure = place.place(block)
                 for rider in riders:
                     rider.place(block)
-                if result is not None:
-                    fails = self.flags.record(g, rows, *result, tiny[g])
+                if closure is not None:
+                    fails = self.flags.record(g, rows, closure, tiny[g])
                     if fails is not None:
                         bad = fails if bad is None else bad | fails
             if self.store is not None:

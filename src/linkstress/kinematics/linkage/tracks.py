@@ -14,7 +14,6 @@ pass over a strided column copies it.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,33 +45,35 @@ class Point:
 class Track:
     """A link's pose over a block: the angle [rad] of its member frame's +x, its angular rate ``w``
     and acceleration ``al``; one of its points, ``anchor``, at ``local`` (2,) [m, member frame],
-    with that point's motion; and the rotation's cosine and sine (``turn``: the pair, or a
-    function that makes it when first needed). ``fixed``: the ground."""
+    with that point's motion; and its rotation, cos = k ux and sin = k uy with ``turn`` = (ux, uy,
+    k) (k a float: ux, uy are often a vector along the link, at hand, of length 1 / k).
+    ``fixed``: the ground."""
 
-    __slots__ = ("angle", "w", "al", "local", "anchor", "fixed", "_turn")
+    __slots__ = ("angle", "w", "al", "local", "anchor", "fixed", "turn", "_cos_sin")
 
     def __init__(self, angle: Values, w: Values, al: Values, local: FloatArray, anchor: Point,
-                 turn: tuple[Values, Values] | Callable[[], tuple[Values, Values]], fixed: bool = False) -> None:
+                 turn: tuple[Values, Values, float], fixed: bool = False) -> None:
         self.angle, self.w, self.al, self.local, self.anchor, self.fixed = angle, w, al, local, anchor, fixed
-        self._turn = turn
+        self.turn = turn
+        self._cos_sin = None
 
     @classmethod
     def ground(cls, angle: float, origin: FloatArray) -> Track:
-        return cls(angle, 0.0, 0.0, np.zeros(2), Point.at_rest(origin), (math.cos(angle), math.sin(angle)), True)
+        return cls(angle, 0.0, 0.0, np.zeros(2), Point.at_rest(origin), (math.cos(angle), math.sin(angle), 1.0), True)
 
     @property
     def cos(self) -> Values:
-        return self.turn[0]
+        return self._rotation()[0]
 
     @property
     def sin(self) -> Values:
-        return self.turn[1]
+        return self._rotation()[1]
 
-    @property
-    def turn(self) -> tuple[Values, Values]:
-        if callable(self._turn):
-            self._turn = self._turn()
-        return self._turn
+    def _rotation(self) -> tuple[Values, Values]:
+        if self._cos_sin is None:
+            ux, uy, k = self.turn
+            self._cos_sin = (ux, uy) if k == 1.0 else (ux * k, uy * k)
+        return self._cos_sin
 
     def point(self, local: FloatArray) -> Point:
         """The material point ``local`` (2,) [m, member frame]: p = a + r, r = R(local - anchor's),
@@ -80,14 +81,20 @@ class Track:
         lx, ly = float(local[0] - self.local[0]), float(local[1] - self.local[1])
         if lx == 0.0 and ly == 0.0:
             return self.anchor
-        (c, s), a = self.turn, self.anchor
-        rx, ry = (c * lx, s * lx) if ly == 0.0 else (c * lx - s * ly, s * lx + c * ly)
+        (ux, uy, k), a = self.turn, self.anchor
+        lx, ly = lx * k, ly * k
+        rx, ry = (ux * lx, uy * lx) if ly == 0.0 else (ux * lx - uy * ly, uy * lx + ux * ly)
         if self.fixed:
             return Point(a.x + rx, a.y + ry, 0.0, 0.0, 0.0, 0.0, True)
         w, al = self.w, self.al
         ww = w * w
-        return Point(a.x + rx, a.y + ry, a.x1 - w * ry, a.y1 + w * rx,
-                     a.x2 - al * ry - ww * rx, a.y2 + al * rx - ww * ry)
+        return Point(a.x + rx, a.y + ry, a.x1 - w * ry, plus(a.y1, w * rx),
+                     a.x2 - (al * ry + ww * rx), plus(a.y2, al * rx - ww * ry))
+
+
+def plus(a: Values, b: Values) -> Values:
+    """a + b, without a pass over the arrays where a is a float 0 (a point at rest)."""
+    return b if isinstance(a, float) and a == 0.0 else a + b
 
 
 def through(local_a: FloatArray, local_c: FloatArray, a: Point, cax: FloatArray, cay: FloatArray,
@@ -95,14 +102,15 @@ def through(local_a: FloatArray, local_c: FloatArray, a: Point, cax: FloatArray,
     """The track of a link whose point ``local_a`` is at A and ``local_c`` at C = A + (cax, cay),
     turning at ``w``, ``al``: the rotation R taking l = local_c - local_a onto C - A is
     cos = l.(C - A) / |l|^2, sin = l x (C - A) / |l|^2 (|C - A| = |l|: the link is rigid). Where l
-    runs along the frame's +x (a link's joints 0 -> 1), the angle is C - A's own."""
+    runs along the frame's +x (a link's joints 0 -> 1), cos and sin are C - A over |l|, and the
+    angle is C - A's own."""
     lx, ly = local_c - local_a
     scale = 1.0 / (lx * lx + ly * ly)
     p, q = lx * scale, ly * scale
     if q == 0.0 and p > 0.0:
-        return Track(np.arctan2(cay, cax), w, al, local_a, a, lambda: (cax * p, cay * p))
+        return Track(np.arctan2(cay, cax), w, al, local_a, a, (cax, cay, p))
     cos, sin = cax * p + cay * q, cay * p - cax * q
-    return Track(np.arctan2(sin, cos), w, al, local_a, a, (cos, sin))
+    return Track(np.arctan2(sin, cos), w, al, local_a, a, (cos, sin, 1.0))
 
 
 class PathTracks:
@@ -123,7 +131,8 @@ class PathTracks:
             return self.ground_track
         a = self.arrays[name]
         origin = Point(*(a[f][rows] for f in ("x", "y", "x1", "y1", "x2", "y2")))
-        return Track(a["angle"][rows], a["w"][rows], a["al"][rows], np.zeros(2), origin, (a["cos"][rows], a["sin"][rows]))
+        return Track(a["angle"][rows], a["w"][rows], a["al"][rows], np.zeros(2), origin,
+                     (a["cos"][rows], a["sin"][rows], 1.0))
 
     def store(self, name: str, rows, track: Track, origin: Point) -> None:
         """Write link ``name``'s ``track`` with its ``origin`` at path positions ``rows``."""
