@@ -43,7 +43,8 @@ class Outputs:
         self.origin_of: dict[str, object] = {}
         self.fixed: dict[object, FloatArray] = {}
         self.joint_of: dict[object, Joint] = {}
-        for name in moving:
+        solving = [name for group in graph.groups for name in group.links + group.riders]
+        for name in solving:  # an origin shared by several links is written with the first one solved
             key = pin_of[Joint(name, 0)]
             self.origin_of[name] = key
             ground = [j for j in graph.all_pins[key] if j.link == graph.ground] if isinstance(key, int) else []
@@ -51,32 +52,39 @@ class Outputs:
                 self.fixed[key] = graph.drawn(ground[0])
             else:
                 self.joint_of.setdefault(key, Joint(name, 0))
-        turning = [name for name in moving if name != self.crank]
-        vectors, pairs = empty_arrays(n, 3 * len(turning), 3 * len(self.joint_of))
-        self.angles = {name: vectors[3 * k:3 * k + 3] for k, name in enumerate(turning)}
+        self.writes = {name: [key for key, joint in self.joint_of.items() if joint.link == name] for name in moving}
+        self.turning = tuple(name for name in moving if name != self.crank)
+        vectors, pairs = empty_arrays(n, 3 * len(self.turning), 3 * len(self.joint_of))
+        self.angles = {name: vectors[3 * k:3 * k + 3] for k, name in enumerate(self.turning)}
         self.points = {key: pairs[3 * k:3 * k + 3] for k, key in enumerate(self.joint_of)}
 
-    def write(self, block: Block, samples: slice, local, scale=None, bad: NDArray[np.bool_] | None = None) -> None:
-        """The block's link motions at path positions ``local`` (a slice or indices into the block)
-        as the samples ``samples``. ``scale``: the input's speed and acceleration at those samples,
-        when the block's rates are per unit input (chain rule: q. = q' x., q.. = q'' x.^2 + q' x..);
-        ``bad`` (per sample): rows to fill with 0."""
-        for name, (angle, w, al) in self.angles.items():
-            track = block.track(name)
-            _put(angle, samples, track.angle, local)
-            _put(w, samples, track.w, local)
-            _put(al, samples, track.al, local)
-            if scale is not None:
-                _chain(w[samples], al[samples], *scale)
-        for key, (p, v, a) in self.points.items():
-            point = block.joint(self.joint_of[key])
-            for k, (x, x1, x2) in enumerate(((point.x, point.x1, point.x2), (point.y, point.y1, point.y2))):
-                _put(p[:, k], samples, x, local)
-                _put(v[:, k], samples, x1, local)
-                _put(a[:, k], samples, x2, local)
+    def write(self, block: Block, links, samples: slice, local, scale=None) -> None:
+        """The motions of ``links`` (and the origins written with them) on ``block`` at its path
+        positions ``local`` (a slice or indices into the block), as the samples ``samples``.
+        ``scale``: the input's speed and acceleration at those samples, when the block's rates are
+        per unit input (chain rule: q. = q' x., q.. = q'' x.^2 + q' x..)."""
+        for name in links:
+            if name in self.angles:
+                angle, w, al = self.angles[name]
+                track = block.track(name)
+                _put(angle, samples, track.angle, local)
+                _put(w, samples, track.w, local)
+                _put(al, samples, track.al, local)
                 if scale is not None:
-                    _chain(v[samples, k], a[samples, k], *scale)
-        if bad is not None and bad.any():
+                    _chain(w[samples], al[samples], *scale)
+            for key in self.writes.get(name, ()):
+                p, v, a = self.points[key]
+                point = block.joint(self.joint_of[key])
+                for k, (x, x1, x2) in enumerate(((point.x, point.x1, point.x2), (point.y, point.y1, point.y2))):
+                    _put(p[:, k], samples, x, local)
+                    _put(v[:, k], samples, x1, local)
+                    _put(a[:, k], samples, x2, local)
+                    if scale is not None:
+                        _chain(v[samples, k], a[samples, k], *scale)
+
+    def fill(self, samples: slice, bad: NDArray[np.bool_]) -> None:
+        """Finite filler (0) at the samples ``samples`` where ``bad``."""
+        if bad.any():
             rows = np.arange(samples.start, samples.stop)[bad]
             for arrays in (*self.angles.values(), *self.points.values()):
                 for array in arrays:

@@ -74,6 +74,13 @@ class Block:
         """A group solved ``joint`` at ``point`` (or a function that makes it, when first asked for)."""
         self.points[self.pin_of[joint]] = point
 
+    def keep(self, joints, tracks) -> None:
+        """Forget every point but those of ``joints`` and every track but those of ``tracks`` (and
+        the ground's): what no later group reads leaves the cache."""
+        keys = {self.pin_of[j] for j in joints}
+        self.points = {key: p for key, p in self.points.items() if key in keys}
+        self.tracks = {name: t for name, t in self.tracks.items() if name in tracks or name == self.graph.ground}
+
     def line(self, k: int) -> tuple[Point, Values, Values, Track]:
         """Slider k's line on its guide: its point Q (the line's joint i), its unit direction
         (ux, uy) and the guide's track."""
@@ -102,8 +109,13 @@ def placer(graph: LinkageGraph, group: Group):
 
 
 class _Placer:
+    """``links``: the links it places; ``reads``: the known joints it reads; ``guides``: the known
+    links whose tracks it reads."""
+
+    guides: tuple[str, ...] = ()
+
     def __init__(self, graph: LinkageGraph, group: Group) -> None:
-        self.graph, self.group = graph, group
+        self.graph, self.group, self.links = graph, group, group.links
 
     def length(self, link: str, i: int, j: int) -> float:
         local = self.graph.local[link]
@@ -132,6 +144,7 @@ class CrankPlacer(_Placer):
         super().__init__(graph, group)
         (self.crank, self.ground), = group.pairs
         self.offset = crank_offset(graph)
+        self.reads = (self.ground,)
 
     def place(self, block: Block) -> None:
         angle = block.x + self.offset if self.offset else block.x
@@ -154,6 +167,7 @@ class RRRPlacer(_Placer):
         self.r2 = self.length(j2.link, self.b_joint.index, j2.index)
         self.side = self.sign(dyads.rrr_sign(graph.drawn(self.a_known), graph.drawn(self.b_known), graph.drawn(j1)))
         self.conditioning = self.side / (self.r1 * self.r2)
+        self.reads = (self.a_known, self.b_known)
 
     def place(self, block: Block) -> Closure:
         local = self.graph.local
@@ -181,6 +195,8 @@ class RRPPlacer(_Placer):
         self.r = self.length(self.pin.link, self.pin.index, self.point.index)
         self.side = self.sign(dyads.rrp_sign(graph.drawn(self.known), graph.drawn(self.point),
                                              graph.line_direction(graph.sliders[self.k])))
+        slider = graph.sliders[self.k]
+        self.reads, self.guides = (self.known, Joint(slider.on, slider.line[0])), (slider.on,)
 
     def place(self, block: Block) -> Closure:
         link, local = self.pin.link, self.graph.local[self.pin.link]
@@ -213,6 +229,7 @@ class RPRPlacer(_Placer):
         self.normal_angle = math.atan2(n_local[1], n_local[0])
         self.side = self.sign(dyads.rpr_sign(graph.line_direction(slider), graph.drawn(self.known),
                                              graph.drawn(self.point)))
+        self.reads = (self.known, self.point)
 
     def place(self, block: Block) -> Closure:
         link, local = self.pin.link, self.graph.local[self.pin.link]
@@ -231,10 +248,11 @@ class Rider:
     """A slider's block: pinned to the slider's point (the block's joint 0) and turning with the guide."""
 
     def __init__(self, graph: LinkageGraph, block: str) -> None:
-        self.name = block
+        self.name, self.links = block, (block,)
         self.slider = graph.sliders[graph.blocks[block]]
         turn = graph.drawn_angles[block] - graph.drawn_angles[self.slider.on]
         self.turn = (turn, math.cos(turn), math.sin(turn))
+        self.reads, self.guides = (self.slider.point,), (self.slider.on,)
 
     def place(self, block: Block) -> None:
         guide = block.track(self.slider.on)

@@ -26,6 +26,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.kinematics.linkage.blockwork import plan, run
 from linkstress.kinematics.linkage.constraints import GroupEquations
 from linkstress.kinematics.linkage.flags import TOGGLE, PathFlags, messages, newton_events
 from linkstress.kinematics.linkage.graph import Joint, LinkageGraph
@@ -64,7 +65,7 @@ def input_path(drawn: float, samples: FloatArray, longest: float, periodic: bool
     start = samples[0] + math.remainder(drawn - samples[0], 2 * math.pi) if periodic else drawn
     knots = np.concatenate([[start], samples])
     deltas = np.diff(knots)
-    if np.abs(deltas).max() <= longest:  # a dense sweep: the samples themselves
+    if max(deltas.max(), -deltas.min()) <= longest:  # a dense sweep: the samples themselves
         return Path(knots, np.arange(1, len(knots)), np.arange(-1, len(samples)))
     pieces = np.maximum(np.ceil(np.abs(deltas) / longest).astype(np.intp), 1)
     ends = np.cumsum(pieces)
@@ -166,37 +167,37 @@ class _Sweep:
 
     def closed_forms(self, indices, outputs: bool = False) -> None:
         """Place the closed-form groups ``indices`` (and their riders) on every block; write their
-        tracks to the store (along the path) or, ``outputs``, the link motions."""
-        steps = [(g, placer(self.graph, self.groups[g]), [Rider(self.graph, r) for r in self.groups[g].riders])
+        links to the store (along the path) or, ``outputs``, to the link motions."""
+        items = [(g, placer(self.graph, self.groups[g]), tuple(Rider(self.graph, r) for r in self.groups[g].riders))
                  for g in indices]
-        tiny = {g: TOGGLE * _scale(self.graph, self.groups[g]) for g in indices}
-        for g, place, _ in steps:
+        for g in indices:
             if self.groups[g].kind != "crank":
                 self.flags.expect(g)
-        made = [name for g in indices for name in self.groups[g].links + self.groups[g].riders]
+        self._run(plan(items), outputs)
+        for g in indices:
+            if self.groups[g].kind != "crank":
+                self.events += self.flags.dyad_events(g, self.path)
+
+    def _run(self, steps, outputs: bool = False) -> None:
+        """``steps`` on every block, on every core."""
+        tiny = {step.group: TOGGLE * _scale(self.graph, self.groups[step.group]) for step in steps}
 
         def work(rows: slice) -> None:
             samples, local = self.samples(rows)
             block = self.block(rows, samples, local)
-            bad = None
-            for g, place, riders in steps:
-                closure = place.place(block)
-                for rider in riders:
-                    rider.place(block)
-                if closure is not None:
-                    fails = self.flags.record(g, rows, closure, tiny[g])
-                    if fails is not None:
-                        bad = fails if bad is None else bad | fails
-            if self.store is not None:
-                for name in made:
-                    self.store.store(name, rows, block.tracks[name], block.joint(Joint(name, 0)))
-            if outputs and samples.stop > samples.start:
-                self.outputs.write(block, samples, local, bad=None if bad is None else bad[local])
+            if outputs:
+                def hand_on(block, links):
+                    if samples.stop > samples.start:
+                        self.outputs.write(block, links, samples, local)
+            else:
+                def hand_on(block, links):
+                    for name in links:
+                        self.store.store(name, rows, block.track(name), block.joint(Joint(name, 0)))
+            bad = run(block, steps, hand_on, lambda g, closure: self.flags.record(g, rows, closure, tiny[g]))
+            if outputs and bad is not None and samples.stop > samples.start:
+                self.outputs.fill(samples, bad[local])
 
         in_parallel(work, self.blocks)
-        for g in indices:
-            if self.groups[g].kind != "crank":
-                self.events += self.flags.dyad_events(g, self.path)
 
     def samples(self, rows: slice) -> tuple[slice, slice | NDArray[np.intp]]:
         """The samples whose path positions lie in ``rows`` (consecutive) and those positions'
@@ -251,15 +252,7 @@ class _Sweep:
         self.events += newton_events(group, path, marched.restarts, _jacobian_flips(graph, group, store, path, marched,
                                                                                    fails), fails)
         if group.riders:
-            riders = [Rider(graph, r) for r in group.riders]
-
-            def work(rows: slice) -> None:
-                block = self.block(rows, *self.samples(rows))
-                for rider in riders:
-                    rider.place(block)
-                    store.store(rider.name, rows, block.tracks[rider.name], block.joint(Joint(rider.name, 0)))
-
-            in_parallel(work, self.blocks)
+            self._run(plan([(g, None, tuple(Rider(graph, r) for r in group.riders))]))
         return lost
 
     def write_outputs(self) -> None:
@@ -272,13 +265,14 @@ class _Sweep:
                 return
             block = self.block(rows, samples, local)
             scale = (self.motion.speed[samples], self.motion.acceleration[samples])
-            self.outputs.write(block, samples, local, scale, ~feasible[rows][local])
+            self.outputs.write(block, self.graph.moving, samples, local, scale)
+            self.outputs.fill(samples, ~feasible[rows][local])
 
         in_parallel(work, self.blocks)
 
     def machine_motion(self) -> MachineMotion:
         graph, path, motion = self.graph, self.path, self.motion
-        feasible = self.flags.closed()[path.rows]
+        feasible = self.flags.closed()[path.rows] if self.flags.fails else np.ones(len(path.rows), bool)
         unit = "m" if graph.input.is_stroke else "deg"
         values = motion.angle if graph.input.is_stroke else motion.angle_deg
         crossings = messages(graph.name, self.events, feasible, lambda row: _step_text(row, unit, values))
