@@ -54,28 +54,31 @@ class PathFlags:
             self.texts += [f"the {group.label} cannot close", f"toggle of the {group.label}: its rates are unbounded"]
         self.fails: dict[int, NDArray[np.bool_]] = {}
         self.toggles: dict[int, NDArray[np.bool_]] = {}
-        self.clearance: dict[int, dict[int, float]] = {}
+        self.kept: dict[int, list[tuple[NDArray[np.intp], FloatArray]]] = {}
         self.minima: dict[int, list[NDArray[np.intp]]] = {}
         self._lock = threading.Lock()
 
     def expect(self, g: int) -> None:
         """Closed-form group g will be recorded block by block."""
-        self.clearance[g], self.minima[g] = {}, []
+        self.kept[g], self.minima[g] = [], []
 
     def record(self, g: int, rows: slice, closure, tiny: float) -> NDArray[np.bool_] | None:
         """How group g closes at path positions ``rows`` (``placing.Closure``): where it fails there
         (None: nowhere). A toggle: clearance below ``tiny`` [m^2] or conditioning below
         ``SINGULAR``."""
         count = rows.stop - rows.start
-        c = clearance = np.broadcast_to(closure.clearance, (count,))
-        # kept: the clearance about the local minima inside the block and at its ends (the minima
-        # there are found once the neighbouring blocks' ends are known)
-        mid = 1 + np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:])) if count >= 3 else np.zeros(0, np.intp)
-        keep = np.unique(np.concatenate([(mid[:, None] + np.arange(-2, 3)).ravel(), np.arange(4), count - 4 + np.arange(4)]))
-        keep = keep[(keep >= 0) & (keep < count)]
-        self.clearance[g].update(zip((rows.start + keep).tolist(), c[keep].tolist()))
-        self.minima[g].append(rows.start + mid)
-        if np.min(clearance) > tiny and closure.least > SINGULAR:  # also False where either is nan
+        c = clearance = closure.clearance if np.ndim(closure.clearance) else np.full(count, closure.clearance)
+        # kept: the clearance at the block's ends (the minima there are found once the neighbouring
+        # blocks' ends are known) and about its local minima
+        ends = np.r_[0:min(4, count), max(count - 4, 0):count]
+        self.kept[g].append((rows.start + ends, c[ends]))
+        if count >= 3:
+            mid = 1 + np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:]))
+            if len(mid):
+                about = np.clip(mid[:, None] + np.arange(-2, 3), 0, count - 1).ravel()
+                self.kept[g].append((rows.start + about, c[about]))
+                self.minima[g].append(rows.start + mid)
+        if clearance.min() > tiny and closure.least > SINGULAR:  # also False where either is nan
             return None
         toggle = (np.abs(clearance) <= tiny) | ~(closure.conditioning() > SINGULAR)
         fails = toggle | ~(clearance >= 0)
@@ -119,15 +122,15 @@ class PathFlags:
             for row in np.unique(path.step_of[_inside(path) & fails]).tolist():
                 events.append((row, "gap"))
         if self.n >= 5:
-            events += [(row, "change") for row in _v_dips(self.clearance[g], self._minima(g), fails, path)]
+            c = {f: v for at, values in self.kept[g] for f, v in zip(at.tolist(), values.tolist())}
+            events += [(row, "change") for row in _v_dips(c, self._minima(g, c), fails, path)]
         return [(row, kind + "|" + group.label) for row, kind in events if row >= 0]
 
-    def _minima(self, g: int) -> NDArray[np.intp]:
-        """The path positions f where group g's clearance c has a local minimum, c[f] < c[f - 1]
-        and c[f] <= c[f + 1]: those found inside the blocks and those at their ends."""
-        c = self.clearance[g]
+    def _minima(self, g: int, c: dict[int, float]) -> NDArray[np.intp]:
+        """The path positions f where group g's clearance c (kept at ``c``) has a local minimum,
+        c[f] < c[f - 1] and c[f] <= c[f + 1]: those found inside the blocks and those at their ends."""
         ends = [f for f in c if 1 <= f <= self.n - 2 and f - 1 in c and f + 1 in c and c[f] < c[f - 1] and c[f] <= c[f + 1]]
-        return np.unique(np.concatenate(self.minima[g] + [np.array(ends, np.intp)]))
+        return np.unique(np.concatenate(self.minima[g] + [np.array(ends, np.intp)]).astype(np.intp))
 
 
 def _v_dips(c: dict[int, float], mid: NDArray[np.intp], fails, path) -> list[int]:
