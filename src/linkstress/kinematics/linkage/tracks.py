@@ -116,13 +116,14 @@ def through(local_a: FloatArray, local_c: FloatArray, a: Point, cax: FloatArray,
 class PathTracks:
     """Every link's pose over the whole path, for the groups that are solved along it by Newton:
     each moving link's angle, cos, sin, w, al (F,) and its origin's motion x, y, x1, y1, x2, y2
-    (F,), rates per unit input; the ground's as constants."""
+    (F,), rates per unit input; the ground's as constants. Every entry is written before it is read
+    (a group writes all positions of its links: nan where it cannot close)."""
 
     FIELDS = ("angle", "cos", "sin", "w", "al", "x", "y", "x1", "y1", "x2", "y2")
 
     def __init__(self, moving: tuple[str, ...], ground: str, ground_angle: float, ground_origin: FloatArray,
                  n: int) -> None:
-        self.arrays = {name: {f: np.full(n, np.nan) for f in self.FIELDS} for name in moving}
+        self.arrays = {name: {f: np.empty(n) for f in self.FIELDS} for name in moving}
         self.ground, self.ground_track = ground, Track.ground(ground_angle, ground_origin)
 
     def window(self, name: str, rows) -> Track:
