@@ -7,6 +7,8 @@ from __future__ import annotations
 import errno
 import json
 import re
+import subprocess
+import sys
 from pathlib import Path
 from urllib.parse import unquote
 
@@ -326,3 +328,24 @@ def test_texts_are_coded_by_their_first_appearance_after_the_empty_one():
     coded = table.text_codes(("", "toggle", "", "unreachable", "toggle"))
     assert coded.texts == ("", "toggle", "unreachable")
     assert coded.codes.tolist() == [0, 1, 0, 2, 1] and coded.codes.dtype == np.int32
+
+
+def test_the_reading_example_of_docs_python_md_runs_on_a_table(tmp_path):
+    # The example reads a table of the seed; its printed worst stress is the table's own.
+    text = (REPO / "docs" / "python.md").read_text()
+    example = text.split("## Reading a table", 1)[1].split("```python\n", 1)[1].split("```", 1)[0]
+    scene = seed_scene(tmp_path, "{ start = 0.0, stop = 360.0, num = 37 }")
+    assert main(["analyze", str(scene), "--table", str(tmp_path / "sweep.npz")]) == 0
+    done = subprocess.run([sys.executable, "-c", example], cwd=tmp_path, capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    first, second = done.stdout.splitlines()
+    assert first == "['input_angle_deg', 'feasible', 'reason_code', 'reason_texts']"
+    with np.load(tmp_path / "sweep.npz") as t:
+        stress = t["links/crank/max_von_mises_pa"]
+    assert second.startswith(f"crank: {stress.max() / 1e6:.3g} MPa at input ")
+
+
+def test_warnings_are_coded_per_position_with_several_on_one_row_joined_by_newlines():
+    coded = table.warning_codes(((2, "passes a toggle"), (5, "change point"), (5, "toggle of loop b"), (7, "passes a toggle")), 9)
+    assert coded.texts == ("", "passes a toggle", "change point\ntoggle of loop b")
+    assert coded.codes.tolist() == [0, 0, 1, 0, 0, 2, 0, 1, 0]

@@ -29,7 +29,8 @@ or ``driving_force_n``; a linkage driven by a slider's stroke gives ``input_stro
 and the joint forces' names.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 The records are made a block of positions at a time (``stream_position_records``), for
-``output.write_json_stream`` to write as they come.
+``output.write_json_stream`` to write as they come, from columns (``link_value_columns``,
+``mechanism_columns``) that ``report.table`` writes as arrays too.
 """
 
 from __future__ import annotations

@@ -65,13 +65,12 @@ def table_arrays(result: AnalysisResult) -> dict[str, NDArray | RowBlocks]:
     every = np.ones(count, bool)
     feasible = np.asarray(result.feasible, bool)
     input_key = "input_stroke_m" if result.scene.motion.is_stroke else "input_angle_deg"
-    warnings = tuple("\n".join(messages) for messages in result.kinematics.warnings)
     arrays: dict[str, NDArray | RowBlocks] = {}
     for key, value in _flat((input_key,), result.scene.motion.angle_deg, every, count):
         arrays[key] = value
     arrays["feasible"] = feasible
-    for name, texts in (("reason", result.reasons), ("warnings", warnings)):
-        arrays.update(_flat((name,), text_codes(texts), every, count))
+    arrays.update(_flat(("reason",), text_codes(result.reasons), every, count))
+    arrays.update(_flat(("warnings",), warning_codes(result.kinematics.crossings, count), every, count))
     transmission = {name: np.degrees(loop.transmission_angle) for name, loop in result.kinematics.loops.items()}
     described = {
         "links": link_value_columns(result),
@@ -86,6 +85,18 @@ def text_codes(texts: Sequence[str]) -> Coded:
     """``texts`` (one per position) as codes into their distinct values, "" first."""
     index = {text: k for k, text in enumerate(dict.fromkeys(("", *texts)))}
     codes = np.fromiter(map(index.__getitem__, texts), np.int32, count=len(texts))
+    return Coded(codes, tuple(index))
+
+
+def warning_codes(crossings: Sequence[tuple[int, str]], count: int) -> Coded:
+    """Each of ``count`` positions' warnings (``crossings``: (row, message), a few in a sweep), joined
+    by newlines, as codes into their distinct texts, "" (none) first."""
+    joined: dict[int, str] = {}
+    for row, message in crossings:
+        joined[row] = f"{joined[row]}\n{message}" if row in joined else message
+    index = {text: k for k, text in enumerate(dict.fromkeys(("", *joined.values())))}
+    codes = np.zeros(count, np.int32)
+    codes[list(joined)] = [index[text] for text in joined.values()]
     return Coded(codes, tuple(index))
 
 
