@@ -88,6 +88,10 @@ def scene_of(name: str, folder: Path) -> Path:
         path = folder / "unreachable.toml"
         path.write_text(UNREACHABLE)
         return path
+    if name == "kinematics only":  # the output without mass data: no joint forces
+        path = folder / "kinematics.toml"
+        path.write_text(UNREACHABLE.replace("mass = 300.0\ninertia = 60.0\ncenter_of_mass = [0.75, 0.0]\n", ""))
+        return path
     return CASES / name / "scene.toml"
 
 
@@ -160,6 +164,7 @@ def assert_table_is_the_json(data: dict, arrays) -> None:
     "whitworth_shaper",  # a linkage with sliders driven by a crank
     "bell_crank",  # a link of two members
     "unreachable angles",  # unreachable rows; forces without stresses; a link name to escape
+    "kinematics only",  # no mechanisms
 ])
 def test_the_table_reads_back_equal_to_the_json_at_every_position(tmp_path, monkeypatch, case, block):
     monkeypatch.setattr(table, "TABLE_BLOCK", block)
@@ -175,6 +180,8 @@ def test_the_table_reads_back_equal_to_the_json_at_every_position(tmp_path, monk
             assert arrays["links/crank/pin_holes/0/kt_outside_table"].any()
         if case == "seed crossing its change point":
             assert arrays["warnings_code"].tolist().count(0) == 11
+        if case == "kinematics only":
+            assert not any(name.startswith("mechanisms/") for name in arrays.files)
         if case == "unreachable angles":
             assert 0 < arrays["feasible"].sum() < 73
             assert "links/cr%2Fank 50%25/angle_deg" in arrays.files

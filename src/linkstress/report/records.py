@@ -299,9 +299,9 @@ def joint_positions(result: AnalysisResult, name: str, block: slice) -> NDArray[
 
 
 def _rows(values: dict, block: slice) -> dict:
-    """The entries of the positions ``block`` as lists: per-position arrays and lists sliced, blocks
-    made (functions of the block), dicts and lists of dicts recursed, and what all positions share
-    kept whole."""
+    """The entries of the positions ``block`` as lists: per-position arrays and lists sliced (a
+    ``Nullable``'s null rows None, a ``Coded`` column's texts), blocks made (functions of the
+    block), dicts and lists of dicts recursed, and what all positions share kept whole."""
     out = {}
     for key, column in values.items():
         if isinstance(column, dict):

@@ -136,8 +136,9 @@ def _rows(make: Callable[[slice], NDArray], keep: NDArray[np.bool_], count: int)
     """``make``'s rows, 0 where not ``keep`` (whatever they hold there, nan included)."""
 
     def block(rows: slice) -> NDArray:
-        values = np.asarray(make(rows))
-        kept = keep[rows].reshape(-1, *(1,) * (values.ndim - 1))
-        return np.where(kept, values, np.zeros((), values.dtype))
+        values, kept = np.asarray(make(rows)), keep[rows]
+        if kept.all():  # most blocks of most sweeps: no copy
+            return values
+        return np.where(kept.reshape(-1, *(1,) * (values.ndim - 1)), values, np.zeros((), values.dtype))
 
     return RowBlocks(count, block)
