@@ -356,3 +356,27 @@ def test_warnings_are_coded_per_position_with_several_on_one_row_joined_by_newli
     coded = table.warning_codes(((2, "passes a toggle"), (5, "change point"), (5, "toggle of loop b"), (7, "passes a toggle")), 9)
     assert coded.texts == ("", "passes a toggle", "change point\ntoggle of loop b")
     assert coded.codes.tolist() == [0, 0, 1, 0, 0, 2, 0, 1, 0]
+
+
+@pytest.mark.parametrize("positions", [20_000, 60_000])
+def test_writing_the_table_holds_a_block_at_a_time_not_the_table(tmp_path, monkeypatch, positions):
+    # The table of the seed is about 720 bytes per position; written in blocks of 1,000 positions,
+    # what the writer allocates at its peak (traced: numpy's arrays count) stays under half of it:
+    # the sweep-long columns it shares with the JSON (accelerations, factor masks, text codes) and
+    # one block of one array. Holding every array at once would take at least the file's size.
+    import tracemalloc
+
+    from linkstress.analysis import run_analysis
+    from linkstress.scene import load_scene
+
+    monkeypatch.setattr(table, "TABLE_BLOCK", 1_000)
+    result = run_analysis(load_scene(seed_scene(tmp_path, f"{{ start = 0.0, stop = 359.0, num = {positions} }}")))
+    tracemalloc.start()
+    try:
+        write_all([(tmp_path / "t.npz", table.table_stream(result))])
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    size = (tmp_path / "t.npz").stat().st_size
+    assert size > 700 * positions
+    assert peak < 0.5 * size, (peak, size)
