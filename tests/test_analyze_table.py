@@ -131,8 +131,8 @@ def assert_table_is_the_json(data: dict, arrays) -> None:
                 assert arrays[texts][arrays[code][k]] == ("" if value is None else value), (path, k)
                 read |= {code, texts}
                 continue
-            if path[-1] in SHARED and value is None:  # a pin hole's kt where no position is inside the tables
-                assert path not in by_path, path
+            if path[-1] in SHARED and value is None or value == []:  # a pin hole's kt where no position is
+                assert path not in by_path, path  # inside the tables; a linkage without sliders
                 continue
             name = by_path[path]
             read.add(name)
@@ -149,6 +149,8 @@ def assert_table_is_the_json(data: dict, arrays) -> None:
     for name in arrays.files:
         array = arrays[name]
         assert array.dtype != object
+        if name.endswith("_code"):  # texts some row uses, and the first
+            assert set(np.unique(array)) | {0} == set(range(len(arrays[name[:-5] + "_texts"]))), name
         if array.dtype.kind == "f":
             assert np.isfinite(array).all(), name
         if name.split("/")[0] in DESCRIBED and array.ndim and not name.endswith("_texts") and array.shape[0] == count:
@@ -163,6 +165,7 @@ def assert_table_is_the_json(data: dict, arrays) -> None:
     "loader_arm_cylinder",  # a linkage driven by a slider's stroke: pins, a slider, a driving force
     "whitworth_shaper",  # a linkage with sliders driven by a crank
     "bell_crank",  # a link of two members
+    "jansen_leg",  # a linkage without sliders (an empty list: no arrays)
     "unreachable angles",  # unreachable rows; forces without stresses; a link name to escape
     "kinematics only",  # no mechanisms
 ])

@@ -110,20 +110,26 @@ def key_part(text: str) -> str:
 
 def _flat(path: tuple[str, ...], value: object, keep: NDArray[np.bool_], count: int) -> Iterator[tuple[str, NDArray | RowBlocks]]:
     """The arrays of ``value`` at ``path``: per-position columns (zero where not ``keep``), nested
-    dicts and lists of dicts by their keys and indices, and what positions share as it is (None:
-    nothing)."""
+    dicts and lists of dicts by their keys and indices, and what positions share as it is (None or
+    an empty list: nothing)."""
     name = "/".join(key_part(part) for part in path)
     if isinstance(value, dict):
         for key, item in value.items():
             yield from _flat((*path, str(key)), item, keep, count)
-    elif isinstance(value, list) and value and isinstance(value[0], dict):
+    elif isinstance(value, list) and (not value or isinstance(value[0], dict)):  # records (none: no arrays)
         for k, item in enumerate(value):
             yield from _flat((*path, str(k)), item, keep, count)
     elif isinstance(value, Nullable):
         yield name, _rows(lambda block: value.values[block], keep & ~value.null, count)
     elif isinstance(value, Coded):
-        yield f"{name}_code", _rows(lambda block: value.codes[block], keep, count)
-        yield f"{name}_texts", np.array(["" if text is None else text for text in value.texts], dtype=str)
+        # Only the texts some kept row uses (and the first, which the rows left out index): a pin hole
+        # has dozens of possible reasons and a sweep meets a few.
+        used = np.bincount(value.codes[keep], minlength=len(value.texts)) > 0
+        used[0] = True
+        renumber = (np.cumsum(used) - 1).astype(value.codes.dtype)
+        texts = ["" if text is None else text for text, use in zip(value.texts, used) if use]
+        yield f"{name}_code", _rows(lambda block: renumber[value.codes[block]], keep, count)
+        yield f"{name}_texts", np.array(texts, dtype=str)
     elif isinstance(value, np.ndarray) and path[-1] not in SHARED:
         yield name, _rows(lambda block: value[block], keep, count)
     elif callable(value):
