@@ -13,6 +13,12 @@ the table under 2 x the run without output, and the table under 1 GB on disk. Th
 one analysis and the table of it written ``--rounds`` times: what writing the table costs alone
 (making its arrays, encoding and writing them, the rename). Files are written to a temporary folder
 and removed.
+
+Measured on a shared two-core machine (other jobs running: single runs of the same command varied
+from 15 to 55 s): 1,000,000 positions, best of three alternated, 16.7 s without output and 25.9 s
+with the table (1.55 x; 1.51 x in two other sessions), 707 MB (707 bytes per position), the same
+2.1 GB peak memory; writing the table alone in process 1.4-1.8 s against 21.7 s for the analysis.
+One run with --json: 410 s (26.8 x) and 9.85 GB.
 """
 
 from __future__ import annotations
