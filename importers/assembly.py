@@ -58,6 +58,12 @@ GROUND_NAMES = ("ground", "frame", "base")
 CRANK_NAMES = ("crank", "input", "driver")
 
 
+class NotLoops(SketchError):
+    """The drawing is not four-bar loops and slider-cranks chained as linkstress chains them (no loop
+    closes, a link is in none, the crank named is in none): it may still be a linkage of pins and
+    sliders (``linkage_assembly``)."""
+
+
 @dataclass(frozen=True)
 class Assembly:
     """The mechanisms of a drawing.
@@ -122,15 +128,15 @@ def find_assembly(sketch: Sketch) -> Assembly:
     the joints found when no four-bar loop closes, or when some link is in none."""
     links = {link.name: link for link in sketch.links}
     joints = shared_joints(sketch.links, sketch.gap_tolerance_m)
-    ground, ground_rule = _ground(sketch, joints)
+    ground, ground_rule = find_ground(sketch, joints)
     if ground is None:
-        joints = _with_bare_ground(joints)
+        joints = with_bare_ground(joints)
         ground_rule = "the ground is not drawn: its pivots are the joints that only one link uses"
     cycles = _cycles(joints, ground if ground is not None else BARE_GROUND)
     if not cycles:
         chains = slider_chains(joints, ground if ground is not None else BARE_GROUND, links)
         if not chains:
-            raise SketchError(f"no mechanism found: {_what_joins(sketch, joints)}")
+            raise NotLoops(f"no mechanism found: {what_joins(sketch, joints)}")
         return _slider_assembly(sketch, links, joints, chains, ground, ground_rule)
     crank, main, crank_rule = _main_cycle(cycles, joints, links)
     chosen = _chain(main, cycles)
@@ -140,9 +146,9 @@ def find_assembly(sketch: Sketch) -> Assembly:
     covered |= {name for chain, _ in sliders for name in (chain.k, chain.s)}
     left = [name for name in links if name not in covered and name != ground_name]
     if left:
-        raise SketchError(
+        raise NotLoops(
             f"link(s) {capped(repr(n) for n in left)} are in no four-bar loop or slider-crank driven from "
-            f"the main one ({_what_joins(sketch, joints)}); linkstress chains loops through a shared crank "
+            f"the main one ({what_joins(sketch, joints)}); linkstress chains loops through a shared crank "
             "or output pivoted on the ground: leave their layers out with --exclude-layers, or write the scene by hand"
         )
     bare = _bare_pivots(chosen, joints) if ground is None else None
@@ -160,9 +166,9 @@ def find_assembly(sketch: Sketch) -> Assembly:
     return Assembly(links, ground_name, ground_joints, loops, angle, sweep, ground_rule, crank_rule)
 
 
-def _ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
+def find_ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
     """The drawn ground and why, or None when the drawing has no ground."""
-    named = [link.name for link in sketch.links if _named(link, GROUND_NAMES)]
+    named = [link.name for link in sketch.links if is_named(link, GROUND_NAMES)]
     if len(named) > 1:
         raise SketchError(
             f"layers {capped(repr(n) for n in named)} are all named as a ground; keep one "
@@ -184,11 +190,11 @@ def _ground(sketch: Sketch, joints: list[Joint]) -> tuple[str | None, str]:
     )
 
 
-def _named(link: ImportedLink, names: tuple[str, ...]) -> bool:
+def is_named(link: ImportedLink, names: tuple[str, ...]) -> bool:
     return any(text is not None and text.casefold() in names for text in (link.layer, link.name))
 
 
-def _with_bare_ground(joints: list[Joint]) -> list[Joint]:
+def with_bare_ground(joints: list[Joint]) -> list[Joint]:
     """The joints with the missing ground pinned at every joint that only one link uses."""
     return [Joint(j.at, j.ends + ((BARE_GROUND, -1),)) if len(j.ends) == 1 else j for j in joints]
 
@@ -221,14 +227,14 @@ def _key(cycle: _Cycle) -> tuple:
 
 def _main_cycle(cycles: list[_Cycle], joints: list[Joint], links: dict[str, ImportedLink]) -> tuple[str, _Cycle, str]:
     """The crank, the main loop oriented with the crank as ``p``, and why that crank."""
-    named = [name for name, link in links.items() if _named(link, CRANK_NAMES)]
+    named = [name for name, link in links.items() if is_named(link, CRANK_NAMES)]
     if named:
         crank = named[0]
         for cycle in cycles:
             for oriented in (cycle, cycle.reversed()):
                 if oriented.p == crank:
                     return crank, oriented, f"the link on layer {crank!r}"
-        raise SketchError(
+        raise NotLoops(
             f"link {crank!r} (on a layer named as the crank) is not pivoted on the ground in any four-bar loop; "
             "the crank turns about a fixed pivot"
         )
@@ -340,7 +346,7 @@ def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: lis
                      ground: str | None, ground_rule: str) -> Assembly:
     """The drawing as one slider-crank (``chains`` from ``_slider_chains``): the crank named as one,
     else the shortest."""
-    named = [c for c in chains if _named(links[c.p], CRANK_NAMES)]
+    named = [c for c in chains if is_named(links[c.p], CRANK_NAMES)]
     if named:
         chain, crank_rule = named[0], f"the link on layer {named[0].p!r}"
     else:
@@ -350,9 +356,9 @@ def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: lis
     ground_name = ground if ground is not None else BARE_GROUND
     left = [name for name in links if name not in (chain.p, chain.k, chain.s, ground_name)]
     if left:
-        raise SketchError(
+        raise NotLoops(
             f"link(s) {capped(repr(n) for n in left)} are not in the slider-crank {chain.p!r}, {chain.k!r}, {chain.s!r} "
-            f"({_what_joins(sketch, joints)}): leave their layers out with --exclude-layers, or write the scene by hand"
+            f"({what_joins(sketch, joints)}): leave their layers out with --exclude-layers, or write the scene by hand"
         )
     o2, a = joints[chain.jp], joints[chain.kp]
     if ground is None:
@@ -372,7 +378,7 @@ def _slider_assembly(sketch: Sketch, links: dict[str, ImportedLink], joints: lis
     return Assembly(links, ground_name, ground_joints, (loop,), angle, sweep, ground_rule, crank_rule)
 
 
-def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
+def what_joins(sketch: Sketch, joints: list[Joint]) -> str:
     """Which links share which joints, for a refusal."""
     shared = [j for j in joints if len({n for n, _ in j.ends if n != BARE_GROUND}) > 1]
     few = [f"{link.name!r} ({len(link.joints)})" for link in sketch.links if len(link.joints) < 2]
@@ -397,13 +403,14 @@ def _what_joins(sketch: Sketch, joints: list[Joint]) -> str:
     )
 
 
-def check_pose(scene: Scene, tolerance: float) -> None:
-    """Refuse a scene whose kinematics at its (single) input angle does not put every drawn joint of
-    every link back where it is drawn, within ``tolerance`` [m]: a wrong branch, or a drawing whose
-    links do not close (lengths that fit no pose of the loop)."""
+def check_pose(scene: Scene, tolerance: float, solved: str = "the loop solved at the drawn crank angle") -> None:
+    """Refuse a scene whose kinematics at its (single) input does not put every drawn joint of every
+    link back where it is drawn, within ``tolerance`` [m]: a wrong branch, or a drawing whose links
+    do not close (lengths that fit no pose of the loop). ``solved`` names what was solved, for the
+    message."""
     motion = solve_machine(scene.machine, scene.motion)
     if not motion.feasible[0]:
-        raise SketchError(f"the mechanism as drawn does not assemble at the drawn crank angle: {motion.reasons[0]}")
+        raise SketchError(f"the mechanism as drawn does not assemble at the drawn input: {motion.reasons[0]}")
     for name, link in scene.links.items():
         moved, _, _ = motion.links[name].point(link.to_member(link.joints))
         miss = np.hypot(*(moved[0] - link.joints).T)
@@ -412,7 +419,7 @@ def check_pose(scene: Scene, tolerance: float) -> None:
             x, y = link.joints[k]
             sx, sy = moved[0, k]
             raise SketchError(
-                f"link {name!r}, joint {k} drawn at ({x:.6g}, {y:.6g}) m: the loop solved at the drawn crank angle "
+                f"link {name!r}, joint {k} drawn at ({x:.6g}, {y:.6g}) m: {solved} "
                 f"puts it at ({sx:.6g}, {sy:.6g}) m, {miss[k]:.3g} m away (more than the gap tolerance "
                 f"{tolerance:.3g} m); the links' pins do not meet in one pose of the mechanism: check the drawing"
             )

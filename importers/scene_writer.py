@@ -12,6 +12,7 @@ import re
 
 from linkstress.errors import InputError
 from linkstress.importers.assembly import Assembly
+from linkstress.importers.linkage_assembly import LinkageAssembly
 from linkstress.kinematics.machine import Loop, Role
 
 THICKNESS_M = 0.005
@@ -30,6 +31,16 @@ def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | N
     ``sketch_name`` its file name for the header, ``units`` the unit given for a sketch that does not
     say its own (``--units``; None: not given), ``hole_layers`` the layers read as holes (each sketch
     link reads them so too)."""
+    lines = header_lines(sketch_name, units) + link_lines(assembly, sketch, hole_layers)
+    for loop in assembly.loops:
+        lines += _mechanism(loop, assembly)
+    lines += _motion(assembly)
+    return "\n".join(lines) + "\n"
+
+
+def header_lines(sketch_name: str, units: str | None) -> list[str]:
+    """A written scene's first lines: what wrote it, its title, the unit given (``units``, or None)
+    and the material every link is given."""
     lines = [
         f"# Written by `linkstress import {_comment(sketch_name)} --scene`: the mechanism as drawn assembled.",
         "# Edit the material, each link's thickness and the motion; add [loads] (every key: docs/scenes.md).",
@@ -41,11 +52,7 @@ def scene_text(assembly: Assembly, sketch: str, sketch_name: str, units: str | N
     name, values = MATERIAL
     lines += ["", f"[materials.{name}]  # edit: the links' material"]
     lines += [f"{key} = {value}  # {unit}" for key, (value, unit) in values.items()]
-    lines += _links(assembly, sketch, hole_layers)
-    for loop in assembly.loops:
-        lines += _mechanism(loop, assembly)
-    lines += _motion(assembly)
-    return "\n".join(lines) + "\n"
+    return lines
 
 
 def toml_string(text: str) -> str:
@@ -77,12 +84,13 @@ def _comment(text: str) -> str:
     return "".join(ch if ch.isprintable() else "?" for ch in text)
 
 
-def _number(value: float) -> str:
+def number(value: float) -> str:
     """A float as TOML: Python's shortest round-tripping form is valid TOML."""
     return repr(float(value))
 
 
-def _links(assembly: Assembly, sketch: str, hole_layers: tuple[str, ...]) -> list[str]:
+def link_lines(assembly: Assembly | LinkageAssembly, sketch: str, hole_layers: tuple[str, ...]) -> list[str]:
+    """A ``[links.NAME]`` table per drawn link, read from ``sketch``, and the bare joints of a ground not drawn."""
     lines = []
     material = MATERIAL[0]
     for name, link in assembly.links.items():
@@ -92,11 +100,11 @@ def _links(assembly: Assembly, sketch: str, hole_layers: tuple[str, ...]) -> lis
             f"sketch = {toml_string(sketch)}",
             f"layer = {toml_string(name)}",
             *([f"hole_layers = [{', '.join(toml_string(layer) for layer in hole_layers)}]"] if hole_layers else []),
-            f"thickness = {_number(THICKNESS_M)}  # m, a default: edit to the plate's",
+            f"thickness = {number(THICKNESS_M)}  # m, a default: edit to the plate's",
             f"material = {toml_string(material)}",
         ]
     if assembly.ground_joints is not None:
-        points = ", ".join(f"[{_number(x)}, {_number(y)}]" for x, y in assembly.ground_joints)
+        points = ", ".join(f"[{number(x)}, {number(y)}]" for x, y in assembly.ground_joints)
         lines += [
             "",
             f"[links.{toml_key(assembly.ground)}]  # {assembly.ground_rule} (m)",
@@ -119,8 +127,8 @@ def _mechanism(loop: Loop, assembly: Assembly) -> list[str]:
     lines.append(f"branch = {toml_string(loop.branch)}  # as drawn")
     if loop.kind == "slider-crank":
         lines += [
-            f"slider_angle_deg = {_number(math.degrees(loop.slider_angle))}  # the slider block's longer side, as drawn",
-            f"offset_m = {_number(loop.offset)}  # the slider line (through its pin) from the crank's pivot, + to its left",
+            f"slider_angle_deg = {number(math.degrees(loop.slider_angle))}  # the slider block's longer side, as drawn",
+            f"offset_m = {number(loop.offset)}  # the slider line (through its pin) from the crank's pivot, + to its left",
         ]
     return lines
 
@@ -143,16 +151,16 @@ def _motion(assembly: Assembly) -> list[str]:
     angle = assembly.input_angle_deg
     start, stop = assembly.sweep_deg
     if stop - start == 360.0:
-        sweep, why = f"{{start = {_number(start)}, stop = {_number(stop)}, num = 361}}", "one turn from the drawn angle"
+        sweep, why = f"{{start = {number(start)}, stop = {number(stop)}, num = 361}}", "one turn from the drawn angle"
     else:
         # Rounded inward, so that every position of the sweep assembles.
         inside = math.ceil(start * 1e6) / 1e6, math.floor(stop * 1e6) / 1e6
-        sweep = f"{{start = {_number(inside[0])}, stop = {_number(inside[1])}, num = 201}}"
+        sweep = f"{{start = {number(inside[0])}, stop = {number(inside[1])}, num = 201}}"
         why = "the crank rocks, from toggle to toggle"
     return [
         "",
         "[motion]",
-        f"input_angle_deg = {_number(angle)}  # the crank as drawn, degrees from +x",
+        f"input_angle_deg = {number(angle)}  # the crank as drawn, degrees from +x",
         f"# input_angle_deg = {sweep}  # a sweep: {why}",
-        f"input_speed_rad_s = {_number(SPEED_RAD_S)}  # a default: edit",
+        f"input_speed_rad_s = {number(SPEED_RAD_S)}  # a default: edit",
     ]

@@ -380,7 +380,8 @@ def _links(path: Path, raw: RawSketch, outlines: list[Outline], use_points: NDAr
     points = raw.curves.point_array()[use_points]
     point_origins = [o for o, u in zip(raw.curves.origins["points"], use_points) if u]
     point_layers = [origin[2] for origin in point_origins]
-    owner = _owners([o.shell.polygon for o in outlines], points, [o.layer for o in outlines], point_layers)
+    left_out = {problem.layer for problem in problems if problem.layer is not None}
+    owner = _owners([o.shell.polygon for o in outlines], points, [o.layer for o in outlines], point_layers, left_out)
     if (owner < 0).any():
         ignored["POINT (outside every outline)"] += int((owner < 0).sum())
     # The joints each outline would have, before any is judged a part: its POINTs, else its round holes' centres.
@@ -464,10 +465,11 @@ def _names(path: Path, outlines: list[Outline]) -> tuple[list[str], list[str | N
 
 
 def _owners(shells: list[Polygon], points: NDArray[np.float64], shell_layers: list[str | None],
-            point_layers: list[str]) -> NDArray[np.intp]:
+            point_layers: list[str], left_out: set[str]) -> NDArray[np.intp]:
     """For each point, the innermost shell that covers it, or -1: among the shells on the point's
     own layer when one of them covers it (links drawn assembled share their pins' places), else
-    among all."""
+    among all, unless curves of the point's layer were ``left_out`` as problems: a POINT of a lever
+    whose outline was left out is no joint of the frame it lies on."""
     owner = np.full(len(points), -1)
     if not len(points):
         return owner
@@ -477,7 +479,7 @@ def _owners(shells: list[Polygon], points: NDArray[np.float64], shell_layers: li
     for j in range(len(points)):
         candidates = np.flatnonzero(covers[:, j])
         same = candidates[layers[candidates] == point_layers[j]]
-        if len(same):
+        if len(same) or point_layers[j] in left_out:
             candidates = same
         if len(candidates):
             owner[j] = candidates[np.argmin(areas[candidates])]

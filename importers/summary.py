@@ -16,6 +16,7 @@ from linkstress.importers.problems import (
     ANNOTATION_LAYER, MAX_LISTED, Skipped, SketchProblem, by_kind, counted, skipped_counted,
 )
 from linkstress.importers.sketch import ImportedLink, Sketch
+from linkstress.report.cells import without_noise
 from linkstress.tables import format_table
 
 MAX_PRINTED = MAX_LISTED
@@ -110,16 +111,17 @@ def sketch_text(sketch: Sketch) -> str:
         parts.append(skipped_text(sketch.skipped))
     for link in sketch.links:
         props = link.profile(1.0).area_properties
+        size = float(np.abs(link.outline.bounds).max())  # round-off of coordinates is against this
         rows = [
             ("area per unit thickness [m^2]", props.area),
-            ("centroid [m]", _pair(props.centroid)),
+            ("centroid [m]", _pair(props.centroid, size)),
             ("polar moment of area about centroid [m^4]", props.polar),
         ]
-        rows += [(f"joint {k} [m]", f"{_pair(p)} ({rule})") for k, (p, rule) in enumerate(zip(link.joints, link.joint_rules))]
+        rows += [(f"joint {k} [m]", f"{_pair(p, size)} ({rule})") for k, (p, rule) in enumerate(zip(link.joints, link.joint_rules))]
         if not len(link.joints):
             rows.append(("joints", "none: no POINTs and no circular holes"))
         rows.append(("holes", _holes(link)))
-        rows.append(("largest gap closed [m]", link.largest_gap_m))
+        rows.append(("largest gap closed [m]", float(without_noise([link.largest_gap_m], size)[0])))
         layer = f" (layer {link.layer})" if link.layer else ""
         parts.append(f"link {link.name}{layer}\n" + format_table(("property", "value"), rows))
     if sketch.ignored:
@@ -153,8 +155,10 @@ def skipped_text(skipped: tuple[Skipped, ...]) -> str:
     return "\n".join(lines)
 
 
-def _pair(p) -> str:
-    return f"({float(p[0]):.6g}, {float(p[1]):.6g})"
+def _pair(p, size: float) -> str:
+    """"(x, y)" [m], a coordinate within round-off of 0 against the link's ``size`` [m] written 0."""
+    x, y = without_noise(np.asarray(p, float)[:2], size)
+    return f"({x:.6g}, {y:.6g})"
 
 
 def _holes(link: ImportedLink) -> str:

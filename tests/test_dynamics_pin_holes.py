@@ -145,7 +145,7 @@ def test_an_end_neither_round_nor_square_is_outside_the_table():
     shell = Polygon([(-0.04, 0.0), (-0.02, -H / 2), (SPACING + 0.03, -H / 2), (SPACING + 0.03, H / 2), (-0.02, H / 2)])
     (hole, _) = pin_hole_estimates(lug(shell, 0.012), pin_loads(PULL))
     assert hole.outside[0] and hole.shape[0] == "other"
-    assert "end neither square" in hole.reasons[0] and "nor round" in hole.reasons[0]
+    assert "neither square to the force" in hole.reasons[0] and "nor round" in hole.reasons[0]
 
 
 def test_a_hole_larger_than_the_table_is_outside_it():

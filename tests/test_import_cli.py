@@ -29,6 +29,17 @@ def test_import_prints_a_table_per_link(capsys):
     assert "0.599372" in out and "(1, 0) (point)" in out and "2 (2 circular, diameter 0.02 m (circle), 0.02 m (circle))" in out
 
 
+def test_import_writes_round_off_of_coordinates_and_gaps_as_zero(capsys):
+    """The tutorial's drawing in mm: its ground's centroid lies on the x axis and its arcs close exactly,
+    yet their arithmetic leaves -4e-19 m and 3e-18 m: noise against a 0.11 m link, written 0."""
+    import re
+
+    assert main(["import", str(REPO / "docs" / "tutorial" / "fourbar.dxf")]) == 0
+    out = capsys.readouterr().out
+    assert "centroid [m]" in out and "(0.055, 0)" in out
+    assert not re.search(r"e-1[0-9]", out), out
+
+
 def test_import_json_has_the_design_shape(tmp_path, capsys):
     out = tmp_path / "links.json"
     assert main(["import", str(SEED), "--json", str(out)]) == 0

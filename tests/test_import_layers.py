@@ -118,3 +118,26 @@ def test_a_layer_option_with_a_unicode_escape_that_is_not_hex_is_refused_by_name
     doc.saveas(path)
     with pytest.raises(SketchError, match=r"no layer '\\\\U\+zzzz' in the drawing"):
         read_sketch(path, layers=["\\U+zzzz"])
+
+
+def test_a_point_whose_own_layers_outline_was_left_out_is_no_joint_of_the_link_under_it(tmp_path):
+    """A lever's outline crosses itself (left out as a problem); its POINT lies on the frame's plate.
+    The frame keeps its own two POINTs: the lever's is not taken for a third pivot of the frame."""
+    import ezdxf
+
+    from linkstress.importers import read_sketch
+
+    doc = ezdxf.new("R2013", units=4)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (200, 0), (200, 50), (0, 50)], close=True, dxfattribs={"layer": "frame"})
+    for x in (20, 180):
+        msp.add_point((x, 25), dxfattribs={"layer": "frame"})
+    # a bow tie: its two sides cross at (100, 25)
+    msp.add_lwpolyline([(60, 10), (140, 40), (140, 10), (60, 40)], close=True, dxfattribs={"layer": "lever"})
+    msp.add_point((80, 25), dxfattribs={"layer": "lever"})
+    path = tmp_path / "frame.dxf"
+    doc.saveas(path)
+    sketch = read_sketch(path)
+    assert [link.name for link in sketch.links] == ["frame"]
+    assert sketch.links[0].joints.tolist() == [[0.02, 0.025], [0.18, 0.025]]
+    assert any(problem.layer == "lever" for problem in sketch.problems)

@@ -17,7 +17,7 @@ def section() -> str:
 
 def test_the_readme_import_commands_run(tmp_path):
     commands = [line for block in re.findall(r"```sh\n(.+?)\n```", section(), re.S) for line in block.splitlines()]
-    assert len(commands) == 2
+    assert len(commands) == 3
     for name in ("validation", "cad_scripts"):
         (tmp_path / name).symlink_to(REPO / name)
     for command in commands:
@@ -27,6 +27,7 @@ def test_the_readme_import_commands_run(tmp_path):
         assert result.returncode == 0, result.stderr
         assert "link" in result.stdout
     assert (tmp_path / "links.json").exists() and (tmp_path / "links.png").exists()
+    assert 'type = "linkage"' in (tmp_path / "press.toml").read_text()
 
 
 def test_the_readme_python_example_runs_and_gives_the_stated_mass():

@@ -119,3 +119,21 @@ def test_a_case_whose_sketch_path_is_wrong_is_bad_input_naming_the_case_and_the_
     assert line.startswith("linkstress: error: case seed: scene.toml: links.crank.sketch: file ")
     assert "seed/drawings/ansys_four_bars.dxf' not found" in line
     assert "cases passed" not in captured.out
+
+
+def test_a_vector_component_near_zero_is_judged_against_the_whole_vector():
+    # A ram along a level guide: its acceleration's y is 0 in the reference and 2.3e-16 m/s2 (float
+    # noise) in a run, against an x of 4.2 m/s2; judged against its own largest stored value it would
+    # be a 100 % regression, against the vector's 4.2 m/s2 it is 5e-17.
+    from validation.regression import compare_analysis
+
+    def position(acc):
+        return {"feasible": True, "links": {"ram": {"acc_G_m_s2": acc}}}
+
+    stored = [position([-4.232, 0.0]), position([-3.684, 1e-17])]
+    current = [position([-4.232, -2.35e-16]), position([-3.684, -2.0e-16])]
+    (check,) = [c for c in compare_analysis("ram", stored, current, {"kinematics": 1e-9}) if c.what == "kinematics"]
+    assert check.worst < 1e-15
+    moved = [position([-4.232, 0.0]), position([-3.684, 1e-3])]
+    (check,) = [c for c in compare_analysis("ram", stored, moved, {"kinematics": 1e-9}) if c.what == "kinematics"]
+    assert check.worst == pytest.approx(1e-3 / 4.232, rel=1e-6)

@@ -10,8 +10,9 @@
      "validation": {"links": {NAME: {... the validate JSON's errors and maxima ...}}}}
 
 A value passes when it is within its group's relative tolerance of the stored one, the scale being
-the largest stored magnitude of that quantity over the positions (so a value near zero is judged
-against the size of the quantity, not against itself). Beam-against-FEA errors must not grow by
+the largest stored magnitude of that quantity over the positions and, for a vector or a list of
+points, over its components (so a value near zero, such as the y of a ram's acceleration along a
+level guide, is judged against the size of the quantity, not against itself). Beam-against-FEA errors must not grow by
 more than ``fea_error_pct`` percentage points, and must stay under the case's ``limits``.
 
 ``--update`` stores this run's values but keeps each stored number the run reproduces to rounding
@@ -238,7 +239,7 @@ def rewritten(stored: dict, values: dict) -> dict:
         leaves: dict[tuple, list[tuple[float, float]]] = {}
         for s, c in zip(before, analysis):
             _collect((), s, c, leaves)
-        scales = {path: max(abs(s) for s, _ in pairs) for path, pairs in leaves.items()}
+        scales = _scales(leaves)
         analysis = [_kept(s, c, (), scales) for s, c in zip(before, analysis)]
     result = {"analysis": analysis}
     if "validation" in values:
@@ -272,6 +273,24 @@ def _scale(path: tuple, stored: float, scales: dict) -> float:
     return scales.get(path, abs(stored))
 
 
+def _scales(leaves: dict[tuple, list[tuple[float, float]]]) -> dict[tuple, float]:
+    """The largest stored magnitude of each number's quantity over the positions, by path: the
+    components of a vector (and the points of a list) share one size, that of the whole."""
+    sizes: dict[tuple, float] = {}
+    for path, pairs in leaves.items():
+        key = _quantity(path)
+        sizes[key] = max(sizes.get(key, 0.0), max(abs(s) for s, _ in pairs))
+    return {path: sizes[_quantity(path)] for path in leaves}
+
+
+def _quantity(path: tuple) -> tuple:
+    """``path`` without its trailing list indices: the quantity a component belongs to."""
+    end = len(path)
+    while end and isinstance(path[end - 1], int):
+        end -= 1
+    return path[:end]
+
+
 def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
@@ -287,6 +306,7 @@ def compare_analysis(case: str, stored: list, current: list, tolerances: dict) -
             _collect(("links",), s.get("links", {}), c.get("links", {}), leaves)
             _collect(("mechanisms",), s.get("mechanisms", {}), c.get("mechanisms", {}), leaves)
     worst: dict[str, tuple[float, str]] = {}
+    scales = _scales(leaves)
     for path, pairs in leaves.items():
         group = next((GROUPS[p] for p in path if p in GROUPS), None)
         if path[-1] == "equilibrium_mismatch":
@@ -295,7 +315,7 @@ def compare_analysis(case: str, stored: list, current: list, tolerances: dict) -
             continue
         if group is None:
             continue
-        scale = max(max(abs(s) for s, _ in pairs), 1e-300)
+        scale = max(scales[path], 1e-300)
         deviation = max(abs(c - s) for s, c in pairs) / scale
         if deviation >= worst.get(group, (-1.0, ""))[0]:
             worst[group] = (deviation, ".".join(map(str, path)))

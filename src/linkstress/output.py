@@ -2,16 +2,20 @@
 
 Output paths are checked before any work (``check_outputs``); a write that still fails (disk full,
 file-size limit, read-only folder) is an ``InputError`` naming the file, and leaves no file behind.
-An output is bytes, or a function that writes into a binary stream (``json_stream``), so that a
-long sweep's records are encoded as they come and never all held at once.
+An output is bytes, or a function that writes into a binary stream (``json_stream``, ``npz_stream``),
+so that a long sweep's records and arrays are encoded as they come and never all held at once.
 """
 
 from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import BinaryIO
+
+import numpy as np
+from numpy.typing import NDArray
 
 from linkstress.errors import InputError
 
@@ -92,6 +96,68 @@ def json_stream(
         stream.write(b"\n}\n")
 
     return write
+
+
+@dataclass(frozen=True)
+class RowBlocks:
+    """An array of ``rows`` rows made a block of rows at a time: ``make(block)`` gives the rows of
+    the slice ``block``, every block the same dtype and the same shape after the first axis."""
+
+    rows: int
+    make: Callable[[slice], NDArray]
+
+
+def npz_stream(
+    arrays: Mapping[str, NDArray | RowBlocks], blocks: Sequence[slice], option: str
+) -> Callable[[BinaryIO], None]:
+    """The writer of a NumPy .npz file (what ``np.savez`` writes: a zip of one .npy file per name,
+    stored uncompressed; ``np.load`` reads it without pickles) holding ``arrays``: each whole array as
+    it is, each ``RowBlocks`` made and written by ``blocks`` (consecutive slices covering its rows),
+    so that only one block of one array is held at a time. A non-finite float is refused
+    (``InputError`` naming ``option``), as in the JSON."""
+
+    covered = [(block.start, block.stop) for block in blocks]
+    if [stop for _, stop in covered[:-1]] != [start for start, _ in covered[1:]] or covered[0][0] != 0:
+        raise ValueError(f"blocks {blocks} are not consecutive from row 0")
+    for name, array in arrays.items():
+        if isinstance(array, RowBlocks) and array.rows != covered[-1][1]:
+            raise ValueError(f"{name}: {array.rows} rows, the blocks cover {covered[-1][1]}")
+
+    def write(stream: BinaryIO) -> None:
+        import zipfile
+
+        with zipfile.ZipFile(stream, "w", zipfile.ZIP_STORED, allowZip64=True) as archive:
+            for name, array in arrays.items():
+                with archive.open(f"{name}.npy", "w", force_zip64=True) as member:
+                    if isinstance(array, RowBlocks):
+                        _write_row_blocks(member, array, blocks, option)
+                    else:
+                        _refuse_non_finite(array, option)
+                        np.lib.format.write_array(member, np.asarray(array), allow_pickle=False)
+
+    return write
+
+
+def _write_row_blocks(member: BinaryIO, array: RowBlocks, blocks: Sequence[slice], option: str) -> None:
+    """The .npy file of ``array``: its header from the first block's dtype and row shape, then the
+    blocks' bytes in order (C order, rows first)."""
+    first = None
+    for block in blocks:
+        rows = np.ascontiguousarray(array.make(block))
+        if first is None:
+            first = rows
+            header = {"descr": np.lib.format.dtype_to_descr(rows.dtype), "fortran_order": False,
+                      "shape": (array.rows, *rows.shape[1:])}
+            np.lib.format.write_array_header_1_0(member, header)
+        elif rows.dtype != first.dtype or rows.shape[1:] != first.shape[1:]:
+            raise ValueError(f"block {block} is {rows.dtype} {rows.shape[1:]}, the first {first.dtype} {first.shape[1:]}")
+        _refuse_non_finite(rows, option)
+        member.write(rows.data.cast("B"))
+
+
+def _refuse_non_finite(array: NDArray, option: str) -> None:
+    if np.asarray(array).dtype.kind in "fc" and not np.isfinite(array).all():
+        raise _non_finite(option)
 
 
 def _non_finite(option: str) -> InputError:

@@ -17,8 +17,10 @@ It prints figures and asserts nothing about time (machines are shared and noisy)
 - Theo Jansen's leg as a ``type = "linkage"`` (``kinematics.linkage.examples``): every link's
   angle, angular velocity and acceleration over ``--positions`` crank angles, against pylinkage's
   compiled positions-only sweep of the same leg (a crank and five RRR dyads): the target is
-  linkstress at least as fast. And the textbook four-bar written as a linkage against the
-  dedicated four-bar path: the target is within 2 x.
+  linkstress at least as fast. Also on one thread (``LINKSTRESS_THREADS=1``): pylinkage runs on
+  one, and on a machine whose other cores are busy a second thread only waits for the first. And
+  the textbook four-bar written as a linkage against the dedicated four-bar path: the target is
+  within 2 x.
 """
 
 from __future__ import annotations
@@ -38,7 +40,7 @@ from linkstress.kinematics import Drive, FourBar, Loop, Machine, Role, angle_mot
 from linkstress.kinematics.linkage import Input, Joint, LinkageGraph, solve_linkage
 from linkstress.kinematics.linkage.examples import JANSEN_CM, jansen_leg, jansen_pose
 from linkstress.tables import format_table
-from linkstress.threads import cores
+from linkstress.threads import THREADS_VARIABLE, cores
 from linkstress.validation.bench.timing import best_time
 
 TARGET_RATIO = 2.0
@@ -185,6 +187,21 @@ def four_loop_machine() -> Machine:
     return Machine(links, loops)
 
 
+def one_thread(work: Callable[[], object]) -> Callable[[], object]:
+    """``work`` run with ``LINKSTRESS_THREADS=1``: linkstress's blocks on the calling thread alone."""
+    def run() -> object:
+        saved = os.environ.get(THREADS_VARIABLE)
+        os.environ[THREADS_VARIABLE] = "1"
+        try:
+            return work()
+        finally:
+            if saved is None:
+                del os.environ[THREADS_VARIABLE]
+            else:
+                os.environ[THREADS_VARIABLE] = saved
+    return run
+
+
 def best_times(works: dict[str, Callable[[], object]], repeat: int) -> dict[str, tuple[float, float]]:
     """Best wall time and best CPU time [s] (every thread of the process) of each work over
     ``repeat`` rounds, each round running every work once: on a shared machine all of them then
@@ -252,8 +269,9 @@ def main(argv: list[str] | None = None) -> None:
 
     leg = jansen_leg(0.0)
     motion = angle_motion(np.degrees(theta), omega, alpha)
-    works = {"jansen": lambda: solve_linkage(leg, motion)}
-    names = {"jansen": f"linkstress linkage ({cores()} threads): angle, omega, alpha of every link"}
+    works = {"jansen": lambda: solve_linkage(leg, motion), "jansen, one thread": one_thread(lambda: solve_linkage(leg, motion))}
+    names = {"jansen": f"linkstress linkage ({cores()} threads): angle, omega, alpha of every link",
+             "jansen, one thread": "the same on one thread"}
     if not missing:
         works["pylinkage"] = pylinkage_jansen(n)
         drift = jansen_agreement(works["pylinkage"](), n)
@@ -279,9 +297,10 @@ def main(argv: list[str] | None = None) -> None:
     else:
         by_wall = times["pylinkage"][0] / times["jansen"][0]
         by_cpu = times["pylinkage"][1] / times["jansen"][1]
+        alone = times["pylinkage"][0] / times["jansen, one thread"][0]
         print(f"Jansen leg, linkstress / pylinkage: {by_wall:.2f} by wall time, target {JANSEN_TARGET_RATIO:g}: "
-              f"{'met' if by_wall >= JANSEN_TARGET_RATIO else 'NOT met'}; {by_cpu:.2f} by CPU time; pylinkage's foot "
-              f"within {drift:.1e} m of linkstress's")
+              f"{'met' if by_wall >= JANSEN_TARGET_RATIO else 'NOT met'}; {by_cpu:.2f} by CPU time; {alone:.2f} on one "
+              f"thread; pylinkage's foot within {drift:.1e} m of linkstress's")
     slower = times["four-bar linkage"][0] / times["four-bar"][0]
     print(f"four-bar as a linkage / dedicated four-bar path: {slower:.2f} x by wall time, "
           f"{times['four-bar linkage'][1] / times['four-bar'][1]:.2f} x by CPU time, target at most "

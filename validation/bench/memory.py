@@ -62,11 +62,11 @@ class Run:
     json_bytes: int | None
 
 
-def seed_sweep_scene(folder: Path, positions: int) -> Path:
-    """The seed scene over ``positions`` input angles from 0 to 359.9 deg, written to ``folder``
+def seed_sweep_scene(folder: Path, positions: int, stop: float = 359.9) -> Path:
+    """The seed scene over ``positions`` input angles from 0 to ``stop`` deg, written to ``folder``
     beside a copy of its sketch."""
     text = SEED.read_text()
-    motion = f"input_angle_deg = {{ start = 0.0, stop = 359.9, num = {positions} }}"
+    motion = f"input_angle_deg = {{ start = 0.0, stop = {stop!r}, num = {positions} }}"
     text, count = re.subn(r"^input_angle_deg = .*$", motion, text, flags=re.MULTILINE)
     if count != 1:
         raise RuntimeError(f"{SEED}: expected one input_angle_deg line, found {count}")

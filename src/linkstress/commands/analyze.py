@@ -1,14 +1,15 @@
-"""``linkstress analyze SCENE [--json OUT] [--html OUT] [--stations] [--accuracy F] [--peaks | --beam-only]
-[--details] [--explain]``: motion, joint forces and section stresses of a scene's machine at every
-input position, and the FEA peaks of the links whose governing stress beam theory and the Kt tables
-cannot answer within the accuracy (``linkstress.model_choice``).
+"""``linkstress analyze SCENE [--json OUT] [--table OUT.npz] [--html OUT] [--stations] [--accuracy F]
+[--peaks | --beam-only] [--details] [--explain]``: motion, joint forces and section stresses of a
+scene's machine at every input position, and the FEA peaks of the links whose governing stress beam
+theory and the Kt tables cannot answer within the accuracy (``linkstress.model_choice``).
 
 stdout: the verdict first (``linkstress.report.verdict``: per link the stress that governs it, where,
 its safety factors and how far to trust it), the scene's warnings, each mechanism's class (Grashof,
 Barker), toggles, feasible input range, limit positions and driving torque range, each link's
 maxima, and the notes and infeasible positions; ``--details`` adds the motion, joint forces and
 section stresses position by position. ``--json`` writes docs/design.md's ``analyze`` JSON (see
-``linkstress.report.records``); ``--explain`` prints what will be computed and stops.
+``linkstress.report.records``), ``--table`` the same per-position numbers as NumPy arrays in an .npz file
+(``linkstress.report.table``); ``--explain`` prints what will be computed and stops.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from linkstress.executors import OPTION, SCHEDULER_VARIABLE, Retry, scheduler_ch
 from linkstress.model_choice import DEFAULT_ACCURACY, NO_FEA, accuracy_problem
 from linkstress.output import check_outputs, json_stream, write_all
 from linkstress.report.records import links_record, stream_position_records, summary_record
+from linkstress.report.table import check_table_name, table_stream
 from linkstress.report.text import report
 from linkstress.report.verdict import analysis_verdict
 from linkstress.scene import Scene, load_scene
@@ -75,6 +77,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("scene", type=Path, metavar="SCENE", help="scene file (TOML)")
     parser.add_argument("--json", type=Path, metavar="OUT", help="also write the results as JSON to OUT")
     parser.add_argument(
+        "--table", type=Path, metavar="OUT.npz",
+        help="also write the JSON's per-position numbers as named NumPy arrays to OUT.npz, one per quantity with the "
+        "positions along its first axis (np.load(OUT) in a notebook; docs/design.md, \"The table\"): for long sweeps, "
+        "a fraction of the JSON's size and time",
+    )
+    parser.add_argument(
         "--stations", action="store_true",
         help="add N, V, M and von Mises along every link (member frame) to the JSON",
     )
@@ -115,8 +123,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    outputs = {"--json": args.json, "--html": args.html}
+    outputs = {"--json": args.json, "--html": args.html, "--table": args.table}
     check_outputs(outputs, [args.scene])
+    check_table_name(args.table)
     scene = load_scene(args.scene)
     check_outputs(outputs, scene_sketches(scene))
     plan = command_plan(scene, args)
@@ -161,6 +170,8 @@ def run(args: argparse.Namespace) -> int:
             return {**links, **summary_record(result, verdict), **cluster}
 
         files.append((args.json, json_stream("positions", records, "--json", after)))
+    if args.table is not None:
+        files.append((args.table, table_stream(result)))
     if args.html is not None:
         from linkstress.report.html import analysis_html  # matplotlib: half a second to import
 

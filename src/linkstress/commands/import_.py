@@ -24,8 +24,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "out; the rest imports (exit 0) unless --strict. The problems print first, grouped by kind. What is no "
             "part (a page frame, text glyphs, drill marks, layers named for annotation) is skipped and listed. "
             "With --scene, a mechanism drawn assembled (each "
-            "link on its own layer, pin centres meeting) also becomes a scene to edit and analyze; the shipped "
-            "cases' sketches draw their links apart, so --scene refuses them."
+            "link on its own layer, pin centres meeting) also becomes a scene to edit and analyze: four-bar loops "
+            "and slider-cranks, or any other one-DOF linkage of pins, slots and sliding blocks (docs/importing.md); "
+            "a sheet of links drawn apart has none."
         ),
         epilog=examples(
             "linkstress import validation/cases/six_bar/six_bar.dxf --plot six_bar.png",
@@ -56,7 +57,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--scene", metavar="OUT.toml",
         help="write a scene of the mechanism drawn assembled (each link on its own layer, pinned where pin centres "
-             "meet): four-bar loops, ground, crank, the drawn angle and branch; edit thickness, material, motion, loads",
+             "meet): four-bar and slider-crank loops, or a linkage of pins and sliders, with its ground, input and "
+             "the drawn pose; edit thickness, material, motion, loads",
     )
     parser.set_defaults(run=run)
 
@@ -133,17 +135,13 @@ def _refuse(sketch, message: str, json_path: str | None) -> None:
 def _scene(sketch, out: Path, units: str | None, hole_layers: tuple[str, ...]) -> tuple[bytes, list[str]]:
     """The scene of the mechanism drawn in ``sketch``, checked by reading it back as file ``out`` and
     solving it at the drawn angle, and a line per mechanism found."""
-    from linkstress.importers.assembly import check_pose, find_assembly
-    from linkstress.importers.scene_writer import scene_text
-    from linkstress.scene.reader import scene_from_text
+    from linkstress.importers.drawn_mechanism import mechanism_scene
 
     try:
-        assembly = find_assembly(sketch)
-        text = scene_text(assembly, _relative(sketch.path, out), sketch.path.name, units, hole_layers)
-        check_pose(scene_from_text(text, out), sketch.gap_tolerance_m)
+        text, found = mechanism_scene(sketch, out, _relative(sketch.path, out), units, hole_layers)
     except InputError as error:
         raise InputError(f"{sketch.path.name}: --scene: {error}") from None
-    return text.encode("utf-8"), assembly.summary()
+    return text.encode("utf-8"), found
 
 
 def _relative(sketch: Path, out: Path) -> str:

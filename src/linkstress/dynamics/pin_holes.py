@@ -113,7 +113,7 @@ SOURCE = (
     "estimate: Kt x P / ((H - d) t), H the link's width across the pin force through the hole centre "
     "(at most 10 d; a round end's diameter), for a close-fitting pin; Kt from linkstress plane-stress FEA "
     "of pin-loaded lugs with square ends (over d/H, end distance e/H), round ends concentric with the hole "
-    "(over d/H, shank width w/H) and holes far from the edges (validation/fea/pin_hole_kt.py), read per "
+    "(over d/H, shank width w/H) and holes far from the edges (docs/numbers.md, pin holes), read per "
     "position by the direction of the pin force; a pin that carries a couple (a driving torque, a keyed "
     "shaft) is outside the tables"
 )
@@ -330,8 +330,9 @@ def _reason(shape: int, d_over_h: float, e_over_h: float, w_over_h: float, offse
             tilt: float) -> str | None:
     """Why one direction's geometry is outside the tables, None if it is inside."""
     if shape == OTHER:
-        return (f"end neither square (within {SQUARE_TILTS_DEG[-1]} degrees of square to the force) nor round "
-                f"and concentric with the hole: the outline ahead of the hole is {misfit:.0%} off both")
+        return (f"the end ahead of the hole is neither square to the force (within {SQUARE_TILTS_DEG[-1]} degrees) "
+                f"nor round about the hole: its edge lies up to {misfit:.0%} nearer or farther from the hole's "
+                "centre than either shape would put it")
     if shape == OPEN:
         return None
     low, high = 1 - EDGE_SLACK, 1 + EDGE_SLACK

@@ -36,11 +36,17 @@ class _Collect(logging.Handler):
         self.messages.append(record.getMessage())
 
 
+_OPEN: list[list[str]] = []
+"""The notes of the ``figure_warnings`` blocks open now, innermost last."""
+
+
 @contextmanager
 def figure_warnings(notes: list[str] | None = None) -> Iterator[list[str]]:
     """Python warnings and matplotlib's log warnings raised inside the block go to the list it yields
-    (``notes``, when given) as ``figure_notes`` words them, never to the terminal."""
-    found = notes if notes is not None else []
+    (``notes``, when given; else the enclosing block's, so that a drawing step inside a figure writer
+    keeps its notes) as ``figure_notes`` words them, never to the terminal."""
+    found = notes if notes is not None else _OPEN[-1] if _OPEN else []
+    _OPEN.append(found)
     messages: list[str] = []
     logger = logging.getLogger("matplotlib")
     handler, propagate = _Collect(messages), logger.propagate
@@ -51,6 +57,7 @@ def figure_warnings(notes: list[str] | None = None) -> Iterator[list[str]]:
             warnings.simplefilter("always")
             yield found
     finally:
+        _OPEN.pop()
         logger.removeHandler(handler)
         logger.propagate = propagate
         messages += [f"{w.category.__name__}: {w.message}" for w in caught]

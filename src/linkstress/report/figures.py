@@ -62,14 +62,20 @@ def spread_x_ticks(fig: Figure, dpi: int = 110) -> None:
     for ax in fig.axes:
         if ax.get_xscale() != "linear":
             continue
-        fig.canvas.draw()
-        gaps = x_tick_gaps(ax, fig.canvas.get_renderer())
+        gaps = drawn_tick_gaps(ax)
         bins = len(gaps) - 1
         while bins >= 1 and min(gaps, default=TICK_GAP_PX) < TICK_GAP_PX:
             ax.xaxis.set_major_locator(MaxNLocator(bins, steps=[1, 2, 5, 10], min_n_ticks=1))
-            fig.canvas.draw()
-            gaps = x_tick_gaps(ax, fig.canvas.get_renderer())
+            gaps = drawn_tick_gaps(ax)
             bins = min(bins, len(gaps)) - 1
+
+
+def drawn_tick_gaps(ax) -> list[float]:
+    """``x_tick_gaps`` of ``ax`` once its figure is drawn (what matplotlib warns while drawing, a
+    glyph its font lacks, stays off the terminal: ``figure_warnings``)."""
+    with figure_warnings():
+        ax.figure.canvas.draw()
+    return x_tick_gaps(ax, ax.figure.canvas.get_renderer())
 
 
 def x_tick_gaps(ax, renderer) -> list[float]:

@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from matplotlib.transforms import Bbox
 
+from linkstress.report.figure_notes import figure_warnings
+
 PLACEMENT_DPI = 110
 """The resolution the reports' figures are saved at (``figures.png_bytes``)."""
 GAP_PX = 3.0
@@ -51,7 +53,8 @@ class LabelPlacer:
         """Place every label where it overlaps none placed before it; returns the texts left off."""
         fig = self.ax.figure
         fig.set_dpi(PLACEMENT_DPI)
-        fig.canvas.draw()
+        with figure_warnings():  # a glyph its font lacks: not onto the terminal
+            fig.canvas.draw()
         renderer = fig.canvas.get_renderer()
         frame = self.ax.get_window_extent(renderer)
         scale = PLACEMENT_DPI / 72.0

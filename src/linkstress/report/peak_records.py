@@ -18,34 +18,31 @@ coordinates find it on the drawing) and ``fatigue_critical_at_member_m`` in its 
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from functools import partial
-
 import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
-from linkstress.safety import finite_or_none, yield_factor
+from linkstress.safety import yield_factor
 
 
-def peak_columns(result: AnalysisResult, name: str) -> dict[str, NDArray[np.float64] | Callable[[slice], list]]:
-    """Link ``name``'s per-position peak columns (P,) and (P, 2); nan at infeasible positions, which
-    carry no link data. The yield factor is a block's list (null where the peak is zero: no load,
-    no factor)."""
+def peak_columns(result: AnalysisResult, name: str) -> dict[str, NDArray[np.float64]]:
+    """Link ``name``'s per-position peak columns: ``peak_von_mises_pa`` (P,) [Pa] and ``peak_at_m``
+    (P, 2) [m, ground frame]; nan at infeasible positions, which carry no link data. The yield
+    factor from the peak: ``peak_yield_factors``."""
     peaks = result.peaks[name]
-    columns = {
-        "peak_von_mises_pa": peaks.peak,
-        "peak_at_m": result.to_ground(name, peaks.peak_at),
-    }
+    return {"peak_von_mises_pa": peaks.peak, "peak_at_m": result.to_ground(name, peaks.peak_at)}
+
+
+def peak_yield_factors(result: AnalysisResult, name: str) -> NDArray[np.float64] | None:
+    """Link ``name``'s yield strength over its FEA peak at every position (P,): inf where the peak is
+    zero, nan where infeasible; None where the material gives no ``yield_strength`` or the peak did
+    not settle on its mesh (no factor is taken from it)."""
+    peaks = result.peaks[name]
     strength = result.scene.links[name].material.yield_strength
-    if strength is not None and peaks.trusted:
-        factors = np.where(np.isnan(peaks.peak), np.nan, yield_factor(strength, peaks.peak))
-        columns["peak_yield_safety_factor"] = partial(_finite_block, factors)
-    return columns
-
-
-def _finite_block(values: NDArray[np.float64], block: slice) -> list[float | None]:
-    return finite_or_none(values[block])
+    if strength is None or not peaks.trusted:
+        return None
+    peak = peaks.peak
+    return np.where(np.isnan(peak), np.nan, yield_factor(strength, peak))
 
 
 def peak_summaries(result: AnalysisResult) -> dict[str, dict[str, object]]:

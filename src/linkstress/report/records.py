@@ -31,7 +31,8 @@ FEA peaks ran, their summary (``report.peak_records``); then ``summary_record``:
 scene's warnings and the joint forces' names.
 Infeasible positions carry no link or mechanism data. Angles in degrees in [0, 360); SI units.
 The records are made a block of positions at a time (``stream_position_records``), for
-``output.write_json_stream`` to write as they come.
+``output.write_json_stream`` to write as they come, from columns (``link_value_columns``,
+``mechanism_columns``) that ``report.table`` writes as arrays too.
 """
 
 from __future__ import annotations
@@ -44,11 +45,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkstress.analysis import AnalysisResult
+from linkstress.dynamics.pin_holes import SHAPE_NAMES
 from linkstress.dynamics.section_stress import StressSummary
-from linkstress.report.peak_records import peak_columns, peak_summaries
+from linkstress.report.peak_records import peak_columns, peak_summaries, peak_yield_factors
 from linkstress.report.places import force_names
 from linkstress.report.verdict import Verdict
-from linkstress.safety import finite_or_none, link_safety_factors
+from linkstress.safety import link_safety_factors
 from linkstress.threads import even_blocks
 
 
@@ -88,6 +90,79 @@ def links_record(result: AnalysisResult) -> dict[str, dict[str, object]]:
             if name in result.models}
 
 
+@dataclass(frozen=True)
+class Nullable:
+    """Per-position ``values`` (P,) that are null where ``null`` (P,) is true (a factor where there
+    is no stress, an estimate outside the Kt tables): JSON null there, 0 in ``analyze --table``."""
+
+    values: NDArray[np.float64]
+    null: NDArray[np.bool_]
+
+
+@dataclass(frozen=True)
+class Coded:
+    """A text per position: ``texts[codes[k]]`` at position k, None for JSON null."""
+
+    codes: NDArray[np.integer]
+    texts: tuple[str | None, ...]
+
+
+def link_value_columns(result: AnalysisResult, stations: bool = False) -> dict[str, dict[str, object]]:
+    """Per link, its per-position values nested as the JSON's link records nest them: numpy arrays
+    (P, ...) (whole when the key is ``SHARED``), functions of a block of positions (giving arrays,
+    or lists), ``Nullable`` and ``Coded`` columns, lists of such dicts (members, pin holes), and what
+    every position shares (names, flags). ``stations`` adds the arrays along the link's first member."""
+    analysis = result.scene.analysis
+    link_values: dict[str, dict[str, object]] = {}
+    if analysis is None or analysis.kinematics:
+        for name, c in link_columns(result).items():
+            values = {"angle_deg": c.angle_deg, "omega_rad_s": c.omega, "alpha_rad_s2": c.alpha}
+            if c.acc_g is not None:
+                values["acc_G_m_s2"] = c.acc_g
+            if result.scene.linkage is not None:
+                values["joints_m"] = partial(joint_positions, result, name)
+            link_values[name] = values
+    for name, stress in result.stresses.items():
+        values = link_values.setdefault(name, {})
+        values["curved"] = result.curved(name)
+        values["max_von_mises_pa"] = stress.max_von_mises
+        values["max_at_m"] = partial(_ground_rows, result, name, stress.max_at)
+        if stress.max_away_from_holes is not None:
+            values["max_von_mises_away_from_holes_pa"] = stress.max_away_from_holes
+        values["equilibrium_mismatch"] = stress.mismatch
+        if stress.pin_holes:
+            values["pin_holes"] = [_pin_hole_lists(h) for h in stress.pin_holes]
+        if stations:
+            values["stations"] = partial(_block_station_lists, stress)
+        values["members"] = [
+            {"joints": list(m.joints), "beam_theory": m.theory, "max_von_mises_pa": m.max_von_mises,
+             "max_at_m": partial(_ground_rows, result, name, m.max_at)}
+            for m in stress.members
+        ]
+    for name in result.peaks:
+        values = link_values.setdefault(name, {})
+        values.update(peak_columns(result, name))
+        factors = peak_yield_factors(result, name)
+        if factors is not None:
+            values["peak_yield_safety_factor"] = _factor(factors)
+    for name, factors in link_safety_factors(result).items():
+        link_values[name]["yield_safety_factor"] = _factor(factors.sections)
+        if factors.pin_holes is not None:
+            link_values[name]["pin_hole_yield_safety_factor_estimate"] = _factor(factors.pin_holes)
+    return link_values
+
+
+def _factor(values: NDArray[np.float64]) -> Nullable:
+    """Safety factors, null where infinite (no stress, or no estimate there)."""
+    return Nullable(values, ~np.isfinite(values))
+
+
+def _ground_rows(result: AnalysisResult, name: str, local: NDArray[np.float64], block: slice) -> NDArray[np.float64]:
+    """Points ``local`` (P, 2) [m] of link ``name``'s member frame at the positions ``block``, in the
+    ground frame (B, 2) [m]."""
+    return result.to_ground(name, local[block], np.arange(*block.indices(len(local))))
+
+
 def summary_record(result: AnalysisResult, verdict: Verdict) -> dict[str, object]:
     """The top-level keys that follow the positions: ``verdict`` (its rows and next step,
     ``report.verdict``), the scene's ``warnings`` (a list, empty when none) and, where joint forces
@@ -109,36 +184,8 @@ def stream_position_records(result: AnalysisResult, stations: bool = False) -> I
     """``position_records``, made one block of positions at a time (``record_blocks``): columns stay
     numpy arrays until their block is turned into lists, and the arrays along the links are
     recomputed per block (``StressSummary.at``), so that memory does not grow with the sweep."""
-    analysis = result.scene.analysis
-    link_values: dict[str, dict[str, object]] = {}
-    if analysis is None or analysis.kinematics:
-        for name, c in link_columns(result).items():
-            values = {"angle_deg": c.angle_deg, "omega_rad_s": c.omega, "alpha_rad_s2": c.alpha}
-            if c.acc_g is not None:
-                values["acc_G_m_s2"] = c.acc_g
-            if result.scene.linkage is not None:
-                values["joints_m"] = partial(_joint_rows, result, name)
-            link_values[name] = values
-    for name, stress in result.stresses.items():
-        values = link_values.setdefault(name, {})
-        values["curved"] = result.curved(name)
-        values["max_von_mises_pa"] = stress.max_von_mises
-        values["max_at_m"] = result.max_location(name)
-        if stress.max_away_from_holes is not None:
-            values["max_von_mises_away_from_holes_pa"] = stress.max_away_from_holes
-        values["equilibrium_mismatch"] = stress.mismatch
-        if stress.pin_holes:
-            values["pin_holes"] = [_pin_hole_lists(h) for h in stress.pin_holes]
-        if stations:
-            values["stations"] = partial(_block_station_lists, stress)
-        values["members"] = partial(_member_rows, result, name)
-    for name in result.peaks:
-        link_values.setdefault(name, {}).update(peak_columns(result, name))
-    for name, factors in link_safety_factors(result).items():
-        link_values[name]["yield_safety_factor"] = partial(_finite_rows, factors.sections)
-        if factors.pin_holes is not None:
-            link_values[name]["pin_hole_yield_safety_factor_estimate"] = partial(_finite_rows, factors.pin_holes)
-    mechanism_values = _mechanism_lists(result)
+    link_values = link_value_columns(result, stations)
+    mechanism_values = mechanism_columns(result)
     transmission = {name: np.degrees(loop.transmission_angle) for name, loop in result.kinematics.loops.items()}
     for block in record_blocks(result):
         links = {name: _rows(values, block) for name, values in link_values.items()}
@@ -180,25 +227,6 @@ def _block_station_lists(stress: StressSummary, block: slice) -> dict[str, objec
     return _station_lists(stress.at(block))
 
 
-def _member_rows(result: AnalysisResult, name: str, block: slice) -> list[list[dict]]:
-    """Per position of ``block``, the list of the link's members: joints, beam theory, largest von
-    Mises and where (ground frame)."""
-    members = result.stresses[name].members
-    places = [result.max_location(name, k)[block].tolist() for k in range(len(members))]
-    values = [m.max_von_mises[block].tolist() for m in members]
-    return [
-        [
-            {"joints": list(m.joints), "beam_theory": m.theory, "max_von_mises_pa": values[k][p], "max_at_m": places[k][p]}
-            for k, m in enumerate(members)
-        ]
-        for p in range(len(values[0]))
-    ]
-
-
-def _finite_rows(values: NDArray[np.float64], block: slice) -> list[float | None]:
-    return finite_or_none(values[block])
-
-
 def _station_lists(stress) -> dict[str, object]:
     """Arrays along the link's first member: where the stations are (``x_m`` and ``s_m``, the arc
     length from its joint i along its axis; ``at_member_m``, the axis point, and ``normal_member``,
@@ -224,23 +252,21 @@ def _pin_hole_lists(hole) -> dict[str, object]:
     return {
         "joint": hole.joint, "hole_diameter_m": hole.diameter, "depth_m": hole.depth, "kt": hole.kt,
         "nominal_pa": hole.nominal,
-        "estimate_pa": partial(_inside_rows, hole.estimate, hole.outside),
+        "estimate_pa": Nullable(hole.estimate, hole.outside),
         "basis": hole.source,
-        "kt_at_position": partial(_inside_rows, hole.kts, hole.outside),
+        "kt_at_position": Nullable(hole.kts, hole.outside),
         "kt_outside_table": hole.outside,
-        "kt_outside_reason": hole.reasons_in,
+        "kt_outside_reason": Coded(hole.reason_code, hole.reason_texts),
         "width_m": hole.width,
         "end_distance_m": hole.end_distance,
-        "end_shape": hole.shapes_in,
+        "end_shape": Coded(hole.shape_code, SHAPE_NAMES),
     }
 
 
-def _inside_rows(values: NDArray[np.float64], outside: NDArray[np.bool_], block: slice) -> list[float | None]:
-    """``values`` of the positions ``block``, null where the geometry is outside the Kt tables."""
-    return np.where(outside[block], None, values[block].astype(object)).tolist()
-
-
-def _mechanism_lists(result: AnalysisResult) -> dict[str, dict[str, object]]:
+def mechanism_columns(result: AnalysisResult) -> dict[str, dict[str, object]]:
+    """Per mechanism, its per-position arrays as the JSON nests them: ``forces_n`` (name -> (P, 2)
+    [N], ground frame), ``driving_torque_nm`` (P,) with the ``torque``'s name, ``driving_force_n``
+    (P,), and a linkage's ``pins`` and ``sliders``; {} without joint forces."""
     if result.forces is None:
         return {}
     out = {}
@@ -271,27 +297,32 @@ def _linkage_lists(detail) -> dict[str, object]:
     return {"pins": pins, "sliders": sliders}
 
 
-def _joint_rows(result: AnalysisResult, name: str, block: slice) -> list:
-    """Link ``name``'s joints in the ground frame, per position of ``block``: (B, J, 2) as lists."""
+def joint_positions(result: AnalysisResult, name: str, block: slice) -> NDArray[np.float64]:
+    """Link ``name``'s joints in the ground frame, per position of ``block``: (B, J, 2) [m]."""
     local = result.scene.linkage.local[name]
     motion = result.kinematics.links[name]
     angle, origin = motion.angle[block], motion.origin[block]
     c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
     x = origin[:, 0:1] + c * local[:, 0] - s * local[:, 1]
     y = origin[:, 1:2] + s * local[:, 0] + c * local[:, 1]
-    return np.stack([x, y], axis=-1).tolist()
+    return np.stack([x, y], axis=-1)
 
 
 def _rows(values: dict, block: slice) -> dict:
-    """The entries of the positions ``block`` as lists: per-position arrays and lists sliced, blocks
-    made (functions of the block), dicts and lists of dicts recursed, and what all positions share
-    kept whole."""
+    """The entries of the positions ``block`` as lists: per-position arrays and lists sliced (a
+    ``Nullable``'s null rows None, a ``Coded`` column's texts), blocks made (functions of the
+    block), dicts and lists of dicts recursed, and what all positions share kept whole."""
     out = {}
     for key, column in values.items():
         if isinstance(column, dict):
             out[key] = _rows(column, block)
+        elif isinstance(column, Nullable):
+            out[key] = np.where(column.null[block], None, column.values[block].astype(object)).tolist()
+        elif isinstance(column, Coded):
+            out[key] = np.array(column.texts, dtype=object)[column.codes[block]].tolist()
         elif callable(column):
-            out[key] = column(block)
+            made = column(block)
+            out[key] = made.tolist() if isinstance(made, np.ndarray) else made
         elif isinstance(column, np.ndarray):
             out[key] = column.tolist() if key in SHARED else column[block].tolist()
         elif isinstance(column, list) and column and isinstance(column[0], dict):

@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 
 from linkstress.kinematics.linkage.graph import LinkageGraph
 from linkstress.kinematics.linkage.groups import Group
-from linkstress.kinematics.linkage.tracks import Track
+from linkstress.kinematics.linkage.tracks import PathTracks
 
 FloatArray = NDArray[np.float64]
 
@@ -56,7 +56,7 @@ def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
 class GroupEquations:
     """The equations of ``group`` at positions ``rows`` of ``tracks`` (known links solved there)."""
 
-    def __init__(self, graph: LinkageGraph, group: Group, tracks: dict[str, Track], rows) -> None:
+    def __init__(self, graph: LinkageGraph, group: Group, tracks: PathTracks, rows) -> None:
         self.graph, self.group, self.tracks, self.rows = graph, group, tracks, rows
         self.index = {name: k for k, name in enumerate(group.links)}
         self.size = 3 * len(group.links)
@@ -80,18 +80,10 @@ class GroupEquations:
                 if q1 is not None:
                     pose.angle1, pose.origin1 = q1[:, c + 2], q1[:, c:c + 2]
             else:
-                t = self.tracks[name]
-                pose = _Pose(t.angle[self.rows], t.origin[self.rows], t.angle1[self.rows], t.origin1[self.rows])
+                t, rows = self.tracks, self.rows
+                pose = _Pose(t.angle(name, rows), t.origin(name, rows), t.angle(name, rows, 1), t.origin(name, rows, 1))
             poses[name] = pose
         return poses
-
-    def start(self) -> FloatArray:
-        """The group's coordinates (B, 3 n) as the tracks hold them at ``rows``."""
-        columns = []
-        for name in self.group.links:
-            t = self.tracks[name]
-            columns += [t.origin[self.rows], t.angle[self.rows][:, None]]
-        return np.concatenate(columns, axis=1)
 
     def terms(self, q: FloatArray, x: FloatArray | None = None):
         """Residual (B, m) and the Jacobian's blocks: a list per equation row of (link, (B, 3))."""
@@ -157,8 +149,8 @@ class GroupEquations:
                     c = 3 * self.index[name]
                     jacobian[:, e, c:c + 3] += coeff
                 else:
-                    t = self.tracks[name]
-                    known = np.column_stack([t.origin1[self.rows], t.angle1[self.rows]])
+                    t = self.tracks
+                    known = np.column_stack([t.origin(name, self.rows, 1), t.angle(name, self.rows, 1)])
                     rhs[:, e] -= np.einsum("bk,bk->b", coeff, known)
         if self.group.stroke is not None:
             rhs[:, -1] += 1.0
@@ -170,8 +162,8 @@ class GroupEquations:
         for e, (_, blocks) in enumerate(rows):
             for name, coeff in blocks:
                 if name not in self.index:
-                    t = self.tracks[name]
-                    known = np.column_stack([t.origin2[self.rows], t.angle2[self.rows]])
+                    t = self.tracks
+                    known = np.column_stack([t.origin(name, self.rows, 2), t.angle(name, self.rows, 2)])
                     rhs[:, e] -= np.einsum("bk,bk->b", coeff, known)
         rhs -= self._quadratic(q, q1)
         return rhs

@@ -4,18 +4,17 @@ The path runs from the drawn input (the crank's angle as drawn, taken the short 
 first sample; or the slider's stroke as drawn) through every sample in the order given. Where a step
 between neighbours is longer than ``MAX_STEP`` the path gets points between them, so that 30 deg
 samples follow the same assembly as 1 deg ones and a sweep may start away from the drawn input. The
-closed-form dyads keep their drawn assembly sign over the whole path in one vectorised pass; other
-groups are continued by Newton in blocks (``triads``).
+closed-form dyads keep their drawn assembly sign over the whole path; other groups are continued by
+Newton in blocks (``triads``). Rows are flagged as ``flags`` says.
 
-Each sample row is flagged, naming the group's links:
-
-- infeasible where a group cannot close, or at a toggle (its rate equations singular);
-- a warning where the step into it (from the previous sample, or from the drawn pose for the first)
-  passes a change point of a group (a dyad's clearance dips to zero and back: its height h, the
-  square root of the clearance, comes down to zero in a V within a sampling step; a Newton group's
-  Jacobian changes sign), or passes inputs where a group cannot close, or where a Newton group
-  solved again after positions where it could not. The rows keep the drawn assembly of closed-form
-  groups; nothing switches assembly without a flag.
+The path is solved a block of ``BLOCK`` positions at a time, the blocks spread over the machine's
+cores (``linkstress.threads``): each block's temporaries stay in the core's cache, and a sweep's
+memory is touched once, where the results are written. A linkage of closed-form groups only is
+solved in one pass, every group in turn on each block, its rates seeded with the input's speed and
+acceleration (rates per unit time: no chain rule afterwards), and written straight to the link
+motions. A linkage with a Newton group keeps every link's pose along the path (``PathTracks``), as
+the Newton continuation reads it anywhere, with rates per unit input, and writes the link motions
+in a last pass by the chain rule.
 """
 
 from __future__ import annotations
@@ -27,27 +26,26 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from linkstress.kinematics.linkage.blockwork import plan, run
 from linkstress.kinematics.linkage.constraints import GroupEquations
+from linkstress.kinematics.linkage.flags import TOGGLE, PathFlags, messages, newton_events
 from linkstress.kinematics.linkage.graph import Joint, LinkageGraph
 from linkstress.kinematics.linkage.groups import Group
-from linkstress.kinematics.linkage.placing import Placer
-from linkstress.kinematics.linkage.rates import SINGULAR, group_rates
-from linkstress.kinematics.linkage.tracks import Track
+from linkstress.kinematics.linkage.outputs import Outputs, pin_keys
+from linkstress.kinematics.linkage.placing import Block, Rider, placer
+from linkstress.kinematics.linkage.rates import group_rates
+from linkstress.kinematics.linkage.tracks import PathTracks, Track
 from linkstress.kinematics.linkage.triads import march
 from linkstress.kinematics.motion import InputMotion
-from linkstress.kinematics.results import JointMotion, LinkMotion, MachineMotion, fixed_link
-from linkstress.threads import cores, even_blocks, in_parallel
+from linkstress.kinematics.results import JointMotion, LinkMotion, MachineMotion
+from linkstress.threads import in_parallel
 
 FloatArray = NDArray[np.float64]
 
 MAX_STEP = (math.radians(2.0), 0.005)
 """The longest step of the path: 2 deg of a crank; for a stroke, this fraction of the mechanism's size."""
-TOGGLE = 1e-12
-"""A clearance below this fraction of the group's size squared, or rate equations conditioned worse
-than ``rates.SINGULAR``, is a toggle."""
-V_DEPTH = 0.5
-"""A dyad's height whose V-shaped dip reaches within this fraction of one sampling step's change of
-zero passes (or grazes) a change point."""
+BLOCK = 16384
+"""Path positions solved together: a block's few hundred temporaries stay in a core's cache."""
 
 
 @dataclass(frozen=True)
@@ -67,7 +65,7 @@ def input_path(drawn: float, samples: FloatArray, longest: float, periodic: bool
     start = samples[0] + math.remainder(drawn - samples[0], 2 * math.pi) if periodic else drawn
     knots = np.concatenate([[start], samples])
     deltas = np.diff(knots)
-    if np.abs(deltas).max() <= longest:  # a dense sweep: the samples themselves
+    if max(deltas.max(), -deltas.min()) <= longest:  # a dense sweep: the samples themselves
         return Path(knots, np.arange(1, len(knots)), np.arange(-1, len(samples)))
     pieces = np.maximum(np.ceil(np.abs(deltas) / longest).astype(np.intp), 1)
     ends = np.cumsum(pieces)
@@ -119,15 +117,20 @@ def _solve(graph: LinkageGraph, motion: InputMotion) -> MachineMotion:
     stroke = graph.input.is_stroke
     drawn = graph.drawn_stroke(graph.sliders[graph.input.slider]) if stroke else _drawn_angle(graph)
     path = input_path(drawn, motion.angle, MAX_STEP[1] * graph.size if stroke else MAX_STEP[0], not stroke)
+    if all(group.closed_form for group in graph.groups):
+        sweep = _Sweep(graph, path, motion)
+        sweep.closed_forms(range(len(graph.groups)), outputs=True)
+        return sweep.machine_motion()
     shortest = MIN_STEP * (graph.size if stroke else 1.0)
     for round_ in range(REFINEMENTS + 1):
-        solved = _solve_path(graph, path, stroke)
-        lost = solved[-1]
+        sweep = _Sweep(graph, path, motion, along_path=True)
+        lost = sweep.staged()
         lost = lost[np.abs(path.x[lost] - path.x[lost - 1]) > shortest]
         if not len(lost) or round_ == REFINEMENTS:
             break
         path = refined(path, lost)
-    return _machine_motion(graph, graph.groups, *solved[:-1], path, motion)
+    sweep.write_outputs()
+    return sweep.machine_motion()
 
 
 REFINEMENTS = 12
@@ -145,68 +148,143 @@ def refined(path: Path, steps: NDArray[np.intp]) -> Path:
     return Path(x, rows, step_of)
 
 
-def _solve_path(graph: LinkageGraph, path: Path, stroke: bool):
-    """Every group over ``path``: (tracks, closed, status, texts, events, lost) with ``lost`` the path
-    indices where a Newton group failed right after a position where it closed."""
-    n_path = len(path.x)
-    tracks = {name: Track.empty(n_path) for name in graph.links}
-    tracks[graph.ground] = Track.fixed(graph.drawn_angles[graph.ground], graph.links[graph.ground][0], n_path)
-    placer = Placer(graph, tracks)
-    closed = np.ones(n_path, bool)
-    status = np.zeros(n_path, np.intp)
-    texts = [""]
-    events: list[tuple[int, str]] = []
-    lost = np.zeros(0, np.intp)
-    for group in graph.groups:
-        if group.closed_form:
-            fails, toggles, height = _placed(placer, group, path.x, TOGGLE * _scale(graph, group))
-            if group.kind != "crank":
-                events += _dyad_events(path, height, fails, group)
-            reasons = np.where(toggles, 2, 1)
+class _Sweep:
+    """One solve of ``graph`` over ``path``: the groups' flags, the link motions at the samples and,
+    ``along_path``, every link's pose along the path (rates per unit input)."""
+
+    def __init__(self, graph: LinkageGraph, path: Path, motion: InputMotion, along_path: bool = False) -> None:
+        self.graph, self.path, self.motion = graph, path, motion
+        self.groups = graph.groups
+        self.pin_of = pin_keys(graph)
+        n_path = len(path.x)
+        self.flags = PathFlags(self.groups, n_path)
+        self.ground = Track.ground(graph.drawn_angles[graph.ground], graph.links[graph.ground][0])
+        self.store = PathTracks(graph.moving, graph.ground, graph.drawn_angles[graph.ground],
+                                graph.links[graph.ground][0], n_path) if along_path else None
+        self.outputs = Outputs(graph, self.pin_of, len(path.rows))
+        self.events: list[tuple[int, str]] = []
+        self.blocks = [slice(lo, min(lo + BLOCK, n_path)) for lo in range(0, n_path, BLOCK)]
+
+    def closed_forms(self, indices, outputs: bool = False) -> None:
+        """Place the closed-form groups ``indices`` (and their riders) on every block; write their
+        links to the store (along the path) or, ``outputs``, to the link motions."""
+        items = [(g, placer(self.graph, self.groups[g]), tuple(Rider(self.graph, r) for r in self.groups[g].riders))
+                 for g in indices]
+        for g in indices:
+            if self.groups[g].kind != "crank":
+                self.flags.expect(g)
+        self._run(plan(items), outputs)
+        for g in indices:
+            if self.groups[g].kind != "crank":
+                self.events += self.flags.dyad_events(g, self.path)
+
+    def _run(self, steps, outputs: bool = False) -> None:
+        """``steps`` on every block, on every core."""
+        tiny = {step.group: TOGGLE * _scale(self.graph, self.groups[step.group]) for step in steps}
+
+        def work(rows: slice) -> None:
+            samples, local = self.samples(rows)
+            block = self.block(rows, samples, local)
+            if outputs:
+                def hand_on(block, links):
+                    if samples.stop > samples.start:
+                        self.outputs.write(block, links, samples, local)
+            else:
+                def hand_on(block, links):
+                    for name in links:
+                        self.store.store(name, rows, block.track(name), block.joint(Joint(name, 0)))
+            bad = run(block, steps, hand_on, lambda g, closure: self.flags.record(g, rows, closure, tiny[g]))
+            if outputs and bad is not None and samples.stop > samples.start:
+                self.outputs.fill(samples, bad[local])
+
+        in_parallel(work, self.blocks)
+
+    def samples(self, rows: slice) -> tuple[slice, slice | NDArray[np.intp]]:
+        """The samples whose path positions lie in ``rows`` (consecutive) and those positions'
+        indices in the block (a slice where they are consecutive)."""
+        at = self.path.rows
+        k0, k1 = np.searchsorted(at, [rows.start, rows.stop])
+        local = at[k0:k1] - rows.start
+        if k1 > k0 and local[-1] - local[0] == k1 - k0 - 1:
+            local = slice(int(local[0]), int(local[-1]) + 1)
+        return slice(int(k0), int(k1)), local
+
+    def block(self, rows: slice, samples: slice, local) -> Block:
+        """A block over path positions ``rows``: its rates per unit input along the path, else per
+        unit time (the input's speed and acceleration at the samples, 0 between them)."""
+        if self.store is not None:
+            seed1, seed2 = 1.0, 0.0
+        elif isinstance(local, slice) and local == slice(0, rows.stop - rows.start):
+            seed1, seed2 = self.motion.speed[samples], self.motion.acceleration[samples]
         else:
-            marched = march(graph, group, tracks, path.x, _start(graph, group), graph.size if stroke else 1.0, closed)
-            failed = closed & ~marched.closed
-            lost = np.union1d(lost, 1 + np.flatnonzero(failed[1:] & marched.closed[:-1]))
-            fails = _newton_rates(graph, group, tracks, marched)
-            events += _newton_events(graph, group, tracks, path, marched, fails)
-            reasons = np.ones(n_path, np.intp)
-        for block in group.riders:
-            in_parallel(lambda rows, block=block: placer.ride(block, rows), _blocks(n_path))
-        new = closed & fails
-        if new.any():
-            base = len(texts)
-            texts += [f"the {group.label} cannot close", f"toggle of the {group.label}: its rates are unbounded"]
-            status[new] = base + reasons[new] - 1
-        closed &= ~fails
-    return tracks, closed, status, texts, events, lost
+            seed1, seed2 = np.zeros(rows.stop - rows.start), np.zeros(rows.stop - rows.start)
+            seed1[local], seed2[local] = self.motion.speed[samples], self.motion.acceleration[samples]
+        load = None if self.store is None else (lambda name: self.store.window(name, rows))
+        return Block(self.graph, self.pin_of, self.path.x[rows], seed1, seed2, {self.graph.ground: self.ground}, load)
 
+    def staged(self) -> NDArray[np.intp]:
+        """Every group in order along the path, the closed-form ones a run at a time; the path
+        indices where a Newton group failed right after a position where it closed."""
+        lost = np.zeros(0, np.intp)
+        run: list[int] = []
+        for g, group in enumerate(self.groups):
+            if group.closed_form:
+                run.append(g)
+                continue
+            if run:
+                self.closed_forms(run)
+                run = []
+            lost = np.union1d(lost, self.newton(g))
+        if run:
+            self.closed_forms(run)
+        return lost
 
-CHUNK = 16384
-"""Path positions placed together: a closed-form group's temporaries of a chunk stay in the
-processor's cache (a million positions at once ran 16 times slower than 100,000)."""
+    def newton(self, g: int) -> NDArray[np.intp]:
+        """Newton group g continued along the path, its poses and rates stored, its riders placed."""
+        graph, group, path, store = self.graph, self.groups[g], self.path, self.store
+        closed = self.flags.closed(g)
+        marched = march(graph, group, store, path.x, _start(graph, group), graph.size if graph.input.is_stroke else 1.0,
+                        closed)
+        failed = closed & ~marched.closed
+        lost = 1 + np.flatnonzero(failed[1:] & marched.closed[:-1])
+        fails = _newton_rates(graph, group, store, marched)
+        self.flags.mark(g, slice(None), fails)
+        self.events += newton_events(group, path, marched.restarts, _jacobian_flips(graph, group, store, path, marched,
+                                                                                   fails), fails)
+        if group.riders:
+            self._run(plan([(g, None, tuple(Rider(graph, r) for r in group.riders))]))
+        return lost
 
+    def write_outputs(self) -> None:
+        """The link motions at the samples from the stored poses, by the chain rule."""
+        feasible = self.flags.closed()
 
-def _blocks(count: int) -> list[slice]:
-    """The path's positions in chunks of at most ``CHUNK``, at least one per core."""
-    return even_blocks(count, max(cores(), -(-count // CHUNK)) if count >= CHUNK else 1)
+        def work(rows: slice) -> None:
+            samples, local = self.samples(rows)
+            if samples.stop == samples.start:
+                return
+            block = self.block(rows, samples, local)
+            scale = (self.motion.speed[samples], self.motion.acceleration[samples])
+            self.outputs.write(block, self.graph.moving, samples, local, scale)
+            self.outputs.fill(samples, ~feasible[rows][local])
 
+        in_parallel(work, self.blocks)
 
-def _placed(placer: Placer, group: Group, x: FloatArray, tiny: float):
-    """A closed-form group placed over the whole path, chunk by chunk on every core. Where it
-    fails (F,): it cannot close (clearance < 0), or at a toggle (``toggles``: clearance below
-    ``tiny`` [m^2], or its rate equations singular); and its height (F,) [m], the clearance's square
-    root, for the change points."""
-    fails, toggles, height = np.empty(len(x), bool), np.empty(len(x), bool), np.empty(len(x))
-
-    def work(rows: slice) -> None:
-        clearance, ratio = placer.place(group, x, rows)
-        toggle = (np.abs(clearance) <= tiny) | ~(ratio > SINGULAR)
-        fails[rows] = toggle | ~(clearance >= 0)
-        toggles[rows] = toggle & (clearance >= 0)
-        height[rows] = np.sqrt(np.maximum(clearance, 0.0))
-
-    in_parallel(work, _blocks(len(x)))
-    return fails, toggles, height
+    def machine_motion(self) -> MachineMotion:
+        graph, path, motion = self.graph, self.path, self.motion
+        feasible = self.flags.closed()[path.rows] if self.flags.fails else np.ones(len(path.rows), bool)
+        unit = "m" if graph.input.is_stroke else "deg"
+        values = motion.angle if graph.input.is_stroke else motion.angle_deg
+        crossings = messages(graph.name, self.events, feasible, lambda row: _step_text(row, unit, values))
+        if feasible.all():
+            reasons = ("",) * len(path.rows)
+        else:
+            reasons = tuple(np.asarray(self.flags.texts, dtype=object)[self.flags.status()[path.rows]].tolist())
+        links = self.outputs.motions(motion, feasible)
+        return MachineMotion(
+            motion.angle, motion.speed, motion.acceleration, motion.time, feasible, reasons, links, {},
+            crossings, linkage=LinkageMotion(graph, self.groups, links),
+        )
 
 
 def _drawn_angle(graph: LinkageGraph) -> float:
@@ -226,147 +304,41 @@ def _start(graph: LinkageGraph, group: Group) -> FloatArray:
     return np.concatenate([[*graph.links[name][0], graph.drawn_angles[name]] for name in group.links])
 
 
-def _newton_rates(graph, group, tracks, marched) -> NDArray[np.bool_]:
-    """Write a Newton group's poses and rates to its tracks; where it fails (F,)."""
+def _newton_rates(graph, group, store: PathTracks, marched) -> NDArray[np.bool_]:
+    """Write a Newton group's poses and rates (per unit input) to the store; where it fails (F,)."""
     rows = np.flatnonzero(marched.closed)
     good = np.zeros(len(marched.q), bool)
     for name in group.links:
-        t = tracks[name]
-        for array in (t.angle, t.origin, t.angle1, t.origin1, t.angle2, t.origin2, t.cos, t.sin):
+        for array in store.arrays[name].values():
             array[~marched.closed] = np.nan
     if len(rows):
         q = marched.q[rows]
-        q1, q2, regular, _ = group_rates(GroupEquations(graph, group, tracks, rows), q)
+        q1, q2, regular, _ = group_rates(GroupEquations(graph, group, store, rows), q)
         for k, name in enumerate(group.links):
-            t, c = tracks[name], 3 * k
-            t.origin[rows] = q[:, c:c + 2]
-            t.set_angle(rows, np.remainder(q[:, c + 2] + np.pi, 2 * np.pi) - np.pi)
-            t.origin1[rows], t.angle1[rows] = q1[:, c:c + 2], q1[:, c + 2]
-            t.origin2[rows], t.angle2[rows] = q2[:, c:c + 2], q2[:, c + 2]
+            a, c = store.arrays[name], 3 * k
+            angle = np.remainder(q[:, c + 2] + np.pi, 2 * np.pi) - np.pi
+            for field, value in (("angle", angle), ("cos", np.cos(angle)), ("sin", np.sin(angle)),
+                                 ("x", q[:, c]), ("y", q[:, c + 1]), ("w", q1[:, c + 2]), ("x1", q1[:, c]),
+                                 ("y1", q1[:, c + 1]), ("al", q2[:, c + 2]), ("x2", q2[:, c]), ("y2", q2[:, c + 1])):
+                a[field][rows] = value
         good[rows] = regular & np.all(np.isfinite(q1) & np.isfinite(q2), axis=1)
     return ~good
 
 
-def _step_text(path: Path, row: int, unit: str, values: FloatArray) -> str:
+def _jacobian_flips(graph, group, store, path, marched, fails) -> list[int]:
+    """The path indices where a Newton group's Jacobian changes sign from the position before."""
+    good = np.flatnonzero(~fails)
+    if len(good) <= 1:
+        return []
+    _, jacobian = GroupEquations(graph, group, store, good).residual_jacobian(marched.q[good], path.x[good])
+    sign = np.sign(np.linalg.det(jacobian))
+    flips = np.flatnonzero((sign[1:] != sign[:-1]) & (good[1:] == good[:-1] + 1))
+    return [int(good[k + 1]) for k in flips.tolist()]
+
+
+def _step_text(row: int, unit: str, values: FloatArray) -> str:
     before = "the drawn pose" if row == 0 else f"input {values[row - 1]:.6g} {unit}"
     return f"the step from {before} to input {values[row]:.6g} {unit}"
-
-
-def _dyad_events(path: Path, height: FloatArray, fails: NDArray[np.bool_], group: Group) -> list[tuple[int, str]]:
-    """(sample row, what) for steps passing a change point of a closed-form group, or inputs where
-    it cannot close, between two samples where it closes."""
-    events = []
-    inside = np.ones(len(path.x), bool)
-    inside[path.rows] = False
-    inside[0] = False
-    for row in np.unique(path.step_of[inside & fails]).tolist():
-        events.append((row, "gap"))
-    h, x = height, path.x
-    if len(h) >= 5:
-        mid = 1 + np.flatnonzero((h[1:-1] < h[:-2]) & (h[1:-1] <= h[2:]))
-        mid = mid[(mid >= 2) & (mid <= len(h) - 3)]
-        window = np.stack([mid - 2, mid - 1, mid, mid + 1, mid + 2])
-        steps = np.sign(np.diff(x[window], axis=0))
-        steady = ~fails[window].any(axis=0) & (steps == steps[0]).all(axis=0) & (steps[0] != 0)
-        for f in mid[steady].tolist():
-            left = (h[f - 1] - h[f - 2]) / (x[f - 1] - x[f - 2])
-            right = (h[f + 2] - h[f + 1]) / (x[f + 2] - x[f + 1])
-            if left * right >= 0 or right == left:
-                continue
-            at = (h[f + 1] - h[f - 1] + left * x[f - 1] - right * x[f + 1]) / (left - right)
-            depth = h[f - 1] + left * (at - x[f - 1])
-            reach = V_DEPTH * min(abs(left), abs(right)) * abs(x[f + 1] - x[f - 1]) / 2
-            if depth <= reach:
-                row = int(path.step_of[f + 1] if (at - x[f]) * (x[f + 1] - x[f]) > 0 else path.step_of[f])
-                events.append((row, "change"))
-    return [(row, kind + "|" + group.label) for row, kind in events if row >= 0]
-
-
-def _newton_events(graph, group, tracks, path, marched, fails) -> list[tuple[int, str]]:
-    events = [(int(path.step_of[f]), "restart|" + group.label) for f in marched.restarts]
-    good = np.flatnonzero(~fails)
-    if len(good) > 1:
-        _, jacobian = GroupEquations(graph, group, tracks, good).residual_jacobian(marched.q[good], path.x[good])
-        sign = np.sign(np.linalg.det(jacobian))
-        flips = np.flatnonzero((sign[1:] != sign[:-1]) & (good[1:] == good[:-1] + 1))
-        events += [(int(path.step_of[good[k + 1]]), "change|" + group.label) for k in flips.tolist()]
-    inside = np.ones(len(path.x), bool)
-    inside[path.rows] = False
-    inside[0] = False
-    events += [(row, "gap|" + group.label) for row in np.unique(path.step_of[inside & fails]).tolist()]
-    return [(row, what) for row, what in events if row >= 0]
-
-
-WHAT = {
-    "change": "passes a change point of the {label} (its links come into line, or within a sampling step of it): "
-              "the rows from here keep that group's drawn assembly, which a smooth motion may leave there",
-    "gap": "passes inputs where the {label} cannot close: the rows from here keep its drawn assembly; sample the "
-           "sweep more finely there to see where",
-    "restart": "passes inputs where the mechanism cannot close; the {label} was solved again from its last closed "
-               "position and may be in another assembly from here: check it",
-}
-
-
-def _machine_motion(graph, groups, tracks, closed, status, texts, events, path, motion) -> MachineMotion:
-    rows = path.rows
-    feasible = closed[rows]
-    unit = "m" if graph.input.is_stroke else "deg"
-    values = motion.angle if graph.input.is_stroke else motion.angle_deg
-    crossings = []
-    for row, what in sorted(set(events)):
-        kind, label = what.split("|", 1)
-        if not (feasible[row] and (row == 0 or feasible[row - 1] or kind == "restart")):
-            continue
-        crossings.append((row, f"mechanism {graph.name}: {_step_text(path, row, unit, values)} "
-                               + WHAT[kind].format(label=label)))
-    speed, acceleration = motion.speed, motion.acceleration
-    dense = len(rows) == len(path.x) - 1  # no points between samples: the rows are a slice
-    pick = slice(1, len(path.x)) if dense else rows
-    links = {name: _link_motion(graph, name, track, pick, feasible, motion) for name, track in tracks.items()}
-    if feasible.all():
-        reasons = ("",) * len(rows)
-    else:
-        reasons = tuple(np.asarray(texts, dtype=object)[status[rows]].tolist())
-    return MachineMotion(
-        motion.angle, speed, acceleration, motion.time, feasible, reasons, links, {},
-        tuple(crossings), linkage=LinkageMotion(graph, groups, links),
-    )
-
-
-def _link_motion(graph, name, track, pick, feasible, motion) -> LinkMotion:
-    """Link ``name``'s motion at the sample rows ``pick`` of its track: rates per unit input times
-    the input's speed and acceleration (chain rule), finite filler where infeasible. Made in
-    place in the track's arrays, chunk by chunk (the track is not read again)."""
-    n = len(feasible)
-    if name == graph.ground:
-        return fixed_link(graph.frames[name], graph.drawn_angles[name], graph.links[name][0], n)
-    angle, origin = track.angle[pick], track.origin[pick]
-    w1, w2, o1, o2 = track.angle1[pick], track.angle2[pick], track.origin1[pick], track.origin2[pick]
-    everywhere = bool(feasible.all())
-
-    def work(out: slice) -> None:
-        if not everywhere:
-            bad = ~feasible[out]
-            for array in (angle, w1, w2):
-                array[out][bad] = 0.0
-            for array in (origin, o1, o2):
-                array[out][bad] = 0.0
-        w, a = motion.speed[out], motion.acceleration[out]
-        w2[out] *= w * w
-        w2[out] += w1[out] * a
-        w1[out] *= w
-        o2[out] *= (w * w)[:, None]
-        o2[out] += o1[out] * a[:, None]
-        o1[out] *= w[:, None]
-
-    in_parallel(work, _blocks(n))
-    return LinkMotion(graph.frames[name], angle, w1, w2, origin, o1, o2)
-
-
-def _filled(values: FloatArray, feasible: NDArray[np.bool_]) -> FloatArray:
-    """``values`` with finite filler (0) at infeasible positions."""
-    shape = (len(feasible),) + (1,) * (values.ndim - 1)
-    return np.where(feasible.reshape(shape), values, 0.0)
 
 
 def _stroke(graph: LinkageGraph, k: int, links: dict[str, LinkMotion], joints: dict[str, JointMotion]):

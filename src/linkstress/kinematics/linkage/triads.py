@@ -25,7 +25,7 @@ from linkstress.kinematics.linkage.constraints import GroupEquations
 from linkstress.kinematics.linkage.graph import LinkageGraph
 from linkstress.kinematics.linkage.groups import Group
 from linkstress.kinematics.linkage.rates import batched_solve, group_rates
-from linkstress.kinematics.linkage.tracks import Track
+from linkstress.kinematics.linkage.tracks import PathTracks
 
 FloatArray = NDArray[np.float64]
 
@@ -75,7 +75,7 @@ def newton(equations: GroupEquations, guess: FloatArray, x: FloatArray, size: fl
     return q, done & np.all(np.isfinite(q), axis=1)
 
 
-def march(graph: LinkageGraph, group: Group, tracks: dict[str, Track], x: FloatArray, start: FloatArray,
+def march(graph: LinkageGraph, group: Group, tracks: PathTracks, x: FloatArray, start: FloatArray,
           unit: float, usable: NDArray[np.bool_]) -> Marched:
     """Solve ``group`` along the input path ``x`` (F,) from the drawn coordinates ``start`` (m,) at
     ``x[0]``, at the positions where the links before it are ``usable`` (F,); ``unit`` scales the
