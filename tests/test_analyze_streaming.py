@@ -7,16 +7,17 @@ from __future__ import annotations
 import errno
 import io
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from linkstress.analysis import run_analysis
+from linkstress.analysis import plan_for, run_analysis
 from linkstress.cli import main
 from linkstress.dynamics import section_stress
 from linkstress.dynamics.section_stress import StressSummary
 from linkstress.output import json_bytes, json_stream, write_json, write_json_stream
-from linkstress.report.records import position_records, summary_record
+from linkstress.report.records import links_record, position_records, summary_record
 from linkstress.report.verdict import analysis_verdict
 from linkstress.scene import load_scene
 from linkstress.validation.bench.memory import analyze_in_child, seed_sweep_scene
@@ -37,11 +38,13 @@ def test_streamed_json_with_stations_is_the_json_of_the_records_built_in_memory(
     # are those its reductions came from.
     scene_path = seed_sweep_scene(tmp_path, 23)
     out = tmp_path / "out.json"
-    assert main(["analyze", str(scene_path), "--json", str(out), "--stations"]) == 0
-    result = run_analysis(load_scene(scene_path))
+    # --beam-only: the stream of the beam's columns (the FEA peaks' columns have their own tests)
+    assert main(["analyze", str(scene_path), "--json", str(out), "--stations", "--beam-only"]) == 0
+    scene = load_scene(scene_path)
+    result = run_analysis(scene, replace(plan_for(scene), beam_only=True))
     assert [b.stop - b.start for b in result.stresses["crank"].blocks] == [5, 4, 5, 4, 5]
     records = position_records(result, stations=True)
-    after = summary_record(result, analysis_verdict(result))
+    after = {"links": links_record(result), **summary_record(result, analysis_verdict(result))}
     assert out.read_bytes() == (json.dumps({"positions": records, **after}, indent=1, allow_nan=False) + "\n").encode()
     ok = result.feasible
     assert ok.sum() == 23

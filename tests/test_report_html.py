@@ -69,7 +69,9 @@ def test_report_is_self_contained_and_states_loads_and_versions(seed_report):
 
 def test_every_embedded_figure_is_a_real_picture(seed_report):
     images = embedded_images(seed_report.read_text())
-    assert len(images) == 4  # the mechanism and the stresses along crank, coupler and output
+    # the mechanism, the stresses along crank, coupler and output, and for the two links whose model
+    # is the FEA peaks (crank and output: couples through their pivots) the peak over the sweep and its field
+    assert len(images) == 4 + 2 * 2
     for image in images:
         assert image.shape[0] > 200 and image.shape[1] > 200
         assert image[..., :3].std() > 0.05  # not a blank canvas
