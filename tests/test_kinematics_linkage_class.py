@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from linkstress.kinematics.fourbar import TOGGLE_TOLERANCE, FourBar, solve_fourbar
+from linkstress.kinematics.fourbar import TOGGLE_TOLERANCE, FourBar, factor_reaches, solve_fourbar
 from linkstress.kinematics.linkage_class import classify, feasible_input_ranges, output_limits, toggle_angles
 
 pytestmark = pytest.mark.filterwarnings("error")
@@ -75,15 +75,19 @@ def inside(theta, ranges):
 @settings(max_examples=300, deadline=None)
 @given(st.floats(0.2, 5), st.floats(0.2, 5), st.floats(0.2, 5), st.floats(0.2, 5),
        st.floats(-math.pi, math.pi), st.floats(-math.pi, math.pi))
+@example(1.0, 1.0, 1.0, 1.0, 0.0, 1e-5)
 def test_feasible_ranges_agree_with_the_solver_at_any_angle(a, b, c, d, theta, tilt):
     linkage = fourbar(a, b, c, d, tilt=tilt)
     ranges = feasible_input_ranges(linkage)
     m = solve_fourbar(linkage, [theta])
     s = math.hypot(d * math.cos(tilt) - a * math.cos(theta), d * math.sin(tilt) - a * math.sin(theta))
-    # Away from the toggles by the solver's own measure, 1 - |cos(mu)| (a parallelogram 6e-8 rad
-    # from its change point is 4e-9 from |b - c| in s but only 2e-15 from a toggle in cos(mu)).
+    # Away from the toggles by the solver's own measure, 1 -/+ cos(mu) against its reach (a
+    # parallelogram 6e-8 rad from its change point is 4e-9 from |b - c| in s but only 2e-15 from a
+    # toggle in cos(mu); a factor that touches zero at a change point reaches 1e-7, so the square
+    # four-bar with its ground tilted 1e-5 rad, at 1 - cos(mu) = 5e-11 at theta = 0, is its change point).
     cos_mu = (b * b + c * c - s * s) / (2 * b * c)
-    assume(1 - abs(cos_mu) > 10 * TOGGLE_TOLERANCE or abs(cos_mu) > 1 + 10 * TOGGLE_TOLERANCE)
+    minus, plus = factor_reaches(linkage)
+    assume(abs(cos_mu) > 1 + 10 * TOGGLE_TOLERANCE or (1 - cos_mu > 10 * minus and 1 + cos_mu > 10 * plus))
     assert inside(theta, ranges) == bool(m.feasible[0])
 
 
