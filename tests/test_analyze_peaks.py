@@ -188,3 +188,24 @@ def test_a_sharp_notchs_peak_that_does_not_settle_gives_no_safety_factor_yield_o
     assert crank["fatigue_note"].startswith("withheld: the FEA peak is NOT converged")
     assert all("peak_yield_safety_factor" not in r["links"]["crank"] for r in data["positions"])
     assert "NOT converged" in capsys.readouterr().out
+
+
+def test_the_links_fea_in_a_process_each_gives_the_numbers_of_one_after_another(tmp_path, monkeypatch):
+    # analyze runs the links' FEA peaks in a local process per core (at most one per link); with one
+    # core they run here one after another. Three processes for the three links (monkeypatched cores,
+    # whatever this machine has) and one must give the same JSON but for the timings.
+    from linkstress import threads
+
+    scene = seed_scene(tmp_path, sweep="[30.0, 150.0, 270.0]")
+    runs = {}
+    for processes in (1, 3):
+        monkeypatch.setattr(threads, "cores", lambda processes=processes: processes)
+        code, runs[processes] = analyze(scene, tmp_path / f"out{processes}.json", "--peaks", "--no-cache")
+        assert code == 0
+    apart, together = runs[3], runs[1]
+    assert apart["positions"] == together["positions"]
+    assert set(apart["links"]) == set(LINKS)
+    for name in LINKS:
+        a, b = apart["links"][name], together["links"][name]
+        assert {k: v for k, v in a.items() if k != "peak_seconds"} == {k: v for k, v in b.items() if k != "peak_seconds"}
+    assert apart["verdict"] == together["verdict"]

@@ -219,16 +219,19 @@ def fea_ready(result: AnalysisResult, links: tuple[str, ...], stored: set[str]) 
 def analysis_with_peaks(
     result: AnalysisResult, links: tuple[str, ...], scheduler: str | None, source: str, cache=None
 ) -> tuple[AnalysisResult, list[Retry]]:
-    """``result`` with the FEA peaks of ``links`` computed as tasks here (``scheduler`` None) or on
-    the Dask cluster at ``scheduler`` (named by ``source`` in messages), each using the disk
-    ``cache`` (``CacheSettings``; None: none); the tasks it ran again."""
+    """``result`` with the FEA peaks of ``links`` computed as tasks on this machine (``scheduler``
+    None: in a process per core, at most one per link, since the links are independent and each
+    runs on one thread) or on the Dask cluster at ``scheduler`` (named by ``source`` in messages),
+    each using the disk ``cache`` (``CacheSettings``; None: none); the tasks it ran again."""
     import time
 
     from linkstress.executors import executor
     from linkstress.validation.peaks_scene import scene_peaks
 
+    from linkstress.threads import cores
+
     plan = replace(result.plan, peaks=links)
-    with executor(scheduler, source) as where:
+    with executor(scheduler, source, min(cores(), len(links))) as where:
         start = time.perf_counter()
         peaks = scene_peaks(result.scene, plan, result.forces, where, cache)
         seconds = {**result.seconds, "peaks": time.perf_counter() - start}
