@@ -41,6 +41,7 @@ from linkstress.geometry.members import link_members
 from linkstress.scene import load_scene
 from linkstress.tables import format_table
 from linkstress.threads import blas_alone
+from linkstress.validation.bench.tutorial import DRAWING, checkout
 from linkstress.validation.fea.cache import DiskCache, CacheSettings
 from linkstress.validation.fea.link import link_region
 from linkstress.validation.fea.mesh import mesh_region
@@ -51,7 +52,6 @@ from linkstress.validation.peaks import peak_mesh
 
 ROOT = Path(__file__).resolve().parents[2]
 SEED = ROOT / "validation" / "cases" / "seed_ansys_fourbar"
-TUTORIAL_DXF = ROOT / "docs" / "tutorial" / "fourbar.dxf"
 TUTORIAL_SCENE = """title = "The README tutorial's four-bar"
 
 [materials.steel]
@@ -85,9 +85,10 @@ SCALAR_BLOCKS = "stiffness + projections as scalar blocks (now)"
 
 def tutorial_scene(folder: Path) -> Path | None:
     """The tutorial's scene beside a copy of its drawing, or None outside a source checkout."""
-    if not TUTORIAL_DXF.is_file():
+    repository = checkout()
+    if repository is None:
         return None
-    shutil.copy(TUTORIAL_DXF, folder / "fourbar.dxf")
+    shutil.copy(repository / DRAWING, folder / "fourbar.dxf")
     links = "".join(
         f'\n[links.{name}]\nsketch = "fourbar.dxf"\nlayer = "{name}"\nthickness = 0.006\nmaterial = "steel"\n'
         for name in ("crank", "ground", "coupler", "rocker")

@@ -31,7 +31,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from linkstress.validation.bench.tutorial import tutorial_scene
+from linkstress.validation.bench.tutorial import checkout, tutorial_scene
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 SEED = CASES / "seed_ansys_fourbar" / "scene.toml"
@@ -131,12 +131,14 @@ def analyze_run(case: str, scene: Path, folder: Path, python: str, repeat: int) 
 
 
 def analyze_runs(repeat: int) -> list[AnalyzeRun]:
-    """The README tutorial's scene and the seed: ``analyze``'s first and cached runs (``linkstress bench``)."""
+    """The README tutorial's scene (in a source checkout) and the seed: ``analyze``'s first and cached
+    runs (``linkstress bench``)."""
     with tempfile.TemporaryDirectory(prefix="linkstress-bench-") as name:
         folder = Path(name)
-        tutorial = tutorial_scene(folder / "tutorial")
-        return [analyze_run("tutorial", tutorial, folder, sys.executable, repeat),
-                analyze_run("seed_ansys_fourbar", SEED, folder, sys.executable, repeat)]
+        seed = analyze_run("seed_ansys_fourbar", SEED, folder, sys.executable, repeat)
+        if checkout() is None:
+            return [seed]
+        return [analyze_run("tutorial", tutorial_scene(folder / "tutorial"), folder, sys.executable, repeat), seed]
 
 
 def seed_crank(folder: Path, python: str) -> tuple[float, float, str]:

@@ -11,14 +11,32 @@ import subprocess
 import sys
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[2]
-README = REPO / "README.md"
-DRAWING = REPO / "docs" / "tutorial" / "fourbar.dxf"
+DRAWING = Path("docs") / "tutorial" / "fourbar.dxf"
+
+
+def checkout() -> Path | None:
+    """The linkstress source checkout whose README and drawing the tutorial follows: the tree this
+    file lies in, or, where the package is installed rather than run from its source, the working
+    directory or the nearest of its parents that holds both; None outside a checkout."""
+    here = Path(__file__).resolve().parents[2]
+    cwd = Path.cwd().resolve()
+    for folder in (here, cwd, *cwd.parents):
+        if (folder / "README.md").is_file() and (folder / DRAWING).is_file():
+            return folder
+    return None
+
+
+def _checkout() -> Path:
+    folder = checkout()
+    if folder is None:
+        raise FileNotFoundError(f"the README tutorial's scene needs a linkstress source checkout (README.md and "
+                                f"{DRAWING.as_posix()}); run from one")
+    return folder
 
 
 def tutorial_text() -> str:
     """The README's tutorial section."""
-    return README.read_text().split("## Tutorial", 1)[1].split("\n## ", 1)[0]
+    return (_checkout() / "README.md").read_text().split("## Tutorial", 1)[1].split("\n## ", 1)[0]
 
 
 def edit_scene(text: str, edits: str) -> str:
@@ -57,7 +75,7 @@ def tutorial_scene(folder: Path) -> Path:
     tutorial's ``linkstress import`` as a command of its own (this interpreter's)."""
     folder.mkdir(parents=True, exist_ok=True)
     drawing = folder / DRAWING.name
-    drawing.write_bytes(DRAWING.read_bytes())
+    drawing.write_bytes((_checkout() / DRAWING).read_bytes())
     scene = folder / "fourbar.toml"
     subprocess.run([sys.executable, "-m", "linkstress", "import", str(drawing), "--scene", str(scene)], check=True,
                    stdout=subprocess.DEVNULL)
