@@ -28,7 +28,8 @@ WARNINGS = ("thickness = 6 m: did you mean 6 mm = 0.006?", "links.crank: a secon
 def verdict_rows(text: str) -> dict[str, list[str]]:
     """The verdict table of a report's text: per link, its cells."""
     lines = text.split("verdict: the stress that governs", 1)[1].split("\n\n", 1)[0].splitlines()
-    return {cells[0]: cells for cells in (re.split(r"\s{2,}", line.strip()) for line in lines[3:]) if not cells[0].startswith("next:")}
+    rows = (line for line in lines[3:] if ": not analysed: " not in line)
+    return {cells[0]: cells for cells in (re.split(r"\s{2,}", line.strip()) for line in rows) if not cells[0].startswith("next:")}
 
 
 def assert_verdict_is_the_jsons(text: str, verdict: dict) -> None:
@@ -232,3 +233,44 @@ def test_round_off_is_written_zero_against_its_columns_scale():
     # a column whose values are all small keeps them: noise is relative to the column's own scale
     assert column_cells([(2e-14,), (1e-14,)], (3,)) == [["2e-14"], ["1e-14"]]
     np.testing.assert_array_equal(without_noise(np.array([1.0, 1e-10, -1e-9])), [1.0, 0.0, 0.0])
+
+
+def test_a_link_the_run_does_not_stress_is_named_under_the_verdict_with_why_in_text_html_and_json(tmp_path, capsys):
+    """The shaper's slotted lever guides the collar (a contact moving along it: not sectioned), the
+    collar and ram are one-joint blocks: none has a row, so each is named as not analysed, never
+    left out in silence; the rows stay the JSON's."""
+    case = CASES / "whitworth_shaper"
+    out, page = tmp_path / "shaper.json", tmp_path / "shaper.html"
+    assert main(["analyze", str(case / "scene.toml"), "--beam-only", "--json", str(out), "--html", str(page)]) == 0
+    text = capsys.readouterr().out
+    verdict = json.loads(out.read_text())["verdict"]
+    assert [row["link"] for row in verdict["rows"]] == ["crank", "rod"]
+    assert [entry["link"] for entry in verdict["not_analysed"]] == ["lever", "collar", "ram"]
+    assert "a slider's block slides along it" in verdict["not_analysed"][0]["reason"]
+    assert_verdict_is_the_jsons(text, verdict)
+    table = text.split("verdict: the stress that governs", 1)[1].split("\n\n", 1)[0]
+    html = page.read_text()
+    for entry in verdict["not_analysed"]:
+        assert f"{entry['link']}: not analysed: {entry['reason']}" in table
+        assert f"{entry['link']}: not analysed:" in html
+
+
+def test_every_stressed_link_leaves_the_not_analysed_list_empty():
+    """The seed's three moving links are all stressed: nothing is listed as not analysed."""
+    result = run_analysis(load_scene(SEED), replace(plan_for(load_scene(SEED)), beam_only=True))
+    assert analysis_verdict(result).record()["not_analysed"] == []
+
+
+def test_a_drawn_link_without_a_material_is_not_analysed_and_says_so(tmp_path):
+    """The seed's coupler with its mass given by hand but no material: no section stresses, and the
+    verdict names it with the reason."""
+    scene_path = seed_copy(tmp_path)
+    text = scene_path.read_text()
+    start = text.index("[links.coupler]")
+    end = text.index("\n[", start + 1)
+    block = "\n".join(line for line in text[start:end].splitlines() if not line.startswith("material"))
+    scene_path.write_text(text[:start] + block + "\nmass = 1.0\ninertia = 0.01\ncenter_of_mass = [0.1, 0.0]\n" + text[end:])
+    scene = load_scene(scene_path)
+    verdict = analysis_verdict(run_analysis(scene, replace(plan_for(scene), beam_only=True)))
+    assert ("coupler", "it has no material") in verdict.unanalysed
+    assert "coupler: not analysed: it has no material" in verdict.text()

@@ -36,7 +36,10 @@ class Plan:
     """The stages to run: ``forces``; section stresses for ``stresses`` (link names) at ``stations``
     per link, with the body-load term near holes too when ``body_load_near_holes``; FEA for
     ``validate``; FEA peaks over the sweep, by superposition of unit loads, and fatigue for ``peaks``
-    (judged by ``fatigue_criterion``); ``notes`` say why a stage or link is left out. Each stressed
+    (judged by ``fatigue_criterion``); ``notes`` say why a stage or link is left out, and
+    ``unstressed`` (link, why) names each moving link with a drawn profile that gets no section
+    stresses (a slider's block, a link a block slides along, one without a material, one left out by
+    [analysis]), for the verdict to show as not analysed. Each stressed
     link's stress model is chosen for the governing stress within ``accuracy``
     (``linkstress.model_choice``); ``analyze`` runs the FEA peaks of the links chosen for them
     unless ``beam_only``, and of every stressed link when ``peaks`` names them (``with_peaks``)."""
@@ -51,6 +54,7 @@ class Plan:
     fatigue_criterion: str = "goodman"
     accuracy: float = DEFAULT_ACCURACY
     beam_only: bool = False
+    unstressed: tuple[tuple[str, str], ...] = ()
 
     def with_peaks(self) -> Plan:
         """The same plan with FEA peaks for every stressed link."""
@@ -132,21 +136,31 @@ def plan_for(scene: Scene) -> Plan:
             if name not in stressable:
                 raise SceneError(f"analysis.validate: link {name!r} needs a sketch, a thickness and a material")
         stations = asked.stations or DEFAULT_STATIONS
+    unstressed = []
     for name in moving:
-        if name in sliders and (asked is None or asked.stresses):
-            notes.append(f"no section stresses for {name}: a slider, with one joint, has no member between two to section")
-        elif name in guides and (asked is None or asked.stresses):
-            notes.append(
-                f"no section stresses for {name}: a slider's block slides along it, and a contact that moves along a "
-                "link is not sectioned (its joint forces and the block's force on it are in the forces)"
-            )
-        elif name not in stressable and (asked is None or asked.stresses):
-            notes.append(f"no section stresses for {name}: it has no sketch profile with a material")
+        drawn = scene.links[name].profile is not None
+        if name in sliders:
+            why = "a slider, with one joint, has no member between two to section"
+        elif name in guides:
+            why = ("a slider's block slides along it, and a contact that moves along a link is neither sectioned nor "
+                   "meshed: its joint forces and the block's push on it are in the forces (--details, --json); check it "
+                   "by hand or in FEA of your own")
+        elif name not in stressable:
+            why = "it has no material" if drawn else "it has no sketch profile with a material"
+        elif name not in stresses:
+            why = "left out by [analysis] (stresses = false)" if forces else "no joint forces to stress it with"
+        else:
+            continue
+        if (asked is None or asked.stresses) and name not in stressable:
+            notes.append(f"no section stresses for {name}: {why}")
+        if drawn:
+            unstressed.append((name, why))
     body_load_near_holes = asked is not None and asked.body_load_near_holes
     peaks = stresses if asked is not None and asked.peaks else ()
     criterion = asked.fatigue_criterion if asked is not None else "goodman"
     accuracy = asked.accuracy if asked is not None and asked.accuracy is not None else DEFAULT_ACCURACY
-    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes, peaks, criterion, accuracy)
+    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes, peaks, criterion, accuracy,
+                unstressed=tuple(unstressed))
 
 
 @dataclass(frozen=True)

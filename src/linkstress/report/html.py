@@ -155,11 +155,13 @@ def _span(values) -> str:
 
 def verdict_html(verdict: Verdict) -> list[str]:
     """The verdict as the report's first section: its table and the next step (``report.verdict``)."""
+    unanalysed = "".join(f"<li><b>{html.escape(line)}</b></li>" for line in verdict.unanalysed_lines())
+    unanalysed = [f"<ul>{unanalysed}</ul>"] if unanalysed else []
     if not verdict.rows:
-        return ["<h2>Verdict</h2>", "<p>No link has section stresses at a feasible position.</p>"]
+        return ["<h2>Verdict</h2>", "<p>No link has section stresses at a feasible position.</p>", *unanalysed]
     rows = [row.cells() for row in verdict.rows]
     sections = ["<h2>Verdict</h2>", f'<p class="note">{html.escape(verdict.heading())}.</p>',
-                table_html(VERDICT_HEADERS, rows)]
+                table_html(VERDICT_HEADERS, rows), *unanalysed]
     if verdict.next_step:
         sections.append(f"<p><b>Next:</b> {html.escape(verdict.next_step)}</p>")
     if verdict.models:

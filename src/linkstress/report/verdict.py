@@ -9,6 +9,10 @@ The governing stress is the largest credible one the run computed for the link:
   where the geometry the pin force sees is inside the Kt tables). An FEA peak that did not converge
   is shown instead when it is larger (as a lower bound, with no safety factor).
 
+A moving link drawn with a profile that gets no section stresses (a slider's block, a link a block
+slides along, one without a material) is listed under the table as not analysed, with why: its
+stress is not checked, and the reader is told so rather than left to notice a missing row.
+
 The trust says in a word what the number rests on, and its reason what is not covered: "FEA" (its
 change over the last mesh refinement), "NOT converged", "Kt estimate", "beam + Kt" (every loaded pin
 hole has an estimate at every position, all below the beam's maximum), "beam" (no pin holes) or "beam
@@ -125,6 +129,12 @@ class Verdict:
     """Over which positions, in words ("361 feasible positions")."""
     models: tuple[tuple[str, str, str], ...] = ()
     accuracy: float | None = None
+    unanalysed: tuple[tuple[str, str], ...] = ()
+    """(link, why) per moving link drawn with a profile that has no row: nothing here checks its stress."""
+
+    def unanalysed_lines(self) -> list[str]:
+        """"lever: not analysed: a slider's block slides along it, ...", one per link without a row."""
+        return [f"{link}: not analysed: {why}" for link, why in self.unanalysed]
 
     def models_heading(self) -> str:
         return f"models: each link's, for its governing stress within {100 * self.accuracy:g} %, and why"
@@ -134,7 +144,8 @@ class Verdict:
         return [f"{link}: {model}: {reason}" for link, model, reason in self.models]
 
     def record(self) -> dict[str, object]:
-        return {"rows": [row.record() for row in self.rows], "next_step": self.next_step or None}
+        return {"rows": [row.record() for row in self.rows], "next_step": self.next_step or None,
+                "not_analysed": [{"link": link, "reason": why} for link, why in self.unanalysed]}
 
     def heading(self) -> str:
         return (
@@ -145,8 +156,8 @@ class Verdict:
     def text(self) -> str:
         """The verdict as a terminal table, its next step under it."""
         if not self.rows:
-            return "verdict: no link with section stresses at a feasible position"
-        lines = [self.heading(), text_table(HEADERS, [row.cells() for row in self.rows])]
+            return "\n".join(["verdict: no link with section stresses at a feasible position", *self.unanalysed_lines()])
+        lines = [self.heading(), text_table(HEADERS, [row.cells() for row in self.rows]), *self.unanalysed_lines()]
         if self.next_step:
             lines.append(f"next: {self.next_step}")
         if self.models:
@@ -232,8 +243,9 @@ def analysis_verdict(result: AnalysisResult) -> Verdict:
     """The verdict of an analysis (``analyze``, with its FEA peaks when it ran them)."""
     ok = result.feasible
     positions = positions_words(ok)
+    unanalysed = result.plan.unstressed
     if not ok.any():
-        return Verdict((), positions=positions)
+        return Verdict((), positions=positions, unanalysed=unanalysed)
     names = joint_names(result.scene)
     summaries = peak_summaries(result) if result.peaks else {}
     rows = []
@@ -246,7 +258,8 @@ def analysis_verdict(result: AnalysisResult) -> Verdict:
         else:
             rows.append(_section_row(result, name, beam, covers))
     models = tuple((name, m.model, m.reason) for name, m in result.models.items())
-    return Verdict(tuple(rows), analysis_next_step(result, tuple(rows)), positions, models, result.plan.accuracy)
+    return Verdict(tuple(rows), analysis_next_step(result, tuple(rows)), positions, models, result.plan.accuracy,
+                   unanalysed)
 
 
 def beam_stress(result: AnalysisResult, name: str, places: LinkPlaces, positions: NDArray[np.intp] | NDArray[np.bool_]) -> Stress:
