@@ -23,6 +23,8 @@ from linkstress.scene import load_scene
 CASES = Path(__file__).resolve().parents[1] / "validation" / "cases"
 SEED = CASES / "seed_ansys_fourbar" / "scene.toml"
 STRAIGHT = CASES / "straight_fourbar" / "scene.toml"
+sys.path.insert(0, str(CASES))
+from drawing import new_drawing, plate_link, save  # noqa: E402
 
 
 def test_the_kt_tables_error_is_the_measured_envelope_by_tilt_and_none_past_ten_degrees():
@@ -170,3 +172,34 @@ def test_the_same_scene_run_again_reads_its_peaks_from_the_cache_without_loading
         return [without_seconds(v) for v in data] if isinstance(data, list) else data
 
     assert without_seconds(json.loads(first.read_text())) == without_seconds(json.loads(second.read_text()))
+
+
+@pytest.mark.parametrize("hole, size", [
+    ("slot", "324 x 24 mm"),          # an obround 300 mm between its ends' centres, 24 mm wide
+    ("round", "20 x 20 mm"),          # a lightening hole 20 mm across, between the pins
+])
+def test_a_hole_at_no_joint_puts_its_link_on_the_fea_and_leaves_the_others_as_they_were(hole, size, tmp_path):
+    """The straight four-bar (both links on the tables, tests above) with a hole in the coupler that
+    no joint sits in: beam sections through it are net sections, but the stress its edge raises is
+    not beam theory's, so the coupler goes to the FEA peaks, saying why; the rocker keeps its model."""
+    doc = new_drawing(units=4)
+    msp = doc.modelspace()
+    doc.layers.add("coupler")
+    plate_link(msp, "coupler", [(0, 0), (500, 0)], depth=44, end=25, hole=4)
+    layer = {"layer": "coupler"}
+    if hole == "slot":
+        msp.add_line((100, -12), (400, -12), dxfattribs=layer)
+        msp.add_line((400, 12), (100, 12), dxfattribs=layer)
+        msp.add_arc((400, 0), 12, -90, 90, dxfattribs=layer)
+        msp.add_arc((100, 0), 12, 90, 270, dxfattribs=layer)
+    else:
+        msp.add_circle((250, 0), 10, dxfattribs=layer)
+    doc.layers.add("rocker")
+    plate_link(msp, "rocker", [(0, 100), (300, 100)], depth=44, end=25, hole=4)
+    save(doc, tmp_path / "straight_fourbar.dxf")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(STRAIGHT.read_text())
+    result = run_analysis(load_scene(scene), replace(plan_for(load_scene(scene)), beam_only=True))
+    assert result.models["coupler"].model == FEA_PEAKS
+    assert result.models["coupler"].reason.startswith(f"a hole at no joint ({size}, a lightening hole or a slot")
+    assert result.models["rocker"].model == BEAM_KT

@@ -12,7 +12,9 @@ From what the beam run already has (no FEA to decide), per link:
   the tables at some position (an end neither round nor square, a pin pushing along the shank, a
   force more than 10 deg off the shank, a couple carried through the pin), tables not accurate
   enough at the force's tilt, a junction of members, a bend sharper than the curved-beam range, a
-  curve so tight its inside nears its centre of curvature, a point force on the material, a member
+  curve so tight its inside nears its centre of curvature, a point force on the material, a hole at
+  no joint (a lightening hole or a slot: beam sections through it are net, its edge's stress
+  concentration is not), a member
   with no section a depth clear of its pins, or one whose sections change depth faster than beam
   theory follows (``TAPER_LIMIT``: a fillet, a tapering plate such as the Jansen leg's shin, 12 %
   off the nominal stress there).
@@ -31,6 +33,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
+from shapely.geometry import Polygon
 
 from linkstress.dynamics.pin_holes import OPEN, PinHoleEstimate
 
@@ -113,6 +116,7 @@ def choose_models(result: "AnalysisResult", accuracy: float) -> dict[str, ModelC
         labels = [j.label for j in names[name]]
         raisers = [
             *_point_forces(result, name),
+            *_free_holes(result, name),
             *_holes_outside(stress.pin_holes, ok, labels),
             *(words for m in stress.members for words in _member_raisers(m, labels)),
         ]
@@ -224,3 +228,18 @@ def _point_forces(result: "AnalysisResult", name: str) -> list[str]:
         f"a point force on the material at ({p.at[0]:.4g}, {p.at[1]:.4g}) m (its local stress is beyond beam theory)"
         for p in loads.point_forces if hole_at(outline, np.asarray(p.at, float)) is None
     ]
+
+
+def _free_holes(result: "AnalysisResult", name: str) -> list[str]:
+    """A phrase per hole of link ``name`` that no joint sits in: a lightening hole or a slot, whose
+    edge raises the stress beyond the net section's that beam theory gives."""
+    profile = result.scene.links[name].profile
+    out = []
+    for h, ring in enumerate(profile.outline.interiors):
+        if h in profile.joint_holes:
+            continue
+        corners = np.asarray(Polygon(ring).minimum_rotated_rectangle.exterior.coords)[:3]
+        sides = sorted(np.hypot(*np.diff(corners, axis=0).T) * 1e3, reverse=True)
+        out.append(f"a hole at no joint ({sides[0]:.3g} x {sides[1]:.3g} mm, a lightening hole or a slot: the stress "
+                   "its edge raises is beyond beam theory)")
+    return out
