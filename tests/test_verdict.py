@@ -236,17 +236,17 @@ def test_round_off_is_written_zero_against_its_columns_scale():
 
 
 def test_a_link_the_run_does_not_stress_is_named_under_the_verdict_with_why_in_text_html_and_json(tmp_path, capsys):
-    """The shaper's slotted lever guides the collar (a contact moving along it: not sectioned), the
-    collar and ram are one-joint blocks: none has a row, so each is named as not analysed, never
-    left out in silence; the rows stay the JSON's."""
+    """The shaper's collar and ram are one-joint blocks: no member to section, so no row; each is
+    named as not analysed, never left out in silence. Its slotted lever, which the collar slides
+    along, has its row (tests/test_sliding_contact.py). The rows stay the JSON's."""
     case = CASES / "whitworth_shaper"
     out, page = tmp_path / "shaper.json", tmp_path / "shaper.html"
     assert main(["analyze", str(case / "scene.toml"), "--beam-only", "--json", str(out), "--html", str(page)]) == 0
     text = capsys.readouterr().out
     verdict = json.loads(out.read_text())["verdict"]
-    assert [row["link"] for row in verdict["rows"]] == ["crank", "rod"]
-    assert [entry["link"] for entry in verdict["not_analysed"]] == ["lever", "collar", "ram"]
-    assert "a slider's block slides along it" in verdict["not_analysed"][0]["reason"]
+    assert [row["link"] for row in verdict["rows"]] == ["crank", "lever", "rod"]
+    assert [entry["link"] for entry in verdict["not_analysed"]] == ["collar", "ram"]
+    assert "a slider, with one joint, has no member" in verdict["not_analysed"][0]["reason"]
     assert_verdict_is_the_jsons(text, verdict)
     table = text.split("verdict: the stress that governs", 1)[1].split("\n\n", 1)[0]
     html = page.read_text()

@@ -55,10 +55,12 @@ class Plan:
     accuracy: float = DEFAULT_ACCURACY
     beam_only: bool = False
     unstressed: tuple[tuple[str, str], ...] = ()
+    guides: tuple[str, ...] = ()
+    """Links a slider's block slides along: their sections take the moving contact, the FEA cannot."""
 
     def with_peaks(self) -> Plan:
-        """The same plan with FEA peaks for every stressed link."""
-        return replace(self, peaks=self.stresses)
+        """The same plan with FEA peaks for every stressed link the FEA can take (not ``guides``)."""
+        return replace(self, peaks=tuple(n for n in self.stresses if n not in self.guides))
 
     def fea_links(self, models: dict[str, ModelChoice]) -> tuple[str, ...]:
         """The links whose FEA peaks ``analyze`` computes: none when ``beam_only``, ``peaks`` when
@@ -67,7 +69,8 @@ class Plan:
             return ()
         if self.peaks:
             return self.peaks
-        return tuple(name for name in self.stresses if name in models and models[name].model == FEA_PEAKS)
+        return tuple(name for name in self.stresses
+                     if name in models and models[name].model == FEA_PEAKS and name not in self.guides)
 
     def describe(self) -> str:
         lines = ["plan:", "  kinematics: every position"]
@@ -102,7 +105,7 @@ def plan_for(scene: Scene) -> Plan:
     sliders = [n for n in profiled if len(set(scene.links[n].frame_joints)) == 1]
     # A linkage's guide carries its slider's contact at a point that moves along it.
     guides = [n for n in profiled if scene.linkage is not None and n in moving_contacts(scene.linkage)]
-    stressable = [n for n in profiled if n not in sliders and n not in guides]
+    stressable = [n for n in profiled if n not in sliders]
     asked = scene.analysis
     notes = []
     if asked is None:
@@ -110,7 +113,7 @@ def plan_for(scene: Scene) -> Plan:
         if without_mass:
             notes.append(f"no joint forces: {', '.join(without_mass)} lack mass data (mass, inertia, center_of_mass)")
         stresses = tuple(stressable) if forces else ()
-        validate = stresses
+        validate = tuple(n for n in stresses if n not in guides)
         stations = DEFAULT_STATIONS
     else:
         wants_stresses = asked.stresses or bool(asked.validate)
@@ -130,8 +133,8 @@ def plan_for(scene: Scene) -> Plan:
                 )
             if name in guides:
                 raise SceneError(
-                    f"analysis.validate: link {name!r} guides a slider whose contact moves along it; its section "
-                    "stresses are not computed, so there is nothing to compare: leave it out"
+                    f"analysis.validate: link {name!r} guides a slider whose contact moves along it, and the FEA "
+                    "applies its loads at fixed points: there is no FEA to compare with; leave it out"
                 )
             if name not in stressable:
                 raise SceneError(f"analysis.validate: link {name!r} needs a sketch, a thickness and a material")
@@ -141,10 +144,6 @@ def plan_for(scene: Scene) -> Plan:
         drawn = scene.links[name].profile is not None
         if name in sliders:
             why = "a slider, with one joint, has no member between two to section"
-        elif name in guides:
-            why = ("a slider's block slides along it, and a contact that moves along a link is neither sectioned nor "
-                   "meshed: its joint forces and the block's push on it are in the forces (--details, --json); check it "
-                   "by hand or in FEA of your own")
         elif name not in stressable:
             why = "it has no material" if drawn else "it has no sketch profile with a material"
         elif name not in stresses:
@@ -159,8 +158,9 @@ def plan_for(scene: Scene) -> Plan:
     peaks = stresses if asked is not None and asked.peaks else ()
     criterion = asked.fatigue_criterion if asked is not None else "goodman"
     accuracy = asked.accuracy if asked is not None and asked.accuracy is not None else DEFAULT_ACCURACY
-    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes, peaks, criterion, accuracy,
-                unstressed=tuple(unstressed))
+    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes,
+                tuple(n for n in peaks if n not in guides), criterion, accuracy, unstressed=tuple(unstressed),
+                guides=tuple(guides))
 
 
 @dataclass(frozen=True)

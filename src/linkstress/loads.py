@@ -38,6 +38,28 @@ class PointForce:
 
 
 @dataclass(frozen=True)
+class SlidingContact:
+    """A slider block's push on the link it slides along (its guide), at a point that moves along
+    the guide: ``at`` (P, 2) [m], ``force`` (P, 2) [N] and ``couple`` (P,) [N m], member frame.
+
+    ``anchor`` is the guide's joint the slider's line starts at. The section forces take the
+    contact as its equivalent there (``equivalent``: the same force and the couple that moves it),
+    which keeps them linear in fixed load coefficients, and then correct the cuts between the anchor
+    and the contact, where the force really enters (``linkstress.dynamics.section_stress``)."""
+
+    at: NDArray[np.float64]
+    force: NDArray[np.float64]
+    couple: NDArray[np.float64]
+    anchor: int
+
+    def equivalent(self, joints: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(P, 3): F_x, F_y [N] and the couple [N m] at the anchor (``joints`` (J, 2) [m], member
+        frame) equivalent to the contact."""
+        arm = self.at - np.asarray(joints, float)[self.anchor]
+        return np.column_stack([self.force, self.couple + _cross(arm, self.force)])
+
+
+@dataclass(frozen=True)
 class LinkLoadCase:
     """Loads on a link over P positions, member frame of joints ``frame_joints``.
 
@@ -45,6 +67,7 @@ class LinkLoadCase:
     joint_couples (P, J) [N m]: couples applied to the link at each joint, counter-clockwise positive
     (a driving torque acts at its pivot joint; an external couple at the joint the scene names).
     point_forces: forces at points of the link other than joints.
+    contacts: the pushes of slider blocks that slide along the link (``SlidingContact``).
     omega (P,) [rad/s], alpha (P,) [rad/s^2]: the link's angular velocity and acceleration.
     origin_acceleration (P, 2) [m/s^2]: acceleration of the frame origin (joint i).
     gravity (P, 2) [m/s^2]: gravity in member axes (zero when the scene has none).
@@ -58,6 +81,7 @@ class LinkLoadCase:
     origin_acceleration: NDArray[np.float64]
     gravity: NDArray[np.float64]
     point_forces: tuple[PointForce, ...] = field(default_factory=tuple)
+    contacts: tuple[SlidingContact, ...] = field(default_factory=tuple)
 
     @property
     def n_positions(self) -> int:
@@ -70,6 +94,7 @@ class LinkLoadCase:
             self.frame_joints, self.pin_forces[k], self.joint_couples[k], self.omega[k], self.alpha[k],
             self.origin_acceleration[k], self.gravity[k],
             tuple(PointForce(pf.at, pf.force[k]) for pf in self.point_forces),
+            tuple(SlidingContact(c.at[k], c.force[k], c.couple[k], c.anchor) for c in self.contacts),
         )
 
     def body_force_density(self, points: NDArray[np.float64], density: float) -> NDArray[np.float64]:
@@ -107,6 +132,9 @@ class LinkLoadCase:
         for pf in self.point_forces:
             force = force + pf.force
             moment = moment + _cross(pf.at, pf.force)
+        for c in self.contacts:
+            force = force + c.force
+            moment = moment + _cross(c.at, c.force) + c.couple
         return force, moment
 
 

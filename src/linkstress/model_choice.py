@@ -19,6 +19,10 @@ From what the beam run already has (no FEA to decide), per link:
   theory follows (``TAPER_LIMIT``: a fillet, a tapering plate such as the Jansen leg's shin, 12 %
   off the nominal stress there).
 
+A link a slider's block slides along (a guide, the slotted lever of a quick-return) is on
+"fea-peaks" with the reason that the FEA cannot take it: its contact moves, and the unit loads stand
+at fixed points. Its verdict stays on its beam sections, trusted "beam only".
+
 Every choice carries its reason in words. ``analyze`` runs the FEA peaks (superposed unit loads,
 ``linkstress.validation.peaks_scene``) for the links on "fea-peaks" only; ``--beam-only`` runs none
 and ``--peaks`` runs them on every stressed link. The choice is tested against FEA on every shipped
@@ -46,6 +50,9 @@ MODELS = (BEAM, BEAM_KT, FEA_PEAKS)
 NO_FEA = "; no FEA: "
 """What a model reason adds, with why, when its link needs FEA the run cannot do (no elastic
 constants, a mesh too large)."""
+GUIDE_NO_FEA = ("the block's contact moves along the link and the FEA's unit loads stand at fixed points; the beam "
+                "sections take the contact where it is, the stress at the slot's or guide's edge is not checked")
+"""Why a link a slider's block slides along (a guide) has no FEA peaks."""
 DEFAULT_ACCURACY = 0.05
 """The governing stress within 5 % unless the scene ([analysis] accuracy) or --accuracy says otherwise."""
 ACCURACY_RANGE = (0.001, 0.5)
@@ -121,6 +128,10 @@ def choose_models(result: "AnalysisResult", accuracy: float) -> dict[str, ModelC
             *(words for m in stress.members for words in _member_raisers(m, labels)),
         ]
         bound, tilt = _kt_bound(stress.pin_holes, ok)
+        if name in result.plan.guides:
+            raisers.append("a slider's block slides along it (its push enters where the block is)")
+            choices[name] = ModelChoice(FEA_PEAKS, "; ".join(raisers) + NO_FEA + GUIDE_NO_FEA, bound, beam_max)
+            continue
         if raisers:
             choices[name] = ModelChoice(FEA_PEAKS, "; ".join(raisers), bound, beam_max)
             continue

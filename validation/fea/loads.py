@@ -224,8 +224,15 @@ def point_force_hole(
     return hole, np.array(Polygon(outline.interiors[hole]).centroid.coords[0])
 
 
+GUIDE_REFUSAL = ("a slider's block slides along it, and the FEA applies loads at fixed points, not where a block is "
+                 "at each position; its stresses are its beam sections")
+
+
 def check_load_case(link: LinkProfile, loads: LinkLoadCase) -> None:
-    """The load case's arrays fit the link (P positions, J joints) and are finite; else FEAError."""
+    """The load case's arrays fit the link (P positions, J joints) and are finite, and it has no
+    sliding contact (the FEA applies loads at fixed points); else FEAError."""
+    if loads.contacts:
+        raise FEAError(f"link {link.name!r}: {GUIDE_REFUSAL}")
     n_pos, n_joints = loads.n_positions, len(link.joints)
     shapes = {
         "pin_forces": (n_pos, n_joints, 2),

@@ -59,17 +59,19 @@ BODY = slice(FREE_X, None)
 """The columns the d'Alembert body load is linear in."""
 
 
-def load_coefficients(loads: LinkLoadCase) -> NDArray[np.float64]:
+def load_coefficients(loads: LinkLoadCase, joints: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Per position, the load quantities every section force is linear in (P, Q).
 
-    Columns: for each joint (F_x, F_y, C); for each point force (F_x, F_y); then g - a_O (2),
-    alpha, omega^2.
+    Columns: for each joint (F_x, F_y, C); for each sliding contact its equivalent (F_x, F_y, C) at
+    its anchor joint (``joints`` (J, 2) [m, member frame] place them; needed only with contacts);
+    for each point force (F_x, F_y); then g - a_O (2), alpha, omega^2.
     """
     n_pos = len(loads.omega)
     per_joint = np.concatenate([loads.pin_forces, loads.joint_couples[..., None]], axis=2).reshape(n_pos, -1)
+    contacts = [c.equivalent(joints) for c in loads.contacts]
     point = [pf.force for pf in loads.point_forces]
     return np.column_stack([
-        per_joint, *point, loads.gravity - loads.origin_acceleration, loads.alpha, loads.omega**2,
+        per_joint, *contacts, *point, loads.gravity - loads.origin_acceleration, loads.alpha, loads.omega**2,
     ])
 
 
@@ -87,6 +89,12 @@ def load_basis(loads, joints, on_side, points_on_side, moments, cut, rho_t):
     zero = np.zeros(n_st)
     for j, (xj, yj) in enumerate(joints):
         side = on_side[:, j].astype(float)
+        fx += [side, zero, zero]
+        fy += [zero, side, zero]
+        mo += [-yj * side, xj * side, side]
+    for contact in loads.contacts:
+        side = on_side[:, contact.anchor].astype(float)
+        xj, yj = joints[contact.anchor]
         fx += [side, zero, zero]
         fy += [zero, side, zero]
         mo += [-yj * side, xj * side, side]
@@ -201,6 +209,26 @@ def member_force_basis(link: LinkProfile, loads: LinkLoadCase, cuts: MemberCuts)
     return ForceBasis(normal, shear, left[2], basis[:, :, -1], cut)
 
 
+def contact_terms(loads: LinkLoadCase, joints: NDArray[np.float64], on_left, cut: NDArray[np.float64],
+                  tangent: NDArray[np.float64], normal: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """(dN, dV, dM) (P, S) [N, N, N m]: what the sliding contacts add to the section forces made from
+    their equivalents at their anchors (``load_coefficients``). A cut with the anchor and the contact
+    on one side has it right; a cut between them has the force on the wrong side, so the left
+    piece's resultant changes by delta (F, C + (a - c) x F), delta = [a on the left] - [anchor on
+    the left]. ``on_left(points (K, 2))`` gives (S, K); ``cut`` (S, 2) the cut points, ``tangent``
+    and ``normal`` (S, 2) the section's axes (member frame)."""
+    count = len(loads.omega)
+    terms = [np.zeros((count, len(cut))) for _ in range(3)]
+    for contact in loads.contacts:
+        delta = on_left(contact.at).T.astype(float) - on_left(joints[contact.anchor : contact.anchor + 1])[:, 0]
+        f = contact.force[:, None, :]
+        terms[0] -= delta * (f[..., 0] * tangent[:, 0] + f[..., 1] * tangent[:, 1])
+        terms[1] -= delta * (f[..., 0] * normal[:, 0] + f[..., 1] * normal[:, 1])
+        arm = contact.at[:, None, :] - cut[None, :, :]
+        terms[2] += delta * (contact.couple[:, None] + arm[..., 0] * f[..., 1] - arm[..., 1] * f[..., 0])
+    return tuple(terms)
+
+
 def internal_forces(
     link: LinkProfile,
     loads: LinkLoadCase,
@@ -209,8 +237,14 @@ def internal_forces(
 ) -> InternalForces:
     """N, V, M at the stations of ``sections`` (member frame of ``loads.frame_joints``)."""
     basis = force_basis(link, loads, sections, moments)
-    coefficients = load_coefficients(loads)
+    joints = link.frame(*loads.frame_joints).to_local(link.joints)
+    coefficients = load_coefficients(loads, joints)
     normal, shear, moment = (coefficients @ b for b in (basis.normal, basis.shear, basis.moment))
+    if loads.contacts:
+        x = sections.x
+        along = np.column_stack([np.ones_like(x), np.zeros_like(x)])
+        d_n, d_v, d_m = contact_terms(loads, joints, lambda p: p[None, :, 0] <= x[:, None], basis.cut, along, along[:, ::-1])
+        normal, shear, moment = normal + d_n, shear + d_v, moment + d_m
     return InternalForces(sections.x, normal, shear, moment, basis.mismatch(coefficients))
 
 

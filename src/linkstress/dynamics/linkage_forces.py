@@ -12,8 +12,9 @@ pivot (reacting on the ground), or an unknown force along the input slider's lin
 What reaches each link goes into its ``LinkLoadCase`` (member frame): the pins' forces at its
 joints, the input torque at the crank's pivot, a slide's couple on its block at the block's joint 0.
 A guide's slide reaction acts where the block is, which moves along the guide: it is given to the
-guide at its line's joint i with the couple that makes it equivalent (so the guide's equilibrium is
-exact; its section stresses between are not computed, ``moving_contacts``).
+guide as a ``SlidingContact`` (the block's push and couple at the point, anchored at the line's
+joint i), which the section forces take exactly (``linkstress.dynamics.section_stress``). An
+actuator's thrust reaches its guide at that joint i, the actuator's base (a cylinder's end cap).
 
 The power balance (``power_balance``) checks the solution without a second solver: the input's
 power equals the rate of kinetic energy less the power of the applied loads and of friction.
@@ -33,7 +34,7 @@ from linkstress.dynamics.newton_euler import (
 from linkstress.errors import SceneError
 from linkstress.kinematics.linkage.graph import Joint, LinkageGraph
 from linkstress.kinematics.results import MachineMotion
-from linkstress.loads import LinkLoadCase, PointForce
+from linkstress.loads import LinkLoadCase, PointForce, SlidingContact
 
 FloatArray = NDArray[np.float64]
 SINGULAR_REASON = "toggle: the joint forces are unbounded (singular Newton-Euler system)"
@@ -228,6 +229,7 @@ class LinkageAssembly:
             count = len(link.joints)
             pin_forces = np.zeros((n, count, 2))
             couples = np.zeros((n, count))
+            contacts = []
             for forces in pins:
                 for joint, force in forces.items():
                     link_name, index = joint.rsplit(":", 1)
@@ -238,17 +240,19 @@ class LinkageAssembly:
                 total = solution.slide_forces[slide.name]
                 couple = solution.slide_couples[slide.name]
                 u = self.direction(k)
-                if push is not None and self.graph.input.slider == k:
-                    total = total + push[:, None] * u
+                thrust = push[:, None] * u if push is not None and self.graph.input.slider == k else None
                 if slider.block == name:
-                    pin_forces[:, 0] += total
+                    pin_forces[:, 0] += total if thrust is None else total + thrust
                     couples[:, 0] += couple
                 if slider.on == name:
                     i = slider.line[0]
-                    joint_at = link_motion.point(self.graph.local[name][i])[0]
-                    arm = slide.position - joint_at
-                    pin_forces[:, i] -= total
-                    couples[:, i] -= couple + arm[:, 0] * total[:, 1] - arm[:, 1] * total[:, 0]
+                    anchor = np.asarray(self.graph.local[name][i], float)
+                    arm = slide.position - link_motion.point(anchor)[0]
+                    contacts.append(SlidingContact(anchor + to_member(arm), to_member(-total), -np.asarray(couple, float), i))
+                    if thrust is not None:
+                        # An actuator's thrust reaches its guide (a cylinder's barrel, a screw's housing) at the
+                        # line's joint i, its base: the oil on the end cap, the screw on its thrust bearing.
+                        contacts.append(SlidingContact(np.tile(anchor, (n, 1)), to_member(-thrust), np.zeros(n), i))
             if torque is not None and name == self.graph.input.link:
                 couples[:, self.graph.input.pivot] += torque
             for c in self.scene.loads.couples:
@@ -267,13 +271,15 @@ class LinkageAssembly:
                 origin_acceleration=to_member(link_motion.origin_acceleration),
                 gravity=to_member(gravity),
                 point_forces=point_forces,
+                contacts=tuple(contacts),
             )
         return loads
 
 
 def moving_contacts(graph: LinkageGraph) -> tuple[str, ...]:
-    """The moving links a slider's block slides along: their contact moves, so their section
-    stresses are not computed."""
+    """The moving links a slider's block slides along (guides): their contact moves along them, so
+    their section stresses take it as a ``SlidingContact`` and the FEA, whose unit loads stand at
+    fixed points, cannot take them."""
     return tuple(dict.fromkeys(s.on for s in graph.sliders if s.on != graph.ground))
 
 

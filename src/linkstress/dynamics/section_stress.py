@@ -58,7 +58,9 @@ from numpy.typing import NDArray
 
 from linkstress.geometry.curved_beam import theory_of
 from linkstress.dynamics.fibre_candidates import CurvedFibres, Fibres, SectionShape, body_gains, fibre_sigma
-from linkstress.dynamics.internal_forces import BODY, ForceBasis, InternalForces, load_coefficients, member_force_basis
+from linkstress.dynamics.internal_forces import (
+    BODY, ForceBasis, InternalForces, contact_terms, load_coefficients, member_force_basis,
+)
 from linkstress.dynamics.pin_holes import PinHoleEstimate, pin_hole_estimates
 from linkstress.loads import LinkLoadCase
 from linkstress.geometry.members import Member, MemberCuts, frame_member
@@ -378,7 +380,8 @@ class _Sweep:
         shape = SectionShape.of(table, body_gains(cuts.origin, cuts.normal, link.density), body_term)
         basis = member_force_basis(link, loads, cuts)
         return cls(
-            link, loads, member, cuts, near_hole, basis, shape, shape.fibre_basis(basis), load_coefficients(loads),
+            link, loads, member, cuts, near_hole, basis, shape, shape.fibre_basis(basis),
+            load_coefficients(loads, link.frame(*loads.frame_joints).to_local(link.joints)),
             pin_holes, CurvedFibres.of(table, cuts.curvature, curved),
         )
 
@@ -405,12 +408,18 @@ class _Sweep:
         """N, V, M and the critical fibre of every station at the consecutive positions ``p``, in
         arrays of the block's own (rows are the block's positions)."""
         basis, shape = self.basis, self.shape
-        mean, spread, body = self.fibre_bases
+        to_mean, to_spread, body = self.fibre_bases
         c = self.coefficients[p]
         normal, shear, moment = (np.matmul(c, b) for b in (basis.normal, basis.shear, basis.moment))
+        mean, spread = c @ to_mean, c @ to_spread
+        if self.loads.contacts:
+            d_n, d_v, d_m = self.contact_terms(p)
+            normal, shear, moment = normal + d_n, shear + d_v, moment + d_m
+            mean += d_n * shape.inv_area + d_m * (shape.inv_inertia * shape.middle)
+            spread += d_m * (shape.inv_inertia * shape.reach)
         forces = InternalForces(self.table.x, normal, shear, moment, basis.mismatch(c))
         fibres = Fibres(np.empty_like(normal), np.empty_like(normal))
-        size_n, size_m = shape.outer_fibres(c @ mean, c @ spread, fibres)
+        size_n, size_m = shape.outer_fibres(mean, spread, fibres)
         # a crank turning steadily about a fixed pivot, without gravity, has no body load
         loaded = ((c[:, BODY] != 0).any(axis=0) & shape.body_columns).any()
         at_single, at_split, chord = shape.interior_candidates(
@@ -423,6 +432,13 @@ class _Sweep:
             self.curved.fibres(forces, fibres, self.table)
         fibres.u += self.table.neutral_axis  # now the fibre's y
         return forces, fibres
+
+    def contact_terms(self, p: slice) -> tuple[NDArray[np.float64], ...]:
+        """(dN, dV, dM) of the sliding contacts at the positions ``p`` (``internal_forces.contact_terms``)."""
+        joints = self.link.frame(*self.loads.frame_joints).to_local(self.link.joints)
+        cuts = self.cuts
+        return contact_terms(self.loads.at(np.arange(len(self.coefficients))[p]), joints, cuts.on_left,
+                             cuts.cut_points, cuts.tangent, cuts.normal)
 
     def stresses(self, p: slice) -> SectionStresses:
         """``SectionStresses`` of the consecutive positions ``p``, evaluated as one block."""

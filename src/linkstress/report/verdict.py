@@ -9,8 +9,8 @@ The governing stress is the largest credible one the run computed for the link:
   where the geometry the pin force sees is inside the Kt tables). An FEA peak that did not converge
   is shown instead when it is larger (as a lower bound, with no safety factor).
 
-A moving link drawn with a profile that gets no section stresses (a slider's block, a link a block
-slides along, one without a material) is listed under the table as not analysed, with why: its
+A moving link drawn with a profile that gets no section stresses (a slider's block, one without a
+material) is listed under the table as not analysed, with why: its
 stress is not checked, and the reader is told so rather than left to notice a missing row.
 
 The trust says in a word what the number rests on, and its reason what is not covered: "FEA" (its
@@ -389,7 +389,7 @@ def analysis_next_step(result: AnalysisResult, rows: tuple[VerdictRow, ...]) -> 
         parts.append(f"run `linkstress analyze {result.scene.path}`{' without --beam-only' if result.plan.beam_only else ''} "
                      f"for the FEA peaks of {', '.join(runnable)}")
     if unable:
-        parts.append(f"the FEA cannot take {', '.join(unable)}: see their model's reason")
+        parts.append(f"the FEA cannot take {', '.join(unable)}: see {'its' if len(unable) == 1 else 'their'} model's reason")
     uncovered = [row.link for row in rows if row.uncovered and row.model != "fea-peaks" and row.link not in needing]
     if uncovered:
         parts.append(f"run `linkstress analyze {result.scene.path} --peaks` for the pin holes of {', '.join(uncovered)}")
