@@ -101,12 +101,13 @@ def peak_mesh(
     return replace(base.refined(REFINEMENT_RATIO ** (levels - 1)), stations=(), cuts=())
 
 
-def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings, cache: DiskCache | None = None) -> PeakCheck:
+def coarser_peak(peaks: SweepPeaks, loads: LinkLoadCase, mesh: MeshSettings, cache: DiskCache | None = None,
+                 link: LinkProfile | None = None) -> PeakCheck:
     """The peak's changes over the last two refinements at the sweep's worst position: the direct
     FEA on ``mesh`` (the peak mesh) made REFINEMENT_RATIO and REFINEMENT_RATIO^2 coarser (each
-    from and into ``cache`` when given: ``direct_peak``)."""
+    from and into ``cache`` when given: ``direct_peak``); ``link`` that of the unit cases unless given."""
     worst = loads.at(peaks.positions[peaks.worst : peaks.worst + 1])
-    link = peaks.cases.link
+    link = link or peaks.cases.link
     coarser, coarsest = (direct_peak(link, worst, mesh.refined(REFINEMENT_RATIO ** -k), cache) for k in (1, 2))
     return PeakCheck(float(peaks.peak[peaks.worst]), coarser, coarsest, PEAK_CONVERGED_CHANGE)
 
@@ -130,6 +131,7 @@ def direct_peak(link: LinkProfile, loads: LinkLoadCase, mesh: MeshSettings, cach
         "pin_forces": loads.pin_forces, "joint_couples": loads.joint_couples, "omega": loads.omega,
         "alpha": loads.alpha, "origin_acceleration": loads.origin_acceleration, "gravity": loads.gravity,
         "point_forces": [{"at": np.asarray(p.at, float), "force": np.asarray(p.force, float)} for p in loads.point_forces],
+        "contacts": [c.record() for c in loads.contacts],
     })
     stored = cache.load(DIRECT_PEAK, key)
     if stored is not None:

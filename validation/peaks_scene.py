@@ -1,7 +1,8 @@
 """FEA peaks and fatigue of every link a plan names, over the scene's whole sweep.
 
 For each link of ``plan.peaks``: its unit load cases on the peak mesh (``peaks.peak_mesh``), their
-superposition over every feasible position (``peaks.sweep_peaks``), the peak's check over the last
+superposition over every feasible position (``peaks.sweep_peaks``) or, for a link a slider's block
+slides along, a direct solve of each (``direct_peaks``), the peak's check over the last
 refinement at the worst position (``peaks.coarser_peak``), and, where the material gives
 ``endurance_limit`` and ``ultimate_strength``, the fatigue safety factor of every node from the
 extremes of its signed equivalent stress over the sweep (``linkstress.fatigue``).
@@ -206,10 +207,15 @@ def _computed(task: PeaksTask, cache: DiskCache | None) -> tuple[SweepPeaks, Pea
     profile = link.profile
     members = link_members(profile, loads.frame_joints, link.members, task.used_joints)
     mesh = peak_mesh(profile, loads.frame_joints, members, task.size, task.order)
-    cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG, cache)
-    sweep = sweep_peaks(cases, loads, feasible)
+    if loads.contacts:
+        from linkstress.validation.direct_peaks import direct_sweep_peaks
+
+        sweep = direct_sweep_peaks(profile, loads, feasible, mesh, cache)
+    else:
+        cases = unit_load_cases(profile, loads.at(feasible), mesh, DIRECTION_STEP_DEG, cache)
+        sweep = sweep_peaks(cases, loads, feasible)
     start = time.perf_counter()
-    check = coarser_peak(sweep, loads, mesh, cache)
+    check = coarser_peak(sweep, loads, mesh, cache, profile)
     return sweep, check, mesh, time.perf_counter() - start
 
 
@@ -237,6 +243,7 @@ def sweep_key(task: PeaksTask) -> str:
         "pin_forces": loads.pin_forces, "joint_couples": loads.joint_couples, "omega": loads.omega,
         "alpha": loads.alpha, "origin_acceleration": loads.origin_acceleration, "gravity": loads.gravity,
         "point_forces": [{"at": np.asarray(p.at, float), "force": np.asarray(p.force, float)} for p in loads.point_forces],
+        "contacts": [c.record() for c in loads.contacts],
         "feasible": np.asarray(task.feasible, np.int64), "n_positions": task.n_positions,
         "size": task.size, "order": task.order,
     }

@@ -21,7 +21,7 @@ from linkstress.errors import SceneError
 from linkstress.kinematics import MachineMotion, solve_machine
 from linkstress.geometry.members import Member, link_members
 from linkstress.loads import hole_at
-from linkstress.model_choice import DEFAULT_ACCURACY, FEA_PEAKS, ModelChoice, choose_models
+from linkstress.model_choice import DEFAULT_ACCURACY, FEA_PEAKS, NO_FEA, ModelChoice, choose_models
 from linkstress.scene import Scene
 from linkstress.threads import blas_alone
 
@@ -56,21 +56,23 @@ class Plan:
     beam_only: bool = False
     unstressed: tuple[tuple[str, str], ...] = ()
     guides: tuple[str, ...] = ()
-    """Links a slider's block slides along: their sections take the moving contact, the FEA cannot."""
+    """Links a slider's block slides along: their sections take the moving contact; ``validate``
+    does not compare them (its cuts would cross the slot the block bears on)."""
 
     def with_peaks(self) -> Plan:
-        """The same plan with FEA peaks for every stressed link the FEA can take (not ``guides``)."""
-        return replace(self, peaks=tuple(n for n in self.stresses if n not in self.guides))
+        """The same plan with FEA peaks for every stressed link."""
+        return replace(self, peaks=self.stresses)
 
     def fea_links(self, models: dict[str, ModelChoice]) -> tuple[str, ...]:
         """The links whose FEA peaks ``analyze`` computes: none when ``beam_only``, ``peaks`` when
         asked for, else those whose chosen model (``models``) is "fea-peaks"."""
         if self.beam_only:
             return ()
+        unable = {name for name, m in models.items() if NO_FEA in m.reason}
         if self.peaks:
-            return self.peaks
+            return tuple(name for name in self.peaks if name not in unable)
         return tuple(name for name in self.stresses
-                     if name in models and models[name].model == FEA_PEAKS and name not in self.guides)
+                     if name in models and models[name].model == FEA_PEAKS and name not in unable)
 
     def describe(self) -> str:
         lines = ["plan:", "  kinematics: every position"]
@@ -158,9 +160,8 @@ def plan_for(scene: Scene) -> Plan:
     peaks = stresses if asked is not None and asked.peaks else ()
     criterion = asked.fatigue_criterion if asked is not None else "goodman"
     accuracy = asked.accuracy if asked is not None and asked.accuracy is not None else DEFAULT_ACCURACY
-    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes,
-                tuple(n for n in peaks if n not in guides), criterion, accuracy, unstressed=tuple(unstressed),
-                guides=tuple(guides))
+    return Plan(forces, stresses, stations, validate, tuple(notes), body_load_near_holes, peaks, criterion, accuracy,
+                unstressed=tuple(unstressed), guides=tuple(guides))
 
 
 @dataclass(frozen=True)

@@ -51,6 +51,13 @@ class SlidingContact:
     force: NDArray[np.float64]
     couple: NDArray[np.float64]
     anchor: int
+    length: float = 0.0
+    """[m]: the block's length along the line, over which it bears (0: no block drawn)."""
+
+    def record(self) -> dict[str, object]:
+        """The contact as plain data (for cache keys)."""
+        return {"at": np.asarray(self.at, float), "force": np.asarray(self.force, float),
+                "couple": np.asarray(self.couple, float), "anchor": int(self.anchor), "length": float(self.length)}
 
     def equivalent(self, joints: NDArray[np.float64]) -> NDArray[np.float64]:
         """(P, 3): F_x, F_y [N] and the couple [N m] at the anchor (``joints`` (J, 2) [m], member
@@ -94,7 +101,7 @@ class LinkLoadCase:
             self.frame_joints, self.pin_forces[k], self.joint_couples[k], self.omega[k], self.alpha[k],
             self.origin_acceleration[k], self.gravity[k],
             tuple(PointForce(pf.at, pf.force[k]) for pf in self.point_forces),
-            tuple(SlidingContact(c.at[k], c.force[k], c.couple[k], c.anchor) for c in self.contacts),
+            tuple(SlidingContact(c.at[k], c.force[k], c.couple[k], c.anchor, c.length) for c in self.contacts),
         )
 
     def body_force_density(self, points: NDArray[np.float64], density: float) -> NDArray[np.float64]:
@@ -149,6 +156,17 @@ def hole_at(outline: Polygon, point: ArrayLike) -> int | None:
     where = shapely.Point(np.asarray(point, float))
     for k, ring in enumerate(outline.interiors):
         if Polygon(ring).covers(where):
+            return k
+    return None
+
+
+def contact_hole(outline: Polygon, contact: SlidingContact) -> int | None:
+    """The hole of ``outline`` (shapely interior order, the contact's member frame) that holds the
+    contact's point at every position (a slot the block runs in), None where some position has it
+    in material or off the link."""
+    points = shapely.points(np.asarray(contact.at, float).reshape(-1, 2))
+    for k, ring in enumerate(outline.interiors):
+        if shapely.covers(Polygon(ring), points).all():
             return k
     return None
 

@@ -20,8 +20,10 @@ From what the beam run already has (no FEA to decide), per link:
   off the nominal stress there).
 
 A link a slider's block slides along (a guide, the slotted lever of a quick-return) is on
-"fea-peaks" with the reason that the FEA cannot take it: its contact moves, and the unit loads stand
-at fixed points. Its verdict stays on its beam sections, trusted "beam only".
+"fea-peaks": where the block runs in a slot of the link, the FEA bears it on the slot's walls,
+solving each position (``validation.direct_peaks``); where its contact runs in the link's material
+(a cylinder's barrel drawn as a plate), the FEA cannot take it, the reason says so and its verdict
+stays on its beam sections, trusted "beam only".
 
 Every choice carries its reason in words. ``analyze`` runs the FEA peaks (superposed unit loads,
 ``linkstress.validation.peaks_scene``) for the links on "fea-peaks" only; ``--beam-only`` runs none
@@ -40,6 +42,7 @@ from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
 from linkstress.dynamics.pin_holes import OPEN, PinHoleEstimate
+from linkstress.loads import contact_hole
 
 if TYPE_CHECKING:
     from linkstress.analysis import AnalysisResult
@@ -50,9 +53,12 @@ MODELS = (BEAM, BEAM_KT, FEA_PEAKS)
 NO_FEA = "; no FEA: "
 """What a model reason adds, with why, when its link needs FEA the run cannot do (no elastic
 constants, a mesh too large)."""
-GUIDE_NO_FEA = ("the block's contact moves along the link and the FEA's unit loads stand at fixed points; the beam "
-                "sections take the contact where it is, the stress at the slot's or guide's edge is not checked")
-"""Why a link a slider's block slides along (a guide) has no FEA peaks."""
+GUIDE_FEA = ("a slider's block slides in its slot, bearing on the slot's walls where the block is (the FEA solves "
+             "each position)")
+"""Why a link whose slot a slider's block runs in is on the FEA peaks."""
+GUIDE_NO_FEA = ("the block's contact runs in the link's material, not in a slot, and the FEA bears a block only on a "
+                "slot's walls; the beam sections take the contact where it is")
+"""Why a link a slider's block slides along outside a slot (a cylinder's barrel drawn as a plate) has no FEA peaks."""
 DEFAULT_ACCURACY = 0.05
 """The governing stress within 5 % unless the scene ([analysis] accuracy) or --accuracy says otherwise."""
 ACCURACY_RANGE = (0.001, 0.5)
@@ -129,8 +135,12 @@ def choose_models(result: "AnalysisResult", accuracy: float) -> dict[str, ModelC
         ]
         bound, tilt = _kt_bound(stress.pin_holes, ok)
         if name in result.plan.guides:
-            raisers.append("a slider's block slides along it (its push enters where the block is)")
-            choices[name] = ModelChoice(FEA_PEAKS, "; ".join(raisers) + NO_FEA + GUIDE_NO_FEA, bound, beam_max)
+            loads = result.forces.link_loads[name]
+            outline = result.scene.links[name].profile.local_outline(*loads.frame_joints)
+            in_slot = all(contact_hole(outline, c) is not None for c in loads.at(np.flatnonzero(ok)).contacts)
+            raisers.append(GUIDE_FEA if in_slot else "a slider's block slides along it")
+            choices[name] = ModelChoice(FEA_PEAKS, "; ".join(raisers) + ("" if in_slot else NO_FEA + GUIDE_NO_FEA),
+                                        bound, beam_max)
             continue
         if raisers:
             choices[name] = ModelChoice(FEA_PEAKS, "; ".join(raisers), bound, beam_max)

@@ -20,6 +20,11 @@ Member frame of the load case; P positions; every function returns forces (dofs,
   in it), plus the couple (p - c) x F as tangential traction when p is off the centre, so that
   resultant and moment are those of F at p, exactly. (Spread over the elements next to an empty
   hole, such a force had no converging peak.)
+- A slider block's push on the slot it runs in (``SlidingContact``), at the block's point a, along
+  the line u (n = k x u): a pressure (c0 + c1 xi) along n on the slot's wall the push faces, over
+  the block's length centred on a (xi along u from a), and a uniform shear c2 along u there (the
+  friction); c0, c1 and c2 are solved per position from the discrete integrals, so that the nodal
+  forces sum to the push and their moment about a is the block's couple, exactly.
 """
 
 from __future__ import annotations
@@ -30,7 +35,7 @@ import scipy.sparse as sp
 from shapely.geometry import Polygon
 from skfem import Basis
 
-from linkstress.loads import LinkLoadCase, hole_at
+from linkstress.loads import LinkLoadCase, SlidingContact, contact_hole, hole_at
 from linkstress.geometry.profile import LinkProfile
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.plane_stress import PlaneStressModel, quadrature_weights, vector_loads
@@ -133,6 +138,41 @@ def shaft_couple_loads(
     return vector_loads(model, weights, scale[:, None, None] * tangent[None, :, :])
 
 
+def contact_loads(
+    model: PlaneStressModel, facets: NDArray[np.intp], contact: SlidingContact, anchor: NDArray[np.float64],
+    least: float,
+) -> NDArray[np.float64]:
+    """A slider block's push (``contact``, P positions) on the walls ``facets`` of the slot it runs
+    in, its line through ``anchor`` (2,) [m] and the contact's points: over the block's length (at
+    least ``least`` [m], the station size), on the wall the push faces (see the module's docstring)."""
+    weights, points, _ = edge_quadrature(model, facets, np.asarray(anchor, float))
+    at = np.asarray(contact.at, float)
+    direction = at - anchor
+    far = np.argmax(np.hypot(*direction.T))
+    u = direction[far] / np.hypot(*direction[far]) if np.hypot(*direction[far]) > 0 else np.array([1.0, 0.0])
+    n = np.array([-u[1], u[0]])
+    force, couple = np.asarray(contact.force, float), np.asarray(contact.couple, float)
+    offset = points[None, :, :] - at[:, :, None]  # (P, 2, Nq)
+    xi, eta = np.einsum("d,pdq->pq", u, offset), np.einsum("d,pdq->pq", n, offset)
+    side = np.where(force @ n >= 0, 1.0, -1.0)
+    half = max(contact.length, least) / 2
+    bearing = (np.abs(xi) <= half) & (eta * side[:, None] > 0)
+    ds = model.thickness * np.asarray(weights.sum(axis=0)).ravel() * bearing  # (P, Nq)
+    s0, s1, s2 = ds.sum(axis=1), (ds * xi).sum(axis=1), (ds * xi**2).sum(axis=1)
+    if not (s0 > 0).all():
+        raise FEAError("a slider's block bears on no wall of its slot at some position: refine the mesh")
+    along = force @ u
+    shear = along / s0
+    # normal: side (c0 s0 + c1 s1) = F.n; moment about a: side (c0 s1 + c1 s2) - shear sum(ds eta) = C
+    moment = couple + shear * (ds * eta).sum(axis=1)
+    determinant = s0 * s2 - s1 * s1
+    c0 = side * ((force @ n) * s2 - moment * s1) / determinant
+    c1 = side * (moment * s0 - (force @ n) * s1) / determinant
+    pressure = np.where(bearing, c0[:, None] + c1[:, None] * xi, 0.0)
+    traction = (side[:, None] * pressure)[:, None, :] * n[None, :, None] + np.where(bearing, shear[:, None], 0.0)[:, None, :] * u[None, :, None]
+    return vector_loads(model, weights, traction)
+
+
 def body_loads(model: PlaneStressModel, loads: LinkLoadCase, density: float) -> NDArray[np.float64]:
     """d'Alembert body force (and gravity) of ``loads``' rigid-body motion for a material ``density`` [kg/m^3]."""
     weights, points = quadrature_weights(model.scalar)
@@ -192,6 +232,10 @@ def link_loads(
         forces += bearing_loads(model, facets, joints[j], pin)
         if np.any(couple != 0):
             forces += shaft_couple_loads(model, facets, joints[j], couple)
+    outline = link.local_outline(*loads.frame_joints)
+    for contact in loads.contacts:
+        facets = model.plane.holes[contact_hole(outline, contact)]
+        forces += contact_loads(model, facets, contact, frame.to_local(link.joints)[contact.anchor], patch_radius)
     for point in loads.point_forces:
         force = np.asarray(point.force, float)
         pin = point_force_hole(link, loads.frame_joints, point.at)
@@ -224,15 +268,19 @@ def point_force_hole(
     return hole, np.array(Polygon(outline.interiors[hole]).centroid.coords[0])
 
 
-GUIDE_REFUSAL = ("a slider's block slides along it, and the FEA applies loads at fixed points, not where a block is "
-                 "at each position; its stresses are its beam sections")
+GUIDE_REFUSAL = ("a slider's block slides along it with its contact in the link's material, not in a slot: the FEA "
+                 "bears a block only on the walls of the slot it runs in; its stresses are its beam sections")
 
 
 def check_load_case(link: LinkProfile, loads: LinkLoadCase) -> None:
     """The load case's arrays fit the link (P positions, J joints) and are finite, and it has no
     sliding contact (the FEA applies loads at fixed points); else FEAError."""
-    if loads.contacts:
-        raise FEAError(f"link {link.name!r}: {GUIDE_REFUSAL}")
+    outline = link.local_outline(*loads.frame_joints)
+    for contact in loads.contacts:
+        if contact_hole(outline, contact) is None:
+            raise FEAError(f"link {link.name!r}: {GUIDE_REFUSAL}")
+        if np.shape(contact.force) != (loads.n_positions, 2) or not np.isfinite(contact.force).all():
+            raise FEAError(f"link {link.name!r}: a sliding contact needs finite (P, 2) forces")
     n_pos, n_joints = loads.n_positions, len(link.joints)
     shapes = {
         "pin_forces": (n_pos, n_joints, 2),

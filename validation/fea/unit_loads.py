@@ -40,7 +40,6 @@ from linkstress.validation.fea.cache import DiskCache, cache_key
 from linkstress.validation.fea.errors import FEAError
 from linkstress.validation.fea.link import applied_load, link_model, link_region, support_reactions
 from linkstress.validation.fea.loads import (
-    GUIDE_REFUSAL,
     bearing_loads,
     body_loads,
     patch_loads,
@@ -433,7 +432,8 @@ def check_same_terms(cases: UnitLoadCases, loads: LinkLoadCase) -> None:
         if j not in turned and np.any(loads.joint_couples[:, j] != 0):
             raise FEAError(f"link {name!r}: joint {j} carries a couple its unit load cases were not made for")
     if loads.contacts:
-        raise FEAError(f"link {name!r}: {GUIDE_REFUSAL}")
+        raise FEAError(f"link {name!r}: a slider's block slides along it, and unit load cases stand at fixed points "
+                       "(its FEA peaks are solved position by position: validation.direct_peaks)")
     if len(loads.point_forces) != len(cases.point_forces):
         raise FEAError(
             f"link {name!r}: {len(loads.point_forces)} point forces, unit load cases made for {len(cases.point_forces)}"

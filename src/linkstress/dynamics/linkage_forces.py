@@ -210,6 +210,18 @@ class LinkageAssembly:
                                     solution.slide_couples[slide.name], friction, pin))
         return tuple(out)
 
+    def block_length(self, k: int) -> float:
+        """[m]: slider ``k``'s block's drawn length along its line, over which it bears on its guide
+        (0 for a block drawn without a profile, or none)."""
+        slider = self.graph.sliders[k]
+        block = self.scene.links.get(slider.block) if slider.block else None
+        if block is None or block.profile is None:
+            return 0.0
+        guide = self.scene.links[slider.on]
+        line = np.asarray(guide.joints[slider.line[1]], float) - np.asarray(guide.joints[slider.line[0]], float)
+        outline = np.asarray(block.profile.outline.exterior.coords)
+        return float(np.ptp(outline @ (line / np.hypot(*line))))
+
     def input_power_rate(self, solution: ForceSolution) -> tuple[FloatArray | None, FloatArray | None]:
         """The driving torque (P,) [N m] or force (P,) [N]."""
         if self.actuators:
@@ -248,7 +260,8 @@ class LinkageAssembly:
                     i = slider.line[0]
                     anchor = np.asarray(self.graph.local[name][i], float)
                     arm = slide.position - link_motion.point(anchor)[0]
-                    contacts.append(SlidingContact(anchor + to_member(arm), to_member(-total), -np.asarray(couple, float), i))
+                    contacts.append(SlidingContact(anchor + to_member(arm), to_member(-total), -np.asarray(couple, float), i,
+                                                   self.block_length(k)))
                     if thrust is not None:
                         # An actuator's thrust reaches its guide (a cylinder's barrel, a screw's housing) at the
                         # line's joint i, its base: the oil on the end cap, the screw on its thrust bearing.

@@ -86,8 +86,9 @@ def peak_rows(summary: dict[str, object]) -> list[tuple[str, str]]:
              _point(s["fatigue_critical_at_m"])),
         ]
     mesh = s["peak_mesh"]
-    rows.append(("FEA mesh", f"{mesh['dofs']} dofs, P{mesh['element_order']} triangles, {mesh['unit_load_cases']} unit "
-                             f"load cases (bearing every {mesh['direction_step_deg']:g} deg)"))
+    solves = (f"{mesh['unit_load_cases']} unit load cases (bearing every {mesh['direction_step_deg']:g} deg)"
+              if mesh["unit_load_cases"] else f"a direct solve at each of {mesh['direct_solves']} positions")
+    rows.append(("FEA mesh", f"{mesh['dofs']} dofs, P{mesh['element_order']} triangles, {solves}"))
     return rows
 
 

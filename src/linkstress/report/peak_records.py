@@ -77,7 +77,8 @@ def _summary(result: AnalysisResult, name: str) -> dict[str, object]:
     record["peak_mesh"] = {
         "dofs": cases.dofs,
         "unit_load_cases": cases.count,
-        "direction_step_deg": float(np.rad2deg(cases.directions[1] - cases.directions[0])),
+        "direction_step_deg": float(np.rad2deg(cases.directions[1] - cases.directions[0])) if cases.count else None,
+        "direct_solves": 0 if cases.count else len(peaks.sweep.positions),
         "element_size_m": peaks.mesh.size,
         "hole_size_m": peaks.mesh.hole_size,
         "element_order": peaks.mesh.order,

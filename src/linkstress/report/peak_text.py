@@ -34,9 +34,9 @@ def peaks_table(result: AnalysisResult) -> str:
             "-" if fatigue is None or where is None else point(where),
         ))
         mesh = s["peak_mesh"]
-        line = (
-            f"  {name}: {mesh['dofs']} dofs, {mesh['unit_load_cases']} unit load cases (bearing every "
-            f"{mesh['direction_step_deg']:g} deg)"
+        line = f"  {name}: {mesh['dofs']} dofs, " + (
+            f"{mesh['unit_load_cases']} unit load cases (bearing every {mesh['direction_step_deg']:g} deg)"
+            if mesh["unit_load_cases"] else f"a direct solve at each of {mesh['direct_solves']} positions (a block slides along it)"
         )
         if "fatigue_alternating_pa" in s:
             factors = ", ".join(f"{k} {'-' if v is None else significant(v)}" for k, v in s["fatigue_safety_factors"].items())
