@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from shapely.geometry import Polygon, box
+from shapely.geometry import LineString, Polygon, box
 from shapely.geometry.polygon import orient
 
 from linkstress.geometry.builders import stadium, straight_bar
@@ -192,3 +192,17 @@ def test_a_clockwise_outline_meshes_its_cuts_as_a_counter_clockwise_one_does():
         for cut in plane.cuts:
             assert (plane.mesh.f2t[1, cut] >= 0).all()  # interior facets: elements on both sides
     assert len(meshes[0].cuts[0]) == len(meshes[1].cuts[0]) > 0
+
+
+@pytest.mark.parametrize("stations", [(0.05, 0.55), (0.085, 0.515), (0.1, 0.5)])
+def test_cuts_beside_and_at_the_ends_of_a_slot_are_meshed_as_lines_of_nodes(stations):
+    """A slotted bar (a 0.4 m obround slot, 30 mm wide, from x = 0.085 to 0.515 m): cuts in the
+    solid beyond the slot's ends, tangent to them and through the slot all mesh, each a line of
+    nodes across the material. gmsh's isInside missed the solid right of the slot, and embedding
+    the cut there failed."""
+    region = box(-0.02, -0.03, 0.62, 0.03).difference(LineString([(0.1, 0.0), (0.5, 0.0)]).buffer(0.015, 64))
+    meshed = mesh_region(region, MeshSettings(0.01, stations=stations))
+    for x in stations:
+        on = np.abs(meshed.mesh.p[0] - x) < 1e-9
+        assert on.sum() >= 5
+        assert meshed.mesh.p[1, on].min() == pytest.approx(-0.03) and meshed.mesh.p[1, on].max() == pytest.approx(0.03)

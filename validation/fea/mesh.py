@@ -383,7 +383,15 @@ def _embed_loose(curves: list[int]) -> None:
             continue
         x, y = _curve_midpoint(curve)
         holder = [s for s in surfaces if gmsh.model.isInside(2, s, [x, y, 0.0])]
+        if not holder:
+            # isInside misses some points of a surface with holes (a cut beyond a slot's end): the
+            # surface nearest the midpoint holds it.
+            holder = [min(surfaces, key=lambda s: _distance(gmsh.model.getClosestPoint(2, s, [x, y, 0.0])[0], x, y))]
         gmsh.model.mesh.embed(1, [curve], 2, holder[0])
+
+
+def _distance(point, x: float, y: float) -> float:
+    return float(np.hypot(point[0] - x, point[1] - y))
 
 
 def _ring_curves(ring: LinearRing, short: float) -> list[int]:
