@@ -22,7 +22,8 @@ Member frame of the load case; P positions; every function returns forces (dofs,
   hole, such a force had no converging peak.)
 - A slider block's push on the slot it runs in (``SlidingContact``), at the block's point a, along
   the line u (n = k x u): a pressure (c0 + c1 xi) along n on the slot's wall the push faces, over
-  the block's length centred on a (xi along u from a), and a uniform shear c2 along u there (the
+  the block's length centred on a (xi along u from a; a block drawn without a link of its own,
+  over the slot's width), and a uniform shear c2 along u there (the
   friction); c0, c1 and c2 are solved per position from the discrete integrals, so that the nodal
   forces sum to the push and their moment about a is the block's couple, exactly.
 """
@@ -234,8 +235,12 @@ def link_loads(
             forces += shaft_couple_loads(model, facets, joints[j], couple)
     outline = link.local_outline(*loads.frame_joints)
     for contact in loads.contacts:
-        facets = model.plane.holes[contact_hole(outline, contact)]
-        forces += contact_loads(model, facets, contact, frame.to_local(link.joints)[contact.anchor], patch_radius)
+        hole = contact_hole(outline, contact)
+        # A block drawn without a link of its own bears over the slot's width at least.
+        corners = np.asarray(Polygon(outline.interiors[hole]).minimum_rotated_rectangle.exterior.coords)[:3]
+        width = float(np.hypot(*np.diff(corners, axis=0).T).min())
+        forces += contact_loads(model, model.plane.holes[hole], contact, frame.to_local(link.joints)[contact.anchor],
+                                max(width, patch_radius))
     for point in loads.point_forces:
         force = np.asarray(point.force, float)
         pin = point_force_hole(link, loads.frame_joints, point.at)
