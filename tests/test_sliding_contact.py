@@ -191,3 +191,22 @@ def test_the_slotted_levers_fea_finds_the_ligaments_bending_that_its_beam_sectio
     assert lever["stress_pa"] == pytest.approx(record["peak_max_von_mises_pa"])
     assert "a slider's block slides in its slot" in record["model_reason"] and NO_FEA not in record["model_reason"]
     assert "lever" in text
+
+
+def test_a_block_drawn_without_a_link_bears_over_the_slots_width_and_its_peak_converges(tmp_path):
+    """The shaper with its collar left out (a massless block in the slot) and friction 0.15 on it:
+    the block bears over the slot's 36 mm width, not on a point of the wall, so the lever's peak
+    settles on the mesh as with the drawn 70 mm collar."""
+    for sketch in SHAPER.parent.glob("*.dxf"):
+        (tmp_path / sketch.name).write_bytes(sketch.read_bytes())
+    text = SHAPER.read_text()
+    start = text.index("[links.collar]")
+    text = text[:start] + text[text.index("[links.lever]"):]
+    text = text.replace(', block = "collar"}', "}") + '\n[loads.friction]\n"crank:1" = 0.15\n'
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text)
+    out = tmp_path / "out.json"
+    assert main(["analyze", str(scene), "--no-cache", "--json", str(out)]) == 0
+    lever = json.loads(out.read_text())["links"]["lever"]
+    assert lever["peak_converged"] and lever["peak_mesh"]["direct_solves"] == 36
+    assert 150e6 < lever["peak_max_von_mises_pa"] < 220e6
