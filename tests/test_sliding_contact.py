@@ -107,7 +107,7 @@ def test_a_guide_whose_contact_runs_in_its_material_has_a_beam_row_that_says_the
     assert barrel["governing"] == "beam nominal" and barrel["trust"] == "beam only"
     assert "the FEA cannot take it" in barrel["trust_reason"]
     assert data["links"]["barrel"]["model"] == FEA_PEAKS
-    assert NO_FEA + "the block's contact runs in the link's material" in data["links"]["barrel"]["model_reason"]
+    assert NO_FEA + "the block's contact is not inside a closed slot of the link" in data["links"]["barrel"]["model_reason"]
     assert "peak_max_von_mises_pa" not in data["links"]["barrel"]
     assert "peak_max_von_mises_pa" in data["links"]["arm"]
     assert "the FEA cannot take barrel" in text

@@ -20,10 +20,10 @@ From what the beam run already has (no FEA to decide), per link:
   off the nominal stress there).
 
 A link a slider's block slides along (a guide, the slotted lever of a quick-return) is on
-"fea-peaks": where the block runs in a slot of the link, the FEA bears it on the slot's walls,
-solving each position (``validation.direct_peaks``); where its contact runs in the link's material
-(a cylinder's barrel drawn as a plate), the FEA cannot take it, the reason says so and its verdict
-stays on its beam sections, trusted "beam only".
+"fea-peaks": where the block runs in a closed slot of the link, the FEA bears it on the slot's
+walls, solving each position (``validation.direct_peaks``); where its contact is not inside a
+closed slot (a cylinder's barrel drawn as a plate, a fork open to the outline), the FEA cannot take
+it, the reason says so and its verdict stays on its beam sections, trusted "beam only".
 
 Every choice carries its reason in words. ``analyze`` runs the FEA peaks (superposed unit loads,
 ``linkstress.validation.peaks_scene``) for the links on "fea-peaks" only; ``--beam-only`` runs none
@@ -56,8 +56,9 @@ constants, a mesh too large)."""
 GUIDE_FEA = ("a slider's block slides in its slot, bearing on the slot's walls where the block is (the FEA solves "
              "each position)")
 """Why a link whose slot a slider's block runs in is on the FEA peaks."""
-GUIDE_NO_FEA = ("the block's contact runs in the link's material, not in a slot, and the FEA bears a block only on a "
-                "slot's walls; the beam sections take the contact where it is")
+GUIDE_NO_FEA = ("the block's contact is not inside a closed slot of the link at every position (it runs in the "
+                "material, or in a slot open to the outline, or leaves its slot), and the FEA bears a block only on "
+                "the walls of a closed slot; the beam sections take the contact where it is")
 """Why a link a slider's block slides along outside a slot (a cylinder's barrel drawn as a plate) has no FEA peaks."""
 DEFAULT_ACCURACY = 0.05
 """The governing stress within 5 % unless the scene ([analysis] accuracy) or --accuracy says otherwise."""

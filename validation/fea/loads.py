@@ -273,8 +273,9 @@ def point_force_hole(
     return hole, np.array(Polygon(outline.interiors[hole]).centroid.coords[0])
 
 
-GUIDE_REFUSAL = ("a slider's block slides along it with its contact in the link's material, not in a slot: the FEA "
-                 "bears a block only on the walls of the slot it runs in; its stresses are its beam sections")
+GUIDE_REFUSAL = ("a slider's block slides along it with its contact not inside a closed slot of the link at every "
+                 "position: the FEA bears a block only on the walls of a closed slot it runs in; its stresses are its "
+                 "beam sections")
 
 
 def check_load_case(link: LinkProfile, loads: LinkLoadCase) -> None:
