@@ -123,7 +123,7 @@ def test_a_guide_is_not_validated_and_the_fea_refuses_a_contact_outside_a_slot()
     plan = plan_for(scene)
     assert "lever" in plan.stresses and "lever" not in plan.validate and "lever" in plan.with_peaks().peaks
     bar = straight_bar(1.0, 0.05, 0.05, 0.01, STEEL, hole_diameter=0.01)
-    with pytest.raises(FEAError, match="not in a slot"):
+    with pytest.raises(FEAError, match="not inside a closed slot"):
         check_load_case(bar, pushed_bar(np.array([0.3])))
 
 
