@@ -245,6 +245,8 @@ def _point_forces(result: "AnalysisResult", name: str) -> list[str]:
 
     profile = result.scene.links[name].profile
     loads = result.forces.link_loads[name]
+    if not loads.point_forces:
+        return []
     outline = profile.local_outline(*loads.frame_joints)
     return [
         f"a point force on the material at ({p.at[0]:.4g}, {p.at[1]:.4g}) m (its local stress is beyond beam theory)"
