@@ -122,3 +122,15 @@ def test_each_joint_force_is_named_by_the_link_it_acts_on_and_the_joint(case):
             np.testing.assert_allclose(ground[ok], force[ok], atol=1e-9 * np.abs(force[ok]).max())
     assert force_names(scene)[scene.machine.main.name]["F32"].startswith(f"{scene.machine.main.coupler.link} on "
                                                                           f"{scene.machine.main.crank.link} at ")
+
+
+def test_a_slot_is_named_along_its_whole_rim_and_a_point_beside_it_by_its_arm():
+    """A bar with a 60 x 8 mm slot between its pins: a point at the slot's end (34 mm from its
+    centre, beyond two equivalent radii of its area) is at the slot; a point on the bar's outer edge,
+    11 mm from the slot's side, is on the arm."""
+    bar = straight_bar(0.1, 0.03, 0.02, 0.01, STEEL, 0.008)
+    slot = LineString([(0.02, 0.0), (0.08, 0.0)]).buffer(0.004, quad_segs=16).exterior.coords[::-1]
+    slotted = LinkProfile(Polygon(bar.outline.exterior, [*bar.outline.interiors, slot]), bar.joints, 0.01, STEEL)
+    places = places_of(slotted, ("O2", "A"))
+    assert places.name(np.array([0.0845, 0.0])) == "slot at (0.05, 0) m of the drawing, no joint"
+    assert places.name(np.array([0.05, 0.015])).startswith("arm O2-A")

@@ -7,9 +7,10 @@ joints of one link would get the same letter ("second.A"), and by the links its 
 "joint 2". A point of a link (member frame of its frame joints, the frame of its section
 stresses and FEA peaks) is named, in this order, as:
 
-- the pin hole at a joint ("pin hole A (crank-coupler)") or a hole no joint uses ("hole at (x, y) mm
-  of the drawing"), within ``HOLE_REACH`` hole radii of its centre (where validate looks for a hole's
-  peak);
+- the pin hole at a joint ("pin hole A (crank-coupler)") or a hole no joint uses ("hole at (x, y) m
+  of the drawing, no joint", its centre; "slot at ..." for one 1.5 times as long as wide), within
+  ``HOLE_REACH - 1`` hole radii of its edge: ``HOLE_REACH`` radii of a round hole's centre (where
+  validate looks for a hole's peak), and along a slot's whole rim (a slot's radius is half its width);
 - on a member's section: "junction of arms O4-B and O4-C" (the station is within a section depth of
   another arm's axis), "inner fillet of arm O4-C" (an FEA value; a beam value is at the "inner edge of
   the bend") or "outer edge of the bend of arm O4-C" (the axis there turns tighter than
@@ -25,7 +26,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 from numpy.typing import NDArray
+from shapely.geometry import Polygon
 
 from linkstress.geometry.members import MemberCuts
 from linkstress.geometry.profile import LinkProfile
@@ -37,6 +40,8 @@ NORTON = {"crank": ("O2", "A"), "coupler": ("A", "B"), "output": ("O4", "B"), "g
 HOLE_REACH = 2.0
 """A point within this many hole radii of a hole's centre is at that hole (its rim and a radius of
 material around it: where a pin's stress raiser lies)."""
+SLOT_ASPECT = 1.5
+"""A hole this many times as long as it is wide is named a slot."""
 BEND_DEPTHS = 10.0
 """An axis whose radius of curvature is under this many section depths bends: the curved-beam range."""
 SECTION_SLACK = 0.05
@@ -117,6 +122,8 @@ class LinkPlaces:
     hole_centres: NDArray[np.float64]
     hole_radii: NDArray[np.float64]
     hole_joints: tuple[int | None, ...]
+    hole_rings: tuple[NDArray[np.float64], ...]
+    """Each hole's boundary (K, 2) [m, load frame]."""
     members: tuple[MemberPlace, ...]
     points: NDArray[np.float64]
     drawing_origin: NDArray[np.float64]
@@ -151,16 +158,20 @@ class LinkPlaces:
     def _hole_at(self, p: NDArray[np.float64]) -> str | None:
         if not len(self.hole_radii):
             return None
-        reach = np.hypot(*(self.hole_centres - p).T) / self.hole_radii
+        # Within (HOLE_REACH - 1) radii of a hole's edge: HOLE_REACH radii of a round hole's centre; a
+        # slot's radius is half its width, so its rim is named from end to end.
+        point = shapely.Point(p)
+        reach = np.array([Polygon(ring).distance(point) for ring in self.hole_rings]) / self.hole_radii
         h = int(np.argmin(reach))
-        if reach[h] > HOLE_REACH:
+        if reach[h] > HOLE_REACH - 1:
             return None
         joint = self.hole_joints[h]
         if joint is not None:
             return self.pin_hole(joint)
         centre = self.to_drawing(self.hole_centres[h])
         x, y = without_noise(centre, float(np.abs(centre).max()))
-        return f"hole at ({x:.4g}, {y:.4g}) m of the drawing, no joint"
+        kind = "slot" if _elongated(self.hole_rings[h]) else "hole"
+        return f"{kind} at ({x:.4g}, {y:.4g}) m of the drawing, no joint"
 
     def to_drawing(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         """A load-frame point (2,) [m] in the drawing's frame [m]."""
@@ -247,16 +258,32 @@ def profile_places(profile: LinkProfile, frame_joints: tuple[int, int], joints: 
     frame = profile.frame(*frame_joints)
     centres, areas = profile.holes
     joints_at = {hole: j for j, hole in enumerate(profile.joint_holes) if hole is not None}
+    rings = tuple(np.asarray(ring.coords) for ring in profile.local_outline(*frame_joints).interiors)
     return LinkPlaces(
         tuple(joints),
         frame.to_local(centres).reshape(-1, 2),
-        np.sqrt(areas / np.pi),
+        np.array([_radius(ring) for ring in rings]).reshape(-1),
         tuple(joints_at.get(h) for h in range(len(areas))),
+        rings,
         tuple(MemberPlace(tuple(pair), float(length), cuts) for pair, length, cuts in members),
         frame.to_local(profile.joints).reshape(-1, 2),
         np.asarray(frame.origin, float),
         frame.rotation,
     )
+
+
+def _elongated(ring: NDArray[np.float64]) -> bool:
+    """Whether a hole is a slot: its narrowest rectangle at least SLOT_ASPECT times as long as wide."""
+    corners = np.asarray(Polygon(ring).minimum_rotated_rectangle.exterior.coords)[:3]
+    sides = np.hypot(*np.diff(corners, axis=0).T)
+    return bool(sides.max() >= SLOT_ASPECT * sides.min())
+
+
+def _radius(ring: NDArray[np.float64]) -> float:
+    """[m]: a hole's radius, half the width of the narrowest rectangle about it (a round hole's
+    radius, a slot's half width)."""
+    corners = np.asarray(Polygon(ring).minimum_rotated_rectangle.exterior.coords)[:3]
+    return float(np.hypot(*np.diff(corners, axis=0).T).min()) / 2
 
 
 def _linkage_joint_names(scene: Scene) -> dict[str, tuple[JointName, ...]]:
