@@ -23,7 +23,7 @@ from __future__ import annotations
 import importlib.util
 import os
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -121,7 +121,9 @@ def scene_peaks(
     if not tasks:
         return {}
     where = executor or LocalExecutor()
-    return dict(zip(plan.peaks, where.map(link_peaks, tasks, [f"link {name}" for name in plan.peaks])))
+    here = isinstance(where, LocalExecutor) and (where.jobs == 1 or len(tasks) == 1)
+    work = link_peaks if here else portable_link_peaks
+    return dict(zip(plan.peaks, where.map(work, tasks, [f"link {name}" for name in plan.peaks])))
 
 
 def stored_links(scene: Scene, plan: Plan, forces: MachineForces, cache: CacheSettings | None) -> set[str]:
@@ -194,6 +196,18 @@ def link_peaks(task: PeaksTask) -> LinkPeaks:
     else:
         fatigue = node_fatigue(sweep.largest, sweep.smallest, strength, task.criterion)
     return LinkPeaks(task.name, task.n_positions, sweep, check, mesh, fatigue, task.criterion, fatigue_note, check_seconds)
+
+
+def portable_link_peaks(task: PeaksTask) -> LinkPeaks:
+    """``link_peaks`` for a task run in another process: its unit cases travel back as what the
+    reports read of them (``StoredCases``), a few MB, not their solved fields and model (35 MB for
+    the README tutorial's coupler, pickled, piped and read again in the parent)."""
+    peaks = link_peaks(task)
+    cases = peaks.sweep.cases
+    if not isinstance(cases, StoredCases):
+        cases = StoredCases(cases.nodes, cases.element_dofs, cases.dofs, cases.count, cases.directions,
+                            tuple(cases.frame_joints), dict(cases.seconds))
+    return replace(peaks, sweep=replace(peaks.sweep, cases=cases))
 
 
 def _computed(task: PeaksTask, cache: DiskCache | None) -> tuple[SweepPeaks, PeakCheck, object, float]:
