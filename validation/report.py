@@ -262,6 +262,7 @@ def validation_json(result: ValidationResult, verdict: Verdict | None = None) ->
         "verdict": (verdict or validation_verdict(result)).record(),
         "warnings": list(result.analysis.scene.warnings),
         "not_compared": result.not_compared(),
+        "not_validated": [{"link": name, "reason": why} for name, why in result.skipped.items()],
     }
 
 
@@ -306,6 +307,8 @@ def check_line(result: ValidationResult) -> str:
     if result.not_compared():
         line += ("; not compared, so not checked: " + ", ".join(result.not_compared_names())
                  + " (every cut through a hole: see each link)")
+    if result.skipped:
+        line += "; not validated: " + "; ".join(f"{name} ({why})" for name, why in result.skipped.items())
     unconverged = result.unconverged()
     if unconverged:
         line += "; reported beside this check, not part of it: " + "; ".join(unconverged)

@@ -87,6 +87,8 @@ class ValidationResult:
     comparisons: dict[str, LinkComparison]
     errors: dict[str, str]
     seconds: dict[str, float] = field(default_factory=dict)
+    skipped: dict[str, str] = field(default_factory=dict)
+    """Links of the default plan left out, and why (a guide whose block does not run in a closed slot)."""
 
     def failures(self) -> list[str]:
         """What fails the check, one line each (empty when everything passes)."""
@@ -209,6 +211,10 @@ def validate_scene(
     a terminal."""
     analysis = run_analysis(scene, plan)
     chosen = compared_positions(analysis, positions)
+    skipped = {} if scene.analysis is not None and scene.analysis.validate else _without_fea(analysis, chosen)
+    if skipped:
+        plan = replace(plan, validate=tuple(n for n in plan.validate if n not in skipped))
+        analysis = replace(analysis, plan=plan)
     size = mesh_size or (scene.analysis.mesh_size if scene.analysis is not None else None)
     order = scene.analysis.element_order if scene.analysis is not None else 2
     where = executor or LocalExecutor(jobs)
@@ -244,7 +250,24 @@ def validate_scene(
             continue
         comparisons[name] = link_comparison(name, chosen, w.beams, fea)
     ordered = {name: errors[name] for name in plan.validate if name in errors}
-    return ValidationResult(analysis, chosen, comparisons, ordered, {name: seconds.get(name, 0.0) for name in plan.validate})
+    return ValidationResult(analysis, chosen, comparisons, ordered, {name: seconds.get(name, 0.0) for name in plan.validate},
+                            skipped)
+
+
+def _without_fea(analysis: AnalysisResult, chosen: NDArray[np.intp]) -> dict[str, str]:
+    """The guides of ``analysis.plan.validate`` whose block does not stay inside a closed slot of
+    theirs at the positions ``chosen``: the FEA has no wall to bear it on (``fea.loads``)."""
+    from linkstress.loads import contact_hole
+
+    out = {}
+    for name in analysis.plan.validate:
+        if name not in analysis.plan.guides or analysis.forces is None:
+            continue
+        loads = analysis.forces.link_loads[name]
+        outline = analysis.scene.links[name].profile.local_outline(*loads.frame_joints)
+        if any(contact_hole(outline, c) is None for c in loads.at(chosen).contacts):
+            out[name] = "a slider's block slides along it outside a closed slot of it: no FEA bears it"
+    return out
 
 
 def _link_work(scene: Scene, plan: Plan, analysis: AnalysisResult, name: str, chosen: NDArray[np.intp],

@@ -56,8 +56,8 @@ class Plan:
     beam_only: bool = False
     unstressed: tuple[tuple[str, str], ...] = ()
     guides: tuple[str, ...] = ()
-    """Links a slider's block slides along: their sections take the moving contact; ``validate``
-    does not compare them (its cuts would cross the slot the block bears on)."""
+    """Links a slider's block slides along: their sections take the moving contact, and their FEA
+    bears the block on the walls of the closed slot it runs in (none where it runs elsewhere)."""
 
     def with_peaks(self) -> Plan:
         """The same plan with FEA peaks for every stressed link."""
@@ -115,7 +115,7 @@ def plan_for(scene: Scene) -> Plan:
         if without_mass:
             notes.append(f"no joint forces: {', '.join(without_mass)} lack mass data (mass, inertia, center_of_mass)")
         stresses = tuple(stressable) if forces else ()
-        validate = tuple(n for n in stresses if n not in guides)
+        validate = stresses
         stations = DEFAULT_STATIONS
     else:
         wants_stresses = asked.stresses or bool(asked.validate)
@@ -132,11 +132,6 @@ def plan_for(scene: Scene) -> Plan:
                 raise SceneError(
                     f"analysis.validate: link {name!r} is a slider, with one joint: there is no member between two "
                     "joints to compare along; leave it out"
-                )
-            if name in guides:
-                raise SceneError(
-                    f"analysis.validate: link {name!r} guides a slider whose contact moves along it, and the FEA "
-                    "applies its loads at fixed points: there is no FEA to compare with; leave it out"
                 )
             if name not in stressable:
                 raise SceneError(f"analysis.validate: link {name!r} needs a sketch, a thickness and a material")
