@@ -6,9 +6,8 @@ of a quick-return) bears on its slot where the block is, a place that moves with
 
 The stiffness is factorised once; each block of positions is a block of right-hand sides (the
 loads of ``fea.loads.link_loads``, the block's push on the slot included), solved, recovered and
-reduced as ``peaks.sweep_peaks`` reduces the superposed field: per position the largest von Mises
-and its node, per node the largest von Mises and the extremes of the signed equivalent stress.
-Memory holds a block of positions, never nodes x positions.
+reduced as ``peaks.sweep_peaks`` reduces the superposed field (``peaks.PeakReduction``). Memory
+holds a block of positions, never nodes x positions.
 """
 
 from __future__ import annotations
@@ -20,7 +19,6 @@ from numpy.typing import NDArray
 
 from linkstress.geometry.profile import LinkProfile
 from linkstress.loads import LinkLoadCase
-from linkstress.stress_state import larger_principal_sign, von_mises
 from linkstress.validation.fea.cache import DiskCache
 from linkstress.validation.fea.link import applied_load, link_model, reaction_ratio, region_length, support_reactions
 from linkstress.validation.fea.loads import link_loads
@@ -28,9 +26,7 @@ from linkstress.validation.fea.mesh import MeshSettings
 from linkstress.validation.fea.plane_stress import factorise, minimal_support
 from linkstress.validation.fea.recovery import stress_recovery
 from linkstress.validation.peak_results import StoredCases, SweepPeaks
-
-BLOCK_VALUES = 2_000_000
-"""Stress values (nodes x 3 x positions) solved and recovered at once: 16 MB, whatever the mesh."""
+from linkstress.validation.peaks import PeakReduction
 
 
 def direct_sweep_peaks(
@@ -48,32 +44,17 @@ def direct_sweep_peaks(
     stiffness = factorise(model, fixed)
     recovery = stress_recovery(model)
     n_nodes = model.scalar.N
-    block = max(1, BLOCK_VALUES // (3 * n_nodes))
-    peak = np.zeros(len(chosen))
-    peak_node = np.zeros(len(chosen), dtype=np.intp)
-    ratio = np.zeros(len(chosen))
-    envelope = np.zeros(n_nodes)
-    largest = np.full(n_nodes, -np.inf)
-    smallest = np.full(n_nodes, np.inf)
+    kept = PeakReduction.of(len(chosen), n_nodes)
     length = region_length(model)
     worst_stress, worst_value = np.zeros((n_nodes, 3)), -np.inf
-    for first in range(0, len(chosen), block):
-        part = slice(first, first + block)
+    for part in PeakReduction.blocks(len(chosen), n_nodes):
         forces = link_loads(model, link, loads.at(chosen[part]), patch_radius=mesh.station_size)
         displacement, support = stiffness.solve(forces)
         stress = recovery.nodal_stress(displacement)  # (C, nodes, 3)
-        vm = von_mises(stress)
-        node = vm.argmax(axis=1)
-        peak[part], peak_node[part] = vm[np.arange(len(node)), node], node
-        signed = larger_principal_sign(stress) * vm
-        np.maximum(envelope, vm.max(axis=0), out=envelope)
-        np.maximum(largest, signed.max(axis=0), out=largest)
-        np.minimum(smallest, signed.min(axis=0), out=smallest)
-        ratio[part] = reaction_ratio(support_reactions(model, fixed, support), applied_load(model, forces), length)
-        k = int(np.argmax(peak[part]))
-        if peak[part][k] > worst_value:
-            worst_value, worst_stress = peak[part][k], stress[k]
+        kept.add(part, stress, reaction_ratio(support_reactions(model, fixed, support), applied_load(model, forces), length))
+        k = int(np.argmax(kept.peak[part]))
+        if kept.peak[part][k] > worst_value:
+            worst_value, worst_stress = kept.peak[part][k], stress[k]
     cases = StoredCases(model.scalar.doflocs.T, model.scalar.element_dofs, model.n_dofs, 0, np.zeros(0),
                         tuple(loads.frame_joints), {"mesh": meshed - start, "solve": time.perf_counter() - meshed})
-    worst = int(np.argmax(peak)) if len(chosen) else 0
-    return SweepPeaks(cases, chosen, peak, peak_node, envelope, largest, smallest, ratio, worst, worst_stress, 0.0)
+    return kept.peaks(cases, chosen, worst_stress, 0.0)

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -48,40 +48,70 @@ def superposed_stress(cases: UnitLoadCases, weights: NDArray[np.float64]) -> NDA
     return (weights.T @ cases.stress.T).reshape(weights.shape[1], -1, 3)
 
 
+@dataclass
+class PeakReduction:
+    """What a sweep keeps of its nodal stress, filled a block of positions at a time (``add``): per
+    position the largest von Mises [Pa], its node and the reaction ratio [-]; per node the largest
+    von Mises and the largest and smallest signed equivalent stress [Pa] (von Mises with the sign of
+    the principal stress of larger magnitude, ``linkstress.fatigue``) that a fatigue check cycles."""
+
+    peak: NDArray[np.float64]
+    peak_node: NDArray[np.intp]
+    ratio: NDArray[np.float64]
+    envelope: NDArray[np.float64]
+    largest: NDArray[np.float64]
+    smallest: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, positions: int, nodes: int) -> "PeakReduction":
+        return cls(np.zeros(positions), np.zeros(positions, dtype=np.intp), np.zeros(positions), np.zeros(nodes),
+                   np.full(nodes, -np.inf), np.full(nodes, np.inf))
+
+    @staticmethod
+    def blocks(positions: int, nodes: int) -> list[slice]:
+        """The blocks of positions whose stress (positions x nodes x 3) fits BLOCK_VALUES."""
+        size = max(1, BLOCK_VALUES // (3 * nodes))
+        return [slice(first, first + size) for first in range(0, positions, size)]
+
+    def add(self, part: slice, stress: NDArray[np.float64], ratio: NDArray[np.float64]) -> None:
+        """The nodal ``stress`` (C, nodes, 3) [Pa] and reaction ``ratio`` (C,) of the positions ``part``."""
+        vm = von_mises(stress)
+        node = vm.argmax(axis=1)
+        self.peak[part], self.peak_node[part] = vm[np.arange(len(node)), node], node
+        signed = larger_principal_sign(stress) * vm  # fatigue's signed_von_mises, its von Mises reused
+        np.maximum(self.envelope, vm.max(axis=0), out=self.envelope)
+        np.maximum(self.largest, signed.max(axis=0), out=self.largest)
+        np.minimum(self.smallest, signed.min(axis=0), out=self.smallest)
+        self.ratio[part] = ratio
+
+    @property
+    def worst(self) -> int:
+        """The index of the largest peak (0 without positions)."""
+        return int(np.argmax(self.peak)) if len(self.peak) else 0
+
+    def peaks(self, cases, positions: NDArray[np.intp], worst_stress: NDArray[np.float64], seconds: float) -> SweepPeaks:
+        """The ``SweepPeaks`` of ``cases`` at ``positions``, the field at the worst one ``worst_stress``."""
+        return SweepPeaks(cases, positions, self.peak, self.peak_node, self.envelope, self.largest, self.smallest,
+                          self.ratio, self.worst, worst_stress, seconds)
+
+
 def sweep_peaks(cases: UnitLoadCases, loads: LinkLoadCase, positions: NDArray[np.intp] | None = None) -> SweepPeaks:
     """Superpose ``cases`` over ``positions`` of ``loads`` (all by default), a block at a time."""
     start = time.perf_counter()
     chosen = np.arange(loads.n_positions) if positions is None else np.asarray(positions, dtype=np.intp)
     n_nodes = cases.stress.shape[0] // 3
-    block = max(1, BLOCK_VALUES // (3 * n_nodes))
-    peak = np.zeros(len(chosen))
-    peak_node = np.zeros(len(chosen), dtype=np.intp)
-    ratio = np.zeros(len(chosen))
-    envelope = np.zeros(n_nodes)
-    largest = np.full(n_nodes, -np.inf)
-    smallest = np.full(n_nodes, np.inf)
+    kept = PeakReduction.of(len(chosen), n_nodes)
     length = region_length(cases.model)
-    for first in range(0, len(chosen), block):
-        part = slice(first, first + block)
+    for part in PeakReduction.blocks(len(chosen), n_nodes):
         weights = cases.weights(loads.at(chosen[part]))
-        stress = superposed_stress(cases, weights)  # (C, nodes, 3)
-        vm = von_mises(stress)
-        node = vm.argmax(axis=1)
-        peak[part], peak_node[part] = vm[np.arange(len(node)), node], node
-        signed = larger_principal_sign(stress) * vm  # fatigue's signed_von_mises, its von Mises reused
-        np.maximum(envelope, vm.max(axis=0), out=envelope)
-        np.maximum(largest, signed.max(axis=0), out=largest)
-        np.minimum(smallest, signed.min(axis=0), out=smallest)
-        ratio[part] = reaction_ratio(weights.T @ cases.reactions, np.abs(weights).T @ cases.applied, length)
-    worst = int(np.argmax(peak)) if len(chosen) else 0
+        ratio = reaction_ratio(weights.T @ cases.reactions, np.abs(weights).T @ cases.applied, length)
+        kept.add(part, superposed_stress(cases, weights), ratio)
+    worst = kept.worst
     worst_stress = (
         superposed_stress(cases, cases.weights(loads.at(chosen[worst:worst + 1])))[0]
         if len(chosen) else np.zeros((n_nodes, 3))
     )
-    return SweepPeaks(
-        cases, chosen, peak, peak_node, envelope, largest, smallest, ratio, worst, worst_stress,
-        time.perf_counter() - start,
-    )
+    return kept.peaks(cases, chosen, worst_stress, time.perf_counter() - start)
 
 
 def peak_mesh(

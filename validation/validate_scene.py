@@ -257,7 +257,7 @@ def validate_scene(
 def _without_fea(analysis: AnalysisResult, chosen: NDArray[np.intp]) -> dict[str, str]:
     """The guides of ``analysis.plan.validate`` whose block does not stay inside a closed slot of
     theirs at the positions ``chosen``: the FEA has no wall to bear it on (``fea.loads``)."""
-    from linkstress.loads import contact_hole
+    from linkstress.loads import contacts_in_slots
 
     out = {}
     for name in analysis.plan.validate:
@@ -265,7 +265,7 @@ def _without_fea(analysis: AnalysisResult, chosen: NDArray[np.intp]) -> dict[str
             continue
         loads = analysis.forces.link_loads[name]
         outline = analysis.scene.links[name].profile.local_outline(*loads.frame_joints)
-        if any(contact_hole(outline, c) is None for c in loads.at(chosen).contacts):
+        if not contacts_in_slots(outline, loads.at(chosen)):
             out[name] = "a slider's block slides along it outside a closed slot of it: no FEA bears it"
     return out
 

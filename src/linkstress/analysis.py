@@ -38,8 +38,8 @@ class Plan:
     ``validate``; FEA peaks over the sweep, by superposition of unit loads, and fatigue for ``peaks``
     (judged by ``fatigue_criterion``); ``notes`` say why a stage or link is left out, and
     ``unstressed`` (link, why) names each moving link with a drawn profile that gets no section
-    stresses (a slider's block, a link a block slides along, one without a material, one left out by
-    [analysis]), for the verdict to show as not analysed. Each stressed
+    stresses (a slider's block, one without a material, one left out by [analysis]), for the
+    verdict to show as not analysed. Each stressed
     link's stress model is chosen for the governing stress within ``accuracy``
     (``linkstress.model_choice``); ``analyze`` runs the FEA peaks of the links chosen for them
     unless ``beam_only``, and of every stressed link when ``peaks`` names them (``with_peaks``)."""

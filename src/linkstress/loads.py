@@ -171,6 +171,12 @@ def contact_hole(outline: Polygon, contact: SlidingContact) -> int | None:
     return None
 
 
+def contacts_in_slots(outline: Polygon, loads: LinkLoadCase) -> bool:
+    """Whether every sliding contact of ``loads`` stays inside a closed slot of ``outline`` (their
+    member frame) at all its positions: where the FEA can bear its block (``contact_hole``)."""
+    return all(contact_hole(outline, c) is not None for c in loads.contacts)
+
+
 def distance_outside(outline: Polygon, point: ArrayLike) -> float:
     """How far [m] ``point`` (2,) [m, the outline's frame] lies outside the outer boundary of
     ``outline``, 0 inside it (in material or in a hole) or within OUTLINE_TOLERANCE of it."""

@@ -39,10 +39,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
-from shapely.geometry import Polygon
 
 from linkstress.dynamics.pin_holes import OPEN, PinHoleEstimate
-from linkstress.loads import contact_hole
+from linkstress.loads import contacts_in_slots
 
 if TYPE_CHECKING:
     from linkstress.analysis import AnalysisResult
@@ -138,7 +137,7 @@ def choose_models(result: "AnalysisResult", accuracy: float) -> dict[str, ModelC
         if name in result.plan.guides:
             loads = result.forces.link_loads[name]
             outline = result.scene.links[name].profile.local_outline(*loads.frame_joints)
-            in_slot = all(contact_hole(outline, c) is not None for c in loads.at(np.flatnonzero(ok)).contacts)
+            in_slot = contacts_in_slots(outline, loads.at(np.flatnonzero(ok)))
             raisers.append(GUIDE_FEA if in_slot else "a slider's block slides along it")
             choices[name] = ModelChoice(FEA_PEAKS, "; ".join(raisers) + ("" if in_slot else NO_FEA + GUIDE_NO_FEA),
                                         bound, beam_max)
@@ -258,12 +257,8 @@ def _free_holes(result: "AnalysisResult", name: str) -> list[str]:
     """A phrase per hole of link ``name`` that no joint sits in: a lightening hole or a slot, whose
     edge raises the stress beyond the net section's that beam theory gives."""
     profile = result.scene.links[name].profile
-    out = []
-    for h, ring in enumerate(profile.outline.interiors):
-        if h in profile.joint_holes:
-            continue
-        corners = np.asarray(Polygon(ring).minimum_rotated_rectangle.exterior.coords)[:3]
-        sides = sorted(np.hypot(*np.diff(corners, axis=0).T) * 1e3, reverse=True)
-        out.append(f"a hole at no joint ({sides[0]:.3g} x {sides[1]:.3g} mm, a lightening hole or a slot: the stress "
-                   "its edge raises is beyond beam theory)")
-    return out
+    return [
+        f"a hole at no joint ({1e3 * length:.3g} x {1e3 * width:.3g} mm, a lightening hole or a slot: the stress its "
+        "edge raises is beyond beam theory)"
+        for h, (length, width) in enumerate(profile.hole_sizes) if h not in profile.joint_holes
+    ]

@@ -237,10 +237,8 @@ def link_loads(
     for contact in loads.contacts:
         hole = contact_hole(outline, contact)
         # A block drawn without a link of its own bears over the slot's width at least.
-        corners = np.asarray(Polygon(outline.interiors[hole]).minimum_rotated_rectangle.exterior.coords)[:3]
-        width = float(np.hypot(*np.diff(corners, axis=0).T).min())
         forces += contact_loads(model, model.plane.holes[hole], contact, frame.to_local(link.joints)[contact.anchor],
-                                max(width, patch_radius))
+                                max(float(link.hole_sizes[hole, 1]), patch_radius))
     for point in loads.point_forces:
         force = np.asarray(point.force, float)
         pin = point_force_hole(link, loads.frame_joints, point.at)

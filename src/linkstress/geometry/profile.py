@@ -110,6 +110,16 @@ class LinkProfile:
         holes = [edge_area_properties(Boundary.from_rings([r[::-1]]), r[0]) for r in rings]
         return np.array([h.centroid for h in holes]), np.array([h.area for h in holes])
 
+    @cached_property
+    def hole_sizes(self) -> NDArray[np.float64]:
+        """(H, 2) [m]: each hole's length and width, the sides of the narrowest rectangle about it
+        (a round hole's diameter twice, a slot's length and width), in outline order."""
+        sizes = []
+        for ring in self.outline.interiors:
+            corners = np.asarray(Polygon(ring).minimum_rotated_rectangle.exterior.coords)[:3]
+            sizes.append(sorted(np.hypot(*np.diff(corners, axis=0).T), reverse=True))
+        return np.array(sizes, float).reshape(-1, 2)
+
     # -- member frames -------------------------------------------------------------------------
 
     def frame(self, i: int = 0, j: int = 1) -> MemberFrame:

@@ -114,13 +114,14 @@ class MemberPlace:
 @dataclass(frozen=True)
 class LinkPlaces:
     """What names the places of one link: its ``joints`` (``JointName`` per joint), the pin holes'
-    and other holes' centres (H, 2) [m, load frame] and radii (H,) [m] with the joint each is at
-    (``hole_joints``, None for a hole no joint uses), its ``members``, the joint ``points`` (n, 2)
-    [m, load frame], and ``to_drawing`` taking load-frame points to the drawing's frame [m]."""
+    and other holes' centres (H, 2) [m, load frame] and sizes (H, 2) [m]
+    (``LinkProfile.hole_sizes``) with the joint each is at (``hole_joints``, None for a hole no
+    joint uses), its ``members``, the joint ``points`` (n, 2) [m, load frame], and ``to_drawing``
+    taking load-frame points to the drawing's frame [m]."""
 
     joints: tuple[JointName, ...]
     hole_centres: NDArray[np.float64]
-    hole_radii: NDArray[np.float64]
+    hole_sizes: NDArray[np.float64]
     hole_joints: tuple[int | None, ...]
     hole_rings: tuple[NDArray[np.float64], ...]
     """Each hole's boundary (K, 2) [m, load frame]."""
@@ -156,12 +157,13 @@ class LinkPlaces:
         return self._on_member(p, m, k, beam)
 
     def _hole_at(self, p: NDArray[np.float64]) -> str | None:
-        if not len(self.hole_radii):
+        if not len(self.hole_rings):
             return None
         # Within (HOLE_REACH - 1) radii of a hole's edge: HOLE_REACH radii of a round hole's centre; a
         # slot's radius is half its width, so its rim is named from end to end.
         point = shapely.Point(p)
-        reach = np.array([Polygon(ring).distance(point) for ring in self.hole_rings]) / self.hole_radii
+        radii = self.hole_sizes[:, 1] / 2
+        reach = np.array([Polygon(ring).distance(point) for ring in self.hole_rings]) / radii
         h = int(np.argmin(reach))
         if reach[h] > HOLE_REACH - 1:
             return None
@@ -170,7 +172,8 @@ class LinkPlaces:
             return self.pin_hole(joint)
         centre = self.to_drawing(self.hole_centres[h])
         x, y = without_noise(centre, float(np.abs(centre).max()))
-        kind = "slot" if _elongated(self.hole_rings[h]) else "hole"
+        length, width = self.hole_sizes[h]
+        kind = "slot" if length >= SLOT_ASPECT * width else "hole"
         return f"{kind} at ({x:.4g}, {y:.4g}) m of the drawing, no joint"
 
     def to_drawing(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -262,7 +265,7 @@ def profile_places(profile: LinkProfile, frame_joints: tuple[int, int], joints: 
     return LinkPlaces(
         tuple(joints),
         frame.to_local(centres).reshape(-1, 2),
-        np.array([_radius(ring) for ring in rings]).reshape(-1),
+        profile.hole_sizes,
         tuple(joints_at.get(h) for h in range(len(areas))),
         rings,
         tuple(MemberPlace(tuple(pair), float(length), cuts) for pair, length, cuts in members),
@@ -270,20 +273,6 @@ def profile_places(profile: LinkProfile, frame_joints: tuple[int, int], joints: 
         np.asarray(frame.origin, float),
         frame.rotation,
     )
-
-
-def _elongated(ring: NDArray[np.float64]) -> bool:
-    """Whether a hole is a slot: its narrowest rectangle at least SLOT_ASPECT times as long as wide."""
-    corners = np.asarray(Polygon(ring).minimum_rotated_rectangle.exterior.coords)[:3]
-    sides = np.hypot(*np.diff(corners, axis=0).T)
-    return bool(sides.max() >= SLOT_ASPECT * sides.min())
-
-
-def _radius(ring: NDArray[np.float64]) -> float:
-    """[m]: a hole's radius, half the width of the narrowest rectangle about it (a round hole's
-    radius, a slot's half width)."""
-    corners = np.asarray(Polygon(ring).minimum_rotated_rectangle.exterior.coords)[:3]
-    return float(np.hypot(*np.diff(corners, axis=0).T).min()) / 2
 
 
 def _linkage_joint_names(scene: Scene) -> dict[str, tuple[JointName, ...]]:
